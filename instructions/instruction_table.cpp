@@ -1,0 +1,56 @@
+#include "instructions/instruction_table.h"
+
+namespace softslc {
+
+namespace {
+constexpr bool table_is_in_opcode_order() {
+  for (std::size_t i = 0; i < kInstructionCount; ++i)
+    if (static_cast<std::size_t>(kInstructionTable[i].opcode) != i) return false;
+  return true;
+}
+static_assert(table_is_in_opcode_order(), "kInstructionTable must be indexed by Opcode");
+}  // namespace
+
+const InstructionSpec* find_instruction(std::string_view mnemonic) {
+  for (const auto& s : kInstructionTable)
+    if (s.mnemonic == mnemonic) return &s;
+  return nullptr;
+}
+
+std::string_view to_string(OperandKind k) {
+  switch (k) {
+    case OperandKind::Bit: return "bit address";
+    case OperandKind::Source: return "word address or constant";
+    case OperandKind::Dest: return "word address";
+    case OperandKind::File: return "file address (#)";
+    case OperandKind::Timer: return "timer element (T)";
+    case OperandKind::Counter: return "counter element (C)";
+    case OperandKind::Control: return "control element (R)";
+    case OperandKind::Resettable: return "timer, counter or control element";
+    case OperandKind::TimeBase: return "time base (1.0 or 0.01)";
+    case OperandKind::Literal: return "integer constant";
+    case OperandKind::Label: return "label number";
+    case OperandKind::ProgramFile: return "program file number";
+    case OperandKind::SlotWord: return "I: or O: slot word";
+    case OperandKind::Buffer: return "M-file buffer address (M0:e.x00 / M1:e.x00)";
+    case OperandKind::ControlBlock3: return "integer control block (3 words)";
+    case OperandKind::ControlBlock70: return "integer control block (70 words)";
+  }
+  return "?";
+}
+
+std::string_view to_string(MFileAccess a) {
+  switch (a) {
+    case MFileAccess::NoM: return "no M-file access allowed";
+    case MFileAccess::ExamineBit: return "XIC or XIO";
+    case MFileAccess::OutputBit: return "OTU, OTE, or OTL";
+    case MFileAccess::CopToM: return "COP to M file";
+    case MFileAccess::CopFromM: return "COP from M file";
+    case MFileAccess::FllToM: return "FLL";
+    case MFileAccess::MvmToM: return "MVM to M file";
+    case MFileAccess::OtherM: return "any source or destination M file address";
+  }
+  return "?";
+}
+
+}  // namespace softslc

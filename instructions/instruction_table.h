@@ -1,0 +1,140 @@
+// The declarative SLC 500 instruction table.
+//
+// Every instruction softslc knows is one row of instruction_table.def. This header expands that
+// list into (a) the Opcode enum and (b) a constexpr array of InstructionSpec, one per opcode, in
+// the same order, so `spec(op)` is an array index. The parser checks operand count and kinds
+// against the spec, the compiler reads the operand kinds and access modes, the VM dispatches on
+// the opcode, the disassembler prints the mnemonic and box labels, and the scan-time model picks
+// the M0/M1 access-time row from each operand's MFileAccess class. Adding an instruction is one
+// row in the .def file plus one handler in the VM.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace softslc {
+
+// What a program may write in an operand position.
+enum class OperandKind : std::uint8_t {
+  Bit,             // a bit address: B3:0/1, I:1/0, T4:0/DN, M1:2.0/3
+  Source,          // a word address or a numeric constant, read by the instruction
+  Dest,            // a word address written by the instruction (never a constant)
+  File,            // a '#' file address: the start of a range of elements
+  Timer,           // a T-file element: T4:0
+  Counter,         // a C-file element: C5:0
+  Control,         // an R-file element: R6:0
+  Resettable,      // a T, C or R element (RES)
+  TimeBase,        // the literal 1.0 or 0.01 (seconds per ACC count)
+  Literal,         // an integer constant stored with the instruction (presets, lengths)
+  Label,           // a JMP/LBL label number
+  ProgramFile,     // a subroutine program file number (JSR)
+  SlotWord,        // an I: or O: word naming a chassis slot (IIM, IOM)
+  Buffer,          // an M0/M1 block-transfer buffer address M0:e.x00 / M1:e.x00
+  ControlBlock3,   // a 3-word integer control block (BTR, BTW)
+  ControlBlock70,  // a 70-word integer control block (DEM)
+};
+
+// Whether the instruction reads the operand, writes it, or both.
+enum class OperandAccess : std::uint8_t { Read, Write, ReadWrite };
+
+// The row of the M0/M1 access-time table charged when this operand is an M-file address.
+// The 1747-SN (appendix B) and 1203-SM1 (appendix A) manuals list the same rows.
+enum class MFileAccess : std::uint8_t {
+  NoM,         // an M0/M1 address is forbidden here (p. B-2 restrictions)
+  ExamineBit,  // "XIC or XIO"
+  OutputBit,   // "OTU, OTE, or OTL"
+  CopToM,      // "COP to M file" (multi-word: base + per word)
+  CopFromM,    // "COP from M file" (multi-word)
+  FllToM,      // "FLL" (multi-word)
+  MvmToM,      // "MVM to M file"
+  OtherM,      // "any source or destination M file address"
+};
+
+// Whether an MFileAccess row is charged per instruction plus per word (the table's
+// "per Multi-Word Instruction" column) rather than per bit instruction or word.
+constexpr bool is_multi_word(MFileAccess a) {
+  return a == MFileAccess::CopToM || a == MFileAccess::CopFromM || a == MFileAccess::FllToM;
+}
+
+// Where an instruction may stand in a rung.
+enum class Role : std::uint8_t {
+  Input,    // condition: reads rung-in, produces rung-out
+  Output,   // acts on the rung condition; stands at the right of a rung or branch leg
+  Leading,  // must be the first instruction of its rung (LBL, SBR)
+};
+
+// Which processors implement an instruction (checked against the START line's catalog).
+enum class Requirement : std::uint8_t {
+  Any,               // every SLC 5/0x and MicroLogix
+  BlockTransfer,     // BTR/BTW: SLC 5/03 OS302, 5/04 OS401, 5/05 OS501 and later (1747-SN p. 5-5)
+  DeviceNetMessage,  // DEM: SLC 5/03-5/05 OS Series C FRN 10 or later (1747-SDN ch. 8)
+};
+
+struct OperandSpec {
+  OperandKind kind;
+  OperandAccess access;
+  MFileAccess mfile;
+  std::string_view label;  // the box label, used in diagnostics and the disassembler
+  std::int32_t min;        // literal range (Literal, Label, ProgramFile); unused otherwise
+  std::int32_t max;
+};
+
+inline constexpr std::size_t kMaxOperands = 7;
+
+enum class Opcode : std::uint8_t {
+#define OPERAND(...) 0
+#define SOFTSLC_INSTRUCTION(mnemonic, ...) mnemonic,
+#include "instructions/instruction_table.def"
+#undef SOFTSLC_INSTRUCTION
+#undef OPERAND
+};
+
+struct InstructionSpec {
+  std::string_view mnemonic;
+  Opcode opcode;
+  Role role;
+  Requirement requires_;
+  std::uint8_t operand_count;
+  std::array<OperandSpec, kMaxOperands> operands;
+
+  std::span<const OperandSpec> operand_specs() const { return {operands.data(), operand_count}; }
+  bool writes_any() const {
+    for (const auto& o : operand_specs())
+      if (o.access != OperandAccess::Read) return true;
+    return false;
+  }
+};
+
+namespace detail {
+template <typename... Ops>
+constexpr InstructionSpec make_spec(std::string_view m, Opcode op, Role role, Requirement req, Ops... ops) {
+  static_assert(sizeof...(Ops) <= kMaxOperands);
+  return InstructionSpec{m, op, role, req, static_cast<std::uint8_t>(sizeof...(Ops)), {ops...}};
+}
+}  // namespace detail
+
+inline constexpr InstructionSpec kInstructionTable[] = {
+#define OPERAND(kind, access, mfile, label, lo, hi) \
+  OperandSpec { OperandKind::kind, OperandAccess::access, MFileAccess::mfile, label, lo, hi }
+#define SOFTSLC_INSTRUCTION(mnemonic, role, req, ...) \
+  detail::make_spec(#mnemonic, Opcode::mnemonic, Role::role, Requirement::req __VA_OPT__(, ) __VA_ARGS__),
+#include "instructions/instruction_table.def"
+#undef SOFTSLC_INSTRUCTION
+#undef OPERAND
+};
+
+inline constexpr std::size_t kInstructionCount = std::size(kInstructionTable);
+
+// The row for an opcode (the table is in Opcode order, checked at compile time in the .cpp).
+constexpr const InstructionSpec& spec(Opcode op) { return kInstructionTable[static_cast<std::size_t>(op)]; }
+
+// Looks a mnemonic up (exact, upper case). Returns nullptr when unknown.
+const InstructionSpec* find_instruction(std::string_view mnemonic);
+
+std::string_view to_string(OperandKind k);
+std::string_view to_string(MFileAccess a);
+
+}  // namespace softslc

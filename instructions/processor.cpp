@@ -1,0 +1,116 @@
+#include "instructions/processor.h"
+
+#include <array>
+
+namespace softslc {
+
+namespace {
+
+struct CatalogRow {
+  std::string_view catalog;
+  ProcessorFamily family;
+  std::string_view name;
+  char latest_series;
+};
+
+// One row per catalog number softslc recognises.
+constexpr std::array kCatalogs{
+    CatalogRow{"1747-L20", ProcessorFamily::Fixed, "SLC 500 fixed controller", 'C'},
+    CatalogRow{"1747-L30", ProcessorFamily::Fixed, "SLC 500 fixed controller", 'C'},
+    CatalogRow{"1747-L40", ProcessorFamily::Fixed, "SLC 500 fixed controller", 'C'},
+    CatalogRow{"1747-L511", ProcessorFamily::Slc501, "SLC 5/01", 'C'},
+    CatalogRow{"1747-L514", ProcessorFamily::Slc501, "SLC 5/01", 'C'},
+    CatalogRow{"1747-L524", ProcessorFamily::Slc502, "SLC 5/02", 'C'},
+    CatalogRow{"1747-L531", ProcessorFamily::Slc503, "SLC 5/03", 'C'},
+    CatalogRow{"1747-L532", ProcessorFamily::Slc503, "SLC 5/03", 'C'},
+    CatalogRow{"1747-L541", ProcessorFamily::Slc504, "SLC 5/04", 'C'},
+    CatalogRow{"1747-L542", ProcessorFamily::Slc504, "SLC 5/04", 'C'},
+    CatalogRow{"1747-L543", ProcessorFamily::Slc504, "SLC 5/04", 'C'},
+    CatalogRow{"1747-L551", ProcessorFamily::Slc505, "SLC 5/05", 'C'},
+    CatalogRow{"1747-L552", ProcessorFamily::Slc505, "SLC 5/05", 'C'},
+    CatalogRow{"1747-L553", ProcessorFamily::Slc505, "SLC 5/05", 'C'},
+    CatalogRow{"Bul.1761", ProcessorFamily::MicroLogix, "MicroLogix 1000", 'A'},
+    CatalogRow{"Bul.1762", ProcessorFamily::MicroLogix, "MicroLogix 1200", 'C'},
+    CatalogRow{"Bul.1763", ProcessorFamily::MicroLogix, "MicroLogix 1100", 'B'},
+    CatalogRow{"Bul.1764", ProcessorFamily::MicroLogix, "MicroLogix 1500", 'C'},
+    CatalogRow{"Bul.1766", ProcessorFamily::MicroLogix, "MicroLogix 1400", 'B'},
+};
+
+bool is_modular_503_or_later(ProcessorFamily f) {
+  return f == ProcessorFamily::Slc503 || f == ProcessorFamily::Slc504 || f == ProcessorFamily::Slc505;
+}
+
+}  // namespace
+
+int ProcessorModel::max_subroutine_depth() const {
+  return (family == ProcessorFamily::Fixed || family == ProcessorFamily::Slc501) ? 4 : 8;
+}
+
+bool ProcessorModel::has_float_files() const {
+  return is_modular_503_or_later(family) || (family == ProcessorFamily::MicroLogix && catalog != "Bul.1761");
+}
+
+bool ProcessorModel::has_indirect_addressing() const {
+  if (is_modular_503_or_later(family)) return series >= 'C';
+  return catalog == "Bul.1766";
+}
+
+bool ProcessorModel::supports(Requirement r) const {
+  switch (r) {
+    case Requirement::Any: return true;
+    case Requirement::BlockTransfer: return is_modular_503_or_later(family) && series >= 'C';
+    case Requirement::DeviceNetMessage: return is_modular_503_or_later(family) && series >= 'C' && frn >= 10;
+  }
+  return false;
+}
+
+std::string ProcessorModel::requirement_text(Requirement r) const {
+  std::string have = display_name + " (" + catalog + " Series " + std::string(1, series) + " FRN " +
+                     std::to_string(frn) + ")";
+  switch (r) {
+    case Requirement::Any: return {};
+    case Requirement::BlockTransfer:
+      return "needs SLC 5/03 OS302, SLC 5/04 OS401 or SLC 5/05 OS501 (Series C) or later "
+             "(1747-SN manual p. 5-5); this program's processor is " + have;
+    case Requirement::DeviceNetMessage:
+      return "needs an SLC 5/03, 5/04 or 5/05 with OS Series C FRN 10 or later (1747-SDN manual ch. 8); "
+             "this program's processor is " + have;
+  }
+  return {};
+}
+
+std::string ProcessorModel::timing_key() const {
+  switch (family) {
+    case ProcessorFamily::Slc502: return series <= 'B' ? "5/02B" : "5/02C";
+    case ProcessorFamily::Slc503: return "5/03";
+    case ProcessorFamily::Slc504: return "5/04";
+    case ProcessorFamily::Slc505: return "5/05";
+    default: return {};
+  }
+}
+
+std::optional<ProcessorModel> resolve_processor(std::string_view catalog, std::optional<char> series,
+                                                std::optional<int> frn) {
+  for (const auto& row : kCatalogs) {
+    // Fixed controllers carry a variable suffix (1747-L20A, -L30B, ...): match on the prefix.
+    bool match = row.family == ProcessorFamily::Fixed ? catalog.substr(0, row.catalog.size()) == row.catalog
+                                                      : catalog == row.catalog;
+    if (!match) continue;
+    ProcessorModel m;
+    m.catalog = std::string(catalog);
+    m.family = row.family;
+    m.display_name = std::string(row.name);
+    m.series = series.value_or(row.latest_series);
+    m.frn = frn.value_or(11);
+    return m;
+  }
+  return std::nullopt;
+}
+
+std::string_view known_processor_catalogs() {
+  return "1747-L511 -L514 (5/01), 1747-L524 (5/02), 1747-L531 -L532 (5/03), 1747-L541 -L542 -L543 (5/04), "
+         "1747-L551 -L552 -L553 (5/05), 1747-L20x/L30x/L40x (fixed), Bul.1761 Bul.1762 Bul.1763 Bul.1764 Bul.1766 "
+         "(MicroLogix)";
+}
+
+}  // namespace softslc

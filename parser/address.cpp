@@ -1,0 +1,159 @@
+#include "parser/address.h"
+
+#include <array>
+
+namespace softslc {
+
+namespace {
+
+struct NamedBit {
+  FileType type;
+  std::string_view name;
+  int bit;
+};
+
+// Status bits of T/C/R word 0 (RM 1-6, 1-8; PT1 4-9).
+constexpr std::array kNamedBits{
+    NamedBit{FileType::Timer, "EN", 15},   NamedBit{FileType::Timer, "TT", 14},
+    NamedBit{FileType::Timer, "DN", 13},   NamedBit{FileType::Counter, "CU", 15},
+    NamedBit{FileType::Counter, "CD", 14}, NamedBit{FileType::Counter, "DN", 13},
+    NamedBit{FileType::Counter, "OV", 12}, NamedBit{FileType::Counter, "UN", 11},
+    NamedBit{FileType::Counter, "UA", 10}, NamedBit{FileType::Control, "EN", 15},
+    NamedBit{FileType::Control, "EU", 14}, NamedBit{FileType::Control, "DN", 13},
+    NamedBit{FileType::Control, "EM", 12}, NamedBit{FileType::Control, "ER", 11},
+    NamedBit{FileType::Control, "UL", 10}, NamedBit{FileType::Control, "IN", 9},
+    NamedBit{FileType::Control, "FD", 8},
+};
+
+struct NamedWord {
+  FileType type;
+  std::string_view name;
+  int word;
+};
+
+constexpr std::array kNamedWords{
+    NamedWord{FileType::Timer, "PRE", 1},   NamedWord{FileType::Timer, "ACC", 2},
+    NamedWord{FileType::Counter, "PRE", 1}, NamedWord{FileType::Counter, "ACC", 2},
+    NamedWord{FileType::Control, "LEN", 1}, NamedWord{FileType::Control, "POS", 2},
+};
+
+}  // namespace
+
+std::string_view file_letter(FileType t) {
+  switch (t) {
+    case FileType::Output: return "O";
+    case FileType::Input: return "I";
+    case FileType::Status: return "S";
+    case FileType::Bit: return "B";
+    case FileType::Timer: return "T";
+    case FileType::Counter: return "C";
+    case FileType::Control: return "R";
+    case FileType::Integer: return "N";
+    case FileType::Float: return "F";
+    case FileType::Long: return "L";
+    case FileType::String: return "ST";
+    case FileType::Ascii: return "A";
+    case FileType::M0: return "M0";
+    case FileType::M1: return "M1";
+  }
+  return "?";
+}
+
+int words_per_element(FileType t) {
+  switch (t) {
+    case FileType::Timer:
+    case FileType::Counter:
+    case FileType::Control: return 3;
+    case FileType::Float:
+    case FileType::Long: return 2;
+    case FileType::String: return 42;
+    default: return 1;
+  }
+}
+
+int fixed_file_number(FileType t) {
+  switch (t) {
+    case FileType::Output: return 0;
+    case FileType::Input: return 1;
+    case FileType::Status: return 2;
+    default: return -1;
+  }
+}
+
+std::string_view structured_bit_name(FileType t, int bit) {
+  for (const auto& b : kNamedBits)
+    if (b.type == t && b.bit == bit) return b.name;
+  return {};
+}
+
+std::string_view structured_word_name(FileType t, int word) {
+  for (const auto& w : kNamedWords)
+    if (w.type == t && w.word == word) return w.name;
+  return {};
+}
+
+int structured_bit_number(FileType t, std::string_view name) {
+  for (const auto& b : kNamedBits)
+    if (b.type == t && b.name == name) return b.bit;
+  return -1;
+}
+
+int structured_word_number(FileType t, std::string_view name) {
+  for (const auto& w : kNamedWords)
+    if (w.type == t && w.name == name) return w.word;
+  return -1;
+}
+
+std::string to_string(const IndirectRef& r) {
+  std::string s(file_letter(r.type));
+  if (fixed_file_number(r.type) < 0) s += std::to_string(r.file);
+  s += ':';
+  s += std::to_string(r.element);
+  if (r.word >= 0) {
+    auto name = structured_word_name(r.type, r.word);
+    s += '.';
+    s += name.empty() ? std::to_string(r.word) : std::string(name);
+  }
+  return s;
+}
+
+std::string to_string(const Address& a) {
+  std::string s;
+  if (a.indexed) s += '#';
+  s += file_letter(a.type);
+  if (a.indirect_file) {
+    s += '[' + to_string(*a.indirect_file) + ']';
+  } else if (fixed_file_number(a.type) < 0 && !is_mfile(a.type)) {
+    s += std::to_string(a.file);
+  }
+  if (a.bit_offset_form && a.indirect_bit && !a.indirect_element) {
+    // B3/[N7:0]: a bit offset into the file computed at run time.
+    s += "/[" + to_string(*a.indirect_bit) + ']';
+    return s;
+  }
+  s += ':';
+  s += a.indirect_element ? '[' + to_string(*a.indirect_element) + ']' : std::to_string(a.element);
+  if (a.indirect_word) {
+    s += ".[" + to_string(*a.indirect_word) + ']';
+  } else if (is_structured(a.type)) {
+    if (a.word > 0) {
+      auto name = structured_word_name(a.type, a.word);
+      s += '.';
+      s += name.empty() ? std::to_string(a.word) : std::string(name);
+    }
+  } else if (is_io(a.type) || is_mfile(a.type)) {
+    s += '.' + std::to_string(a.word_in_element());
+  } else if (a.word >= 0) {
+    s += '.' + std::to_string(a.word);
+  }
+  if (a.indirect_bit) {
+    s += "/[" + to_string(*a.indirect_bit) + ']';
+  } else if (a.bit >= 0) {
+    auto name = is_structured(a.type) && a.word <= 0 ? structured_bit_name(a.type, a.bit) : std::string_view{};
+    s += '/';
+    s += name.empty() ? std::to_string(a.bit) : std::string(name);
+  }
+  return s;
+}
+
+}  // namespace softslc

@@ -1,0 +1,576 @@
+#include "parser/checker.h"
+
+#include <map>
+#include <set>
+
+#include "instructions/module_catalog.h"
+
+namespace softslc {
+
+namespace {
+
+std::string mnemonic_of(const Instruction& in) { return std::string(spec(in.opcode).mnemonic); }
+
+class Checker {
+ public:
+  Checker(Program& p, DiagnosticList& d) : program_(p), diags_(d) {}
+
+  void run() {
+    check_slots();
+    collect_symbols();
+    collect_file_types();
+    for (auto& file : program_.files) check_file(file);
+    check_jsr_targets();
+    check_data_blocks();
+    check_forces();
+    check_osr_storage();
+  }
+
+ private:
+  Program& program_;
+  DiagnosticList& diags_;
+  std::map<std::string, const Symbol*> symbols_;
+  // File number → first use (type and position), to catch one number used as two types.
+  struct FileUse {
+    FileType type;
+    SourcePos pos;
+  };
+  std::map<int, FileUse> file_types_;
+  std::vector<std::pair<Address, SourcePos>> osr_bits_;
+  std::vector<std::pair<int, SourcePos>> jsr_targets_;
+
+  void error(SourcePos p, std::string m) { diags_.error(p.line, p.column, std::move(m)); }
+  void warning(SourcePos p, std::string m) { diags_.warning(p.line, p.column, std::move(m)); }
+
+  // ---- Chassis ---------------------------------------------------------------------------------------
+
+  void check_slots() {
+    for (auto& slot : program_.slots) {
+      if (slot.slot < 0 || slot.slot > 30) error(slot.pos, "slot number must be 0-30");
+      if (slot.scan_in > 255 || slot.scan_out > 255) error(slot.pos, "SCAN_IN/SCAN_OUT must be 0-255 words");
+      auto entry = find_module_catalog(slot.catalog);
+      bool is_processor = slot.slot == 0 && resolve_processor(slot.catalog).has_value();
+      if (!entry && !is_processor && !slot.m0_size && !slot.m1_size)
+        warning(slot.pos, "unknown module catalog '" + slot.catalog +
+                              "'; treated as a generic I/O card with SCAN_IN/SCAN_OUT words");
+      if (slot.m0_size && (*slot.m0_size < 0 || *slot.m0_size > 4096)) error(slot.pos, "M0_SIZE must be 0-4096 words");
+      if (slot.m1_size && (*slot.m1_size < 0 || *slot.m1_size > 4096)) error(slot.pos, "M1_SIZE must be 0-4096 words");
+    }
+  }
+
+  const SlotConfig* slot_of(int slot) const { return program_.find_slot(slot); }
+
+  // ---- Symbols -----------------------------------------------------------------------------------------
+
+  void collect_symbols() {
+    for (const auto& s : program_.symbols) {
+      if (s.name.empty()) continue;
+      if (find_instruction(s.name) || s.name == "SOR" || s.name == "EOR" || s.name == "BST" || s.name == "NXB" ||
+          s.name == "BND") {
+        error(s.pos, "symbol '" + s.name + "' spells an instruction mnemonic; choose another name");
+        continue;
+      }
+      auto [it, inserted] = symbols_.emplace(s.name, &s);
+      if (!inserted) error(s.pos, "symbol '" + s.name + "' is defined twice (first at line " +
+                                      std::to_string(it->second->pos.line) + ")");
+      check_address(s.address, s.pos, OperandKind::Source, MFileAccess::OtherM, false);
+    }
+  }
+
+  void resolve(Operand& op) {
+    if (op.kind != Operand::Kind::Symbol || op.resolved) return;
+    auto it = symbols_.find(op.symbol);
+    if (it == symbols_.end()) return;
+    op.address = it->second->address;
+    op.resolved = true;
+  }
+
+  // ---- File numbers and types ---------------------------------------------------------------------------
+
+  void note_file_use(const Address& a, SourcePos pos) {
+    if (is_mfile(a.type) || a.indirect_file) return;
+    auto [it, inserted] = file_types_.emplace(a.file, FileUse{a.type, pos});
+    if (!inserted && it->second.type != a.type)
+      error(pos, "file " + std::to_string(a.file) + " is used as " + std::string(file_letter(a.type)) +
+                     std::to_string(a.file) + " here but as " + std::string(file_letter(it->second.type)) +
+                     std::to_string(a.file) + " at line " + std::to_string(it->second.pos.line));
+  }
+
+  void collect_file_types() {
+    // DATA blocks first: they declare the files as the export defines them.
+    for (const auto& d : program_.data)
+      if (d.type) {
+        Address a;
+        a.type = *d.type;
+        a.file = static_cast<std::uint16_t>(d.file);
+        note_file_use(a, d.pos);
+      }
+  }
+
+  // ---- Addresses ---------------------------------------------------------------------------------------
+
+  bool check_indirect_ref(const IndirectRef& r, SourcePos pos) {
+    if (r.element > 255) {
+      error(pos, "element " + std::to_string(r.element) + " of " + to_string(r) + " is beyond 255");
+      return false;
+    }
+    return true;
+  }
+
+  // Checks an address on its own. `kind` and `mfile` say where it stands (for M-file rules).
+  void check_address(const Address& a, SourcePos pos, OperandKind kind, MFileAccess mfile, bool record_type = true) {
+    const auto& proc = program_.processor;
+    if (record_type) note_file_use(a, pos);
+    if (a.bit > 15) error(pos, "bit number " + std::to_string(a.bit) + " is out of range 0-15");
+    if (a.is_indirect() && !proc.has_indirect_addressing())
+      error(pos, "indirect addressing needs SLC 5/03 OS302, 5/04 OS401 or 5/05; this program's processor is " +
+                     proc.display_name);
+    for (const auto* r : {&a.indirect_file, &a.indirect_element, &a.indirect_word, &a.indirect_bit})
+      if (*r) check_indirect_ref(**r, pos);
+    switch (a.type) {
+      case FileType::Float:
+        if (!proc.has_float_files()) error(pos, "F files need SLC 5/03 OS301 or later; this program's processor is " +
+                                                    proc.display_name);
+        if (a.has_bit()) error(pos, "a floating-point element has no bits");
+        break;
+      case FileType::Long:
+        if (proc.family != ProcessorFamily::MicroLogix) error(pos, "L (long integer) files exist on MicroLogix only");
+        break;
+      case FileType::String:
+      case FileType::Ascii:
+        if (proc.family == ProcessorFamily::Slc501 || proc.family == ProcessorFamily::Slc502 ||
+            proc.family == ProcessorFamily::Fixed)
+          error(pos, std::string(file_letter(a.type)) + " files need SLC 5/03 or later");
+        break;
+      default: break;
+    }
+    if (!is_io(a.type) && !is_mfile(a.type) && a.type != FileType::Status && !a.indirect_file) {
+      if (a.file < 3) error(pos, "files 0-2 are O, I and S; data files are numbered 3-255");
+    }
+    if (!a.indirect_element && !is_io(a.type) && !is_mfile(a.type) && a.type != FileType::Status && a.element > 255)
+      error(pos, "element " + std::to_string(a.element) + " is beyond the largest file size (elements 0-255)");
+    if (is_structured(a.type) && !a.indirect_word && a.word > 2)
+      error(pos, "a " + std::string(file_letter(a.type)) + " element has words 0-2 only");
+    if (a.type == FileType::Status && !a.indirect_element && a.element >= status_file_words(proc))
+      error(pos, "S:" + std::to_string(a.element) + " is beyond the status file of " + proc.display_name + " (S:0-S:" +
+                     std::to_string(status_file_words(proc) - 1) + ")");
+    if (is_io(a.type)) check_io_address(a, pos);
+    if (is_mfile(a.type)) check_mfile_address(a, pos, kind, mfile);
+  }
+
+  void check_io_address(const Address& a, SourcePos pos) {
+    if (a.indirect_element) return;
+    if (a.element > 30) {
+      error(pos, "slot " + std::to_string(a.element) + " is beyond the chassis (slots 0-30)");
+      return;
+    }
+    const SlotConfig* slot = slot_of(a.element);
+    if (!slot) {
+      error(pos, "slot " + std::to_string(a.element) + " has no module (no SLOT " + std::to_string(a.element) +
+                     " line)");
+      return;
+    }
+    int words = a.type == FileType::Input ? slot->scan_in : slot->scan_out;
+    if (!a.indirect_word && a.word_in_element() >= words)
+      error(pos, std::string(a.type == FileType::Input ? "input" : "output") + " word " +
+                     std::to_string(a.word_in_element()) + " is beyond slot " + std::to_string(a.element) + "'s " +
+                     std::to_string(words) + "-word " + (a.type == FileType::Input ? "input" : "output") +
+                     " image (" + slot->catalog + ")");
+  }
+
+  void check_mfile_address(const Address& a, SourcePos pos, OperandKind kind, MFileAccess mfile) {
+    if (mfile == MFileAccess::NoM) {
+      error(pos, "M0/M1 addresses are not allowed here (1747-SN manual p. B-2: not in OSR, nor in the file "
+                 "parameter of BSL, BSR, SQO, SQC, SQL, LFL, LFU, FFL, FFU)");
+      return;
+    }
+    if (a.indirect_element) return;
+    const SlotConfig* slot = slot_of(a.element);
+    if (!slot) {
+      error(pos, "slot " + std::to_string(a.element) + " has no module (no SLOT " + std::to_string(a.element) +
+                     " line)");
+      return;
+    }
+    int size = a.type == FileType::M0 ? m0_words(*slot) : m1_words(*slot);
+    if (size == 0) {
+      error(pos, "the module in slot " + std::to_string(a.element) + " (" + slot->catalog + ") has no " +
+                     std::string(file_letter(a.type)) + " file");
+      return;
+    }
+    int span = 1;
+    (void)kind;
+    if (!a.indirect_word && a.word_in_element() + span > size)
+      error(pos, std::string(file_letter(a.type)) + " word " + std::to_string(a.word_in_element()) +
+                     " is beyond the " + std::to_string(size) + "-word " + std::string(file_letter(a.type)) +
+                     " file of slot " + std::to_string(a.element) + " (" + slot->catalog + ")");
+  }
+
+  // ---- Operands -----------------------------------------------------------------------------------------
+
+  void check_operand(const Instruction& in, Operand& op, const OperandSpec& os) {
+    resolve(op);
+    const std::string where = mnemonic_of(in) + " " + std::string(os.label);
+    if (op.kind == Operand::Kind::Symbol && !op.resolved) {
+      error(op.pos, "unknown symbol '" + op.symbol + "' (" + where + ")");
+      return;
+    }
+    auto expect = [&](std::string_view what) {
+      error(op.pos, where + ": expected " + std::string(what) + ", found '" + op.spelling + "'");
+    };
+    switch (os.kind) {
+      case OperandKind::Bit:
+        if (!op.is_address()) return expect("a bit address");
+        if (!op.address.has_bit()) return expect("a bit address (for example B3:0/1 or T4:0/DN)");
+        break;
+      case OperandKind::Source:
+        if (op.kind == Operand::Kind::Float && !program_.processor.has_float_files())
+          return error(op.pos, "floating-point constants need SLC 5/03 OS301 or later");
+        if (op.is_number()) {
+          if (op.kind == Operand::Kind::Integer && (op.integer < -32768 || op.integer > 65535) &&
+              program_.processor.family != ProcessorFamily::MicroLogix)
+            return error(op.pos, where + ": constant " + op.spelling + " does not fit a 16-bit word");
+          return;
+        }
+        if (op.address.has_bit()) return expect("a word address or a constant");
+        if (is_structured(op.address.type) && op.address.word < 0)
+          return expect("a word of the element (.PRE, .ACC, .LEN or .POS)");
+        break;
+      case OperandKind::Dest:
+        if (!op.is_address()) return expect("a destination word address");
+        if (op.address.has_bit()) return expect("a word address, not a bit");
+        if (is_structured(op.address.type) && op.address.word < 0)
+          return expect("a word of the element (.PRE, .ACC, .LEN or .POS)");
+        break;
+      case OperandKind::File:
+        if (!op.is_address()) return expect("a file address such as #N7:0");
+        if (op.address.has_bit()) return expect("a file address, not a bit");
+        if (!op.address.indexed)
+          warning(op.pos, where + ": file operand written without '#'; RSLogix 500 writes #" + op.spelling);
+        break;
+      case OperandKind::Timer:
+      case OperandKind::Counter:
+      case OperandKind::Control:
+      case OperandKind::Resettable: {
+        FileType want = os.kind == OperandKind::Timer     ? FileType::Timer
+                        : os.kind == OperandKind::Counter ? FileType::Counter
+                                                          : FileType::Control;
+        bool type_ok = op.is_address() && (os.kind == OperandKind::Resettable ? is_structured(op.address.type)
+                                                                             : op.address.type == want);
+        if (!type_ok || op.address.has_bit() || op.address.word > 0) return expect(to_string(os.kind));
+        break;
+      }
+      case OperandKind::TimeBase:
+        if (!op.is_number() || !((op.kind == Operand::Kind::Float && (op.real == 1.0 || op.real == 0.01)) ||
+                                 (op.kind == Operand::Kind::Integer && op.integer == 1)))
+          return expect("time base 1.0 or 0.01");
+        break;
+      case OperandKind::Literal:
+      case OperandKind::Label:
+      case OperandKind::ProgramFile:
+        if (op.kind != Operand::Kind::Integer) return expect("an integer constant");
+        if (op.integer < os.min || op.integer > os.max)
+          return error(op.pos, where + " " + op.spelling + " is out of range " + std::to_string(os.min) + "-" +
+                                   std::to_string(os.max));
+        break;
+      case OperandKind::SlotWord: {
+        FileType want = in.opcode == Opcode::IIM ? FileType::Input : FileType::Output;
+        if (!op.is_address() || op.address.type != want || op.address.has_bit())
+          return expect(want == FileType::Input ? "an input slot word such as I:1.0" : "an output slot word such as O:2.0");
+        break;
+      }
+      case OperandKind::Buffer: {
+        FileType want = in.opcode == Opcode::BTR ? FileType::M1 : FileType::M0;
+        if (!op.is_address() || op.address.type != want || op.address.has_bit() || op.address.word % 100 != 0 ||
+            op.address.word < 100 || op.address.word > 3200)
+          return expect(std::string(want == FileType::M1 ? "M1" : "M0") +
+                        ":e.x00 with buffer x = 1-32 (1747-SN manual p. 5-6)");
+        break;
+      }
+      case OperandKind::ControlBlock3:
+      case OperandKind::ControlBlock70: {
+        int len = os.kind == OperandKind::ControlBlock3 ? 3 : 70;
+        if (!op.is_address() || op.address.type != FileType::Integer || op.address.has_bit())
+          return expect("an integer file element such as N10:0");
+        if (!op.address.indirect_element && op.address.element + len > 256)
+          return error(op.pos, where + ": the " + std::to_string(len) + "-word control block starting at " +
+                                   op.spelling + " runs past the end of the file (element 255)");
+        break;
+      }
+    }
+    if (op.is_address()) check_address(op.address, op.pos, os.kind, os.mfile);
+  }
+
+  void check_instruction(Instruction& in, bool first_in_rung, int file_number, int rung_index) {
+    const auto& s = spec(in.opcode);
+    auto& proc = program_.processor;
+    if (!proc.supports(s.requires_)) error(in.pos, mnemonic_of(in) + " " + proc.requirement_text(s.requires_));
+    if (in.operands.size() != s.operand_count) {
+      // A surplus operand that is an unknown name was most likely meant as a mnemonic.
+      if (in.operands.size() > s.operand_count) {
+        auto& extra = in.operands[s.operand_count];
+        if (extra.kind == Operand::Kind::Symbol && !symbols_.count(extra.symbol)) {
+          error(extra.pos, "unknown instruction '" + extra.symbol + "'");
+          return;
+        }
+      }
+      std::string labels;
+      for (const auto& o : s.operand_specs()) labels += (labels.empty() ? "" : ", ") + std::string(o.label);
+      error(in.pos, mnemonic_of(in) + " takes " + std::to_string(s.operand_count) + " operand" +
+                        (s.operand_count == 1 ? "" : "s") + (labels.empty() ? "" : " (" + labels + ")") + ", found " +
+                        std::to_string(in.operands.size()));
+      return;
+    }
+    for (std::size_t i = 0; i < in.operands.size(); ++i) check_operand(in, in.operands[i], s.operands[i]);
+    if (s.role == Role::Leading && !first_in_rung)
+      error(in.pos, mnemonic_of(in) + " must be the first instruction of its rung");
+    if (in.opcode == Opcode::SBR && (file_number < 3 || rung_index != 0))
+      error(in.pos, "SBR belongs at the start of the first rung of a subroutine file (3-255)");
+    if (in.opcode == Opcode::OSR && in.operands.size() == 1 && in.operands[0].is_address()) {
+      const auto& a = in.operands[0].address;
+      if (a.type != FileType::Bit && a.type != FileType::Integer && !is_mfile(a.type))
+        error(in.operands[0].pos, "the OSR storage bit must be in a B or N file");
+      osr_bits_.emplace_back(a, in.operands[0].pos);
+    }
+    if (in.opcode == Opcode::JSR && in.operands.size() == 1 && in.operands[0].kind == Operand::Kind::Integer)
+      jsr_targets_.emplace_back(static_cast<int>(in.operands[0].integer), in.operands[0].pos);
+  }
+
+  // ---- Rung structure ----------------------------------------------------------------------------------
+
+  struct SequenceInfo {
+    bool has_output = false;
+    bool ends_with_output = false;
+    int instructions = 0;
+  };
+
+  // Checks one series of elements (a rung or a branch leg). The SLC solves a rung left to right:
+  // conditions first, then outputs; an output may be followed only by more outputs or by an
+  // output branch whose legs each end in an output.
+  SequenceInfo check_sequence(std::vector<RungElement>& elems, bool top_level, int file_number, int rung_index,
+                              int& instruction_counter) {
+    SequenceInfo info;
+    SourcePos first_output;
+    for (std::size_t i = 0; i < elems.size(); ++i) {
+      auto& e = elems[i];
+      if (e.kind == RungElement::Kind::Instruction) {
+        bool first = instruction_counter == 0;
+        ++instruction_counter;
+        ++info.instructions;
+        check_instruction(e.instruction, first, file_number, rung_index);
+        Role role = spec(e.instruction.opcode).role;
+        bool is_output = role == Role::Output;
+        if (is_output) {
+          if (!info.has_output) first_output = e.pos;
+          info.has_output = true;
+          info.ends_with_output = true;
+        } else {
+          if (info.has_output && role == Role::Input)
+            error(e.pos, "input instruction " + mnemonic_of(e.instruction) +
+                             " after an output instruction (line " + std::to_string(first_output.line) + ", column " +
+                             std::to_string(first_output.column) +
+                             "); the SLC places conditions before outputs — use a branch");
+          info.ends_with_output = false;
+        }
+        if (e.instruction.opcode == Opcode::END && !(top_level && elems.size() == 1))
+          error(e.pos, "END stands alone on the last rung of a file");
+      } else {
+        bool any_output = false, all_output = true;
+        std::vector<SequenceInfo> legs;
+        for (auto& leg : e.legs) {
+          legs.push_back(check_sequence(leg, false, file_number, rung_index, instruction_counter));
+          any_output |= legs.back().has_output;
+          all_output &= legs.back().ends_with_output;
+        }
+        if (any_output) {
+          for (std::size_t l = 0; l < legs.size(); ++l)
+            if (!legs[l].ends_with_output)
+              error(e.pos, "leg " + std::to_string(l + 1) +
+                               " of this output branch does not end in an output instruction");
+          if (!info.has_output) first_output = e.pos;
+          info.has_output = true;
+          info.ends_with_output = all_output;
+        } else {
+          if (info.has_output)
+            error(e.pos, "input branch after an output instruction; the SLC places conditions before outputs");
+          info.ends_with_output = false;
+        }
+        info.instructions += 1;
+      }
+    }
+    return info;
+  }
+
+  void check_file(ProgramFile& file) {
+    if (file.number < 2 || file.number > 255) error(file.pos, "program files are numbered 2 (main) to 255");
+    std::map<std::int64_t, SourcePos> labels;
+    std::vector<std::pair<std::int64_t, SourcePos>> jumps;
+    for (std::size_t r = 0; r < file.rungs.size(); ++r) {
+      auto& rung = file.rungs[r];
+      int counter = 0;
+      auto info = check_sequence(rung.elements, true, file.number, static_cast<int>(r), counter);
+      if (!info.has_output) {
+        error(rung.pos, "rung has no output instruction");
+        continue;
+      }
+      if (!info.ends_with_output) error(rung.pos, "rung must end with an output instruction");
+      for (const auto& e : rung.elements) collect_labels(e, labels, jumps);
+      check_mcr_rung(rung);
+      bool has_end = !rung.elements.empty() && rung.elements.front().kind == RungElement::Kind::Instruction &&
+                     rung.elements.front().instruction.opcode == Opcode::END;
+      if (has_end && r + 1 != file.rungs.size()) error(rung.pos, "END must be the last rung of the file");
+    }
+    for (const auto& [label, pos] : jumps)
+      if (!labels.count(label))
+        error(pos, "JMP to label " + std::to_string(label) + ", which is not defined in program file " +
+                       std::to_string(file.number));
+  }
+
+  void collect_labels(const RungElement& e, std::map<std::int64_t, SourcePos>& labels,
+                      std::vector<std::pair<std::int64_t, SourcePos>>& jumps) {
+    if (e.kind == RungElement::Kind::Branch) {
+      for (const auto& leg : e.legs)
+        for (const auto& x : leg) collect_labels(x, labels, jumps);
+      return;
+    }
+    const auto& in = e.instruction;
+    if (in.operands.size() != 1 || in.operands[0].kind != Operand::Kind::Integer) return;
+    if (in.opcode == Opcode::LBL) {
+      auto [it, inserted] = labels.emplace(in.operands[0].integer, in.pos);
+      if (!inserted)
+        error(in.pos, "label " + std::to_string(in.operands[0].integer) + " is defined twice (first at line " +
+                          std::to_string(it->second.line) + ")");
+    } else if (in.opcode == Opcode::JMP) {
+      jumps.emplace_back(in.operands[0].integer, in.operands[0].pos);
+    }
+  }
+
+  static void count_instructions(const std::vector<RungElement>& elems, int& outputs, bool& has_mcr, SourcePos& mcr_pos) {
+    for (const auto& e : elems) {
+      if (e.kind == RungElement::Kind::Branch) {
+        for (const auto& leg : e.legs) count_instructions(leg, outputs, has_mcr, mcr_pos);
+        continue;
+      }
+      if (spec(e.instruction.opcode).role == Role::Output) ++outputs;
+      if (e.instruction.opcode == Opcode::MCR) {
+        has_mcr = true;
+        mcr_pos = e.pos;
+      }
+    }
+  }
+
+  // An MCR is the only output of its rung (RM: "MCR ... must be the only output on the rung").
+  void check_mcr_rung(const Rung& rung) {
+    int outputs = 0;
+    bool has_mcr = false;
+    SourcePos mcr_pos;
+    count_instructions(rung.elements, outputs, has_mcr, mcr_pos);
+    if (has_mcr && outputs > 1) error(mcr_pos, "MCR must be the only output instruction on its rung");
+  }
+
+  void check_jsr_targets() {
+    for (const auto& [target, pos] : jsr_targets_)
+      if (!program_.find_file(target))
+        error(pos, "JSR to program file " + std::to_string(target) + ", which is not defined (no LADDER " +
+                       std::to_string(target) + ")");
+  }
+
+  // ---- Data and forces -------------------------------------------------------------------------------
+
+  void check_data_blocks() {
+    std::set<std::pair<int, int>> seen;  // (type, file) pairs, to catch a file given twice
+    for (const auto& d : program_.data) {
+      if (!d.type) continue;
+      if (!seen.emplace(static_cast<int>(*d.type), d.file).second && !is_io(*d.type))
+        error(d.pos, "DATA for " + std::string(file_letter(*d.type)) + std::to_string(d.file) + " is given twice");
+      const FileType t = *d.type;
+      if (is_io(t)) {
+        const SlotConfig* slot = slot_of(d.start_element);
+        if (!slot) {
+          error(d.pos, "DATA for slot " + std::to_string(d.start_element) + ", which has no module");
+          continue;
+        }
+        int words = t == FileType::Input ? slot->scan_in : slot->scan_out;
+        if (static_cast<int>(d.words.size()) > words)
+          error(d.pos, std::to_string(d.words.size()) + " image words given for slot " +
+                           std::to_string(d.start_element) + ", which has " + std::to_string(words));
+      }
+      if (t == FileType::Status && d.start_element + static_cast<int>(d.words.size()) > status_file_words(program_.processor))
+        warning(d.pos, "status data beyond S:" + std::to_string(status_file_words(program_.processor) - 1) +
+                           " of " + program_.processor.display_name + " is ignored");
+      if (is_structured(t) && d.words.size() % 3 != 0)
+        error(d.pos, "each " + std::string(file_letter(t)) + " element takes three values (CTL, " +
+                         (t == FileType::Control ? "LEN, POS" : "PRE, ACC") + ")");
+      std::size_t elements = t == FileType::Float    ? d.floats.size()
+                             : t == FileType::String ? d.strings.size()
+                             : is_structured(t)      ? d.words.size() / 3
+                                                     : d.words.size();
+      if (!is_io(t) && t != FileType::Status && d.start_element + elements > 256)
+        error(d.pos, "DATA runs past element 255 (" + std::to_string(elements) + " elements from " +
+                         std::to_string(d.start_element) + ")");
+      std::int64_t lo = t == FileType::Long ? INT32_MIN : -32768;
+      std::int64_t hi = t == FileType::Long ? INT32_MAX : 65535;
+      for (auto w : d.words)
+        if (w < lo || w > hi) {
+          error(d.pos, "value " + std::to_string(w) + " does not fit a " +
+                           (t == FileType::Long ? "32-bit" : "16-bit") + " word");
+          break;
+        }
+    }
+  }
+
+  void check_forces() {
+    for (const auto& f : program_.forces) {
+      const SlotConfig* slot = slot_of(f.slot);
+      if (!slot) {
+        error(f.pos, "FORCE for slot " + std::to_string(f.slot) + ", which has no module");
+        continue;
+      }
+      int words = f.type == FileType::Input ? slot->scan_in : slot->scan_out;
+      if (static_cast<int>(f.words.size()) > words)
+        error(f.pos, std::to_string(f.words.size()) + " force words given for slot " + std::to_string(f.slot) +
+                         ", which has " + std::to_string(words));
+    }
+  }
+
+  // "The bit address you use must be unique. Do not use it elsewhere in the program" (RSLogix help).
+  void check_osr_storage() {
+    std::map<std::string, SourcePos> first_use;  // keyed by canonical spelling, ordered for determinism
+    for (const auto& [address, pos] : osr_bits_) {
+      auto [it, inserted] = first_use.emplace(to_string(address), pos);
+      if (!inserted)
+        warning(pos, "OSR storage bit " + it->first + " is also used by the OSR at line " +
+                         std::to_string(it->second.line) + "; each OSR needs its own bit");
+    }
+  }
+};
+
+}  // namespace
+
+int status_file_words(const ProcessorModel& p) {
+  // Status file lengths: 5/01 and 5/02 S:0-S:32 (PT1); 5/03-5/05 S:0-S:163 (RSLogix 500 shows up
+  // to S:163 on 5/05; [U], chosen generously so no valid program is rejected); MicroLogix 1400
+  // S:0-S:65 (the fixture's DATA S:0 block); fixed controllers S:0-S:15.
+  switch (p.family) {
+    case ProcessorFamily::Fixed: return 16;
+    case ProcessorFamily::Slc501:
+    case ProcessorFamily::Slc502: return 33;
+    case ProcessorFamily::MicroLogix: return 66;
+    default: return 164;
+  }
+}
+
+int m0_words(const SlotConfig& slot) {
+  if (slot.m0_size) return *slot.m0_size;
+  auto e = find_module_catalog(slot.catalog);
+  return e ? e->default_m0 : 0;
+}
+
+int m1_words(const SlotConfig& slot) {
+  if (slot.m1_size) return *slot.m1_size;
+  auto e = find_module_catalog(slot.catalog);
+  return e ? e->default_m1 : 0;
+}
+
+void check_program(Program& program, DiagnosticList& diags) { Checker(program, diags).run(); }
+
+}  // namespace softslc

@@ -1,0 +1,30 @@
+// Semantic checks of a parsed program against the instruction table, the processor and the
+// chassis configuration.
+//
+// The checker resolves symbols, then walks every rung and reports, with positions: unknown
+// symbols; wrong operand count or kind (from the instruction table); literals out of range;
+// addresses the processor or chassis cannot have (bit > 15, element beyond the file's limit,
+// I/O on an empty slot or beyond the slot's image, M0/M1 on a module without M files or beyond
+// the module's file size, M0/M1 where the SLC forbids them); instructions the processor lacks;
+// unbalanced or misplaced structure (outputs where the SLC does not allow them, LBL/SBR not
+// first, END not last, MCR rules); undefined or duplicate labels and JSR targets; one file
+// number used with two file types; DATA and FORCE blocks that do not fit; and, as warnings,
+// duplicate OSR storage bits and unknown module catalogs. It never stops at the first problem.
+#pragma once
+
+#include "parser/diagnostics.h"
+#include "parser/program.h"
+
+namespace softslc {
+
+// Checks `program` and resolves its symbol operands in place. Adds diagnostics to `diags`.
+void check_program(Program& program, DiagnosticList& diags);
+
+// The number of words of the status file on this processor.
+int status_file_words(const ProcessorModel& p);
+
+// M0/M1 sizes of a slot: explicit M0_SIZE/M1_SIZE, else the catalog default, else 0.
+int m0_words(const SlotConfig& slot);
+int m1_words(const SlotConfig& slot);
+
+}  // namespace softslc

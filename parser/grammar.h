@@ -1,0 +1,245 @@
+// PEGTL grammar of the RSLogix 500 library export format (.SLC), as rule types only.
+//
+// The loader (loader.cpp) first splits a file into statements at lines that begin with a
+// statement keyword (START, SLOT, PROJECT, LADDER, SOR, DATA, FORCE, SYMBOL, DESC) or a comment,
+// then parses each statement with the `statement` rule below. A syntax error therefore costs one
+// statement, not the file: the loader records it and carries on with the next, so every
+// independent error is reported. Actions live in loader.cpp, error messages in
+// grammar_messages.h. `must<>` marks commit points: once a keyword has matched, a failure
+// further in is a positioned error rather than a silent backtrack.
+//
+// Whitespace inside a statement includes line breaks, so a rung or a SLOT line may continue on
+// the next line (exports put G_FILE words on a continuation line).
+#pragma once
+
+#include <tao/pegtl.hpp>
+
+#include "instructions/instruction_table.h"
+
+namespace softslc::grammar {
+
+namespace pegtl = tao::pegtl;
+using namespace tao::pegtl;
+
+// Note: PEGTL's must_if control raises the error message of a rule whenever that rule fails,
+// so a rule with a message (grammar_messages.h) is used only inside must<>; where the same
+// syntax is optional, a separately named rule is used.
+
+// ---- Lexical ---------------------------------------------------------------------------------
+
+// Blanks and line breaks separate tokens.
+struct space_char : one<' ', '\t', '\r', '\n', '\f', '\v'> {};
+struct ws : plus<space_char> {};
+struct opt_ws : star<space_char> {};
+// The end of a token: whitespace or end of input.
+struct token_end : sor<at<space_char>, eof> {};
+
+// A comment: text between percent signs, possibly spanning lines.
+struct comment_text : star<not_one<'%'>> {};
+struct comment_close : one<'%'> {};
+struct comment : seq<one<'%'>, comment_text, must<comment_close>> {};
+
+// A double-quoted string without escapes (project names, string data).
+struct quoted_text : star<not_one<'"', '\n'>> {};
+struct quote_close : one<'"'> {};
+struct quoted : seq<one<'"'>, quoted_text, must<quote_close>> {};
+
+struct digits : plus<digit> {};
+struct sign : one<'+', '-'> {};
+// Hexadecimal: 0x1F / 0X1F (as exports write data) or 1Fh (as RSLogix displays masks).
+struct hex_c_style : seq<one<'0'>, one<'x', 'X'>, plus<xdigit>> {};
+struct hex_h_style : seq<digit, star<xdigit>, one<'h', 'H'>> {};
+struct hex_number : seq<opt<sign>, sor<hex_c_style, hex_h_style>> {};
+struct exponent : seq<one<'e', 'E'>, opt<sign>, digits> {};
+struct float_number : seq<opt<sign>, sor<seq<digits, one<'.'>, star<digit>, opt<exponent>>,
+                                         seq<one<'.'>, digits, opt<exponent>>, seq<digits, exponent>>> {};
+struct int_number : seq<opt<sign>, digits> {};
+struct number : seq<sor<hex_number, float_number, int_number>, token_end> {};
+
+// Identifiers name symbols, catalogs and keywords.
+struct ident_first : sor<alpha, one<'_'>> {};
+struct ident_other : sor<alnum, one<'_'>> {};
+struct identifier : seq<ident_first, star<ident_other>> {};
+
+// A token of any printable characters (catalog numbers such as 1747-L532 or Bul.1766).
+struct word : plus<not_one<' ', '\t', '\r', '\n', '%', '"'>> {};
+
+// ---- Addresses -----------------------------------------------------------------------------------
+// I:1/3  I:1.0/3  O:2.1/15  S:1/15  B3:0/7  B3/62  N7:10/4  F8:2  T4:0.ACC  T4:0/DN  C5:1/OV
+// R6:0.LEN  #N7:10  N7:[N10:1]  N[N10:0]:5  B3/[N7:0]  M0:1.100/13  M1:3.210  L41:0  ST9:0
+
+struct file_type_st : string<'S', 'T'> {};
+struct file_type_m : seq<one<'M'>, one<'0', '1'>> {};
+struct file_type_letter : one<'O', 'I', 'S', 'B', 'T', 'C', 'R', 'N', 'F', 'L', 'A'> {};
+struct file_type : sor<file_type_st, file_type_m, file_type_letter> {};
+
+// The word address inside brackets (no nesting, no expressions).
+struct ref_type : file_type {};
+struct ref_file : digits {};
+struct ref_element : digits {};
+struct ref_word_number : digits {};
+struct ref_word_name : plus<upper> {};
+struct ref_word : seq<one<'.'>, sor<ref_word_number, ref_word_name>> {};
+struct ref_body : seq<ref_type, opt<ref_file>, one<':'>, ref_element, opt<ref_word>> {};
+struct ref_close : one<']'> {};
+struct ref : seq<one<'['>, must<ref_body>, must<ref_close>> {};
+
+struct index_mark : one<'#'> {};
+struct file_number : digits {};
+struct indirect_file : ref {};
+struct element_number : digits {};
+struct indirect_element : ref {};
+struct word_number : digits {};
+struct word_name : plus<upper> {};
+struct indirect_word : ref {};
+struct bit_number : digits {};
+struct bit_name : plus<upper> {};
+struct indirect_bit : ref {};
+struct bit_offset_number : digits {};
+struct indirect_bit_offset : ref {};
+
+struct element_part : sor<element_number, indirect_element> {};
+struct word_spec : sor<word_number, word_name, indirect_word> {};
+struct word_part : seq<one<'.'>, must<word_spec>> {};
+struct bit_spec : sor<bit_number, bit_name, indirect_bit> {};
+struct bit_part : seq<one<'/'>, must<bit_spec>> {};
+struct colon_form : seq<one<':'>, must<element_part>, opt<word_part>, opt<bit_part>> {};
+// B3/62: a bit offset counted from the start of the file.
+struct bit_offset_spec : sor<bit_offset_number, indirect_bit_offset> {};
+struct bit_offset_form : seq<one<'/'>, must<bit_offset_spec>> {};
+struct address_body : seq<file_type, opt<sor<file_number, indirect_file>>, sor<colon_form, bit_offset_form>> {};
+struct address : seq<opt<index_mark>, address_body, token_end> {};
+
+// A standalone address (command lines, test files): optional blanks around one address.
+struct address_only : seq<opt_ws, address, opt_ws, eof> {};
+
+// ---- Rungs ---------------------------------------------------------------------------------------
+
+struct kw_sor : TAO_PEGTL_STRING("SOR") {};
+struct kw_eor : TAO_PEGTL_STRING("EOR") {};
+struct kw_bst : TAO_PEGTL_STRING("BST") {};
+struct kw_nxb : TAO_PEGTL_STRING("NXB") {};
+struct kw_bnd : TAO_PEGTL_STRING("BND") {};
+struct structure_keyword : seq<sor<kw_sor, kw_eor, kw_bst, kw_nxb, kw_bnd>, token_end> {};
+
+// An identifier that is a mnemonic of the instruction table, generated from the table itself.
+struct known_mnemonic
+    : sor<
+#define OPERAND(...)
+#define SOFTSLC_INSTRUCTION(m, ...) seq<TAO_PEGTL_STRING(#m), token_end>,
+#include "instructions/instruction_table.def"
+#undef SOFTSLC_INSTRUCTION
+#undef OPERAND
+          failure> {
+};
+
+// Operands: an address, a number, or a symbol name. Symbols may not spell a mnemonic.
+struct symbol_name : seq<identifier, token_end> {};
+struct operand : sor<address, number, symbol_name> {};
+struct operand_token : seq<not_at<eof>, not_at<structure_keyword>, not_at<known_mnemonic>, must<operand>> {};
+struct mnemonic : seq<identifier, token_end> {};
+struct instruction : seq<mnemonic, star<ws, operand_token>> {};
+
+struct rung_element;
+struct leg : star<rung_element, opt_ws> {};
+struct branch_open : seq<kw_bst, token_end> {};
+struct branch_next : seq<kw_nxb, token_end> {};
+struct branch_close : seq<kw_bnd, token_end> {};
+// The same rule as branch_close where its absence is an error (messages key on the rule type).
+struct branch_close_required : branch_close {};
+struct branch : seq<branch_open, opt_ws, leg, star<branch_next, opt_ws, leg>, must<branch_close_required>> {};
+struct rung_element : seq<not_at<kw_eor, token_end>, not_at<branch_next>, not_at<branch_close>, sor<branch, instruction>> {};
+struct rung_end : seq<kw_eor, token_end> {};
+// NXB or BND with no open BST: reported by its action, then parsing goes on.
+struct stray_branch_keyword : sor<branch_next, branch_close> {};
+struct rung : seq<kw_sor, token_end, opt_ws, star<sor<rung_element, stray_branch_keyword>, opt_ws>, must<rung_end>> {};
+
+// ---- Configuration statements -----------------------------------------------------------------------
+
+struct catalog : word {};
+struct kw_start : TAO_PEGTL_STRING("START") {};
+struct series_letter : upper {};
+struct start_series : seq<TAO_PEGTL_STRING("SERIES"), ws, must<series_letter>> {};
+struct frn_number : digits {};
+struct start_frn : seq<TAO_PEGTL_STRING("FRN"), ws, must<frn_number>> {};
+struct processor_description : comment {};
+struct start_item : sor<start_series, start_frn, processor_description> {};
+struct processor_catalog : catalog {};
+struct start_stmt : seq<kw_start, ws, must<processor_catalog>, star<ws, start_item>, opt_ws> {};
+
+struct slot_number : digits {};
+struct slot_description : comment {};
+struct scan_in_words : digits {};
+struct scan_in : seq<TAO_PEGTL_STRING("SCAN_IN"), ws, must<scan_in_words>> {};
+struct scan_out_words : digits {};
+struct scan_out : seq<TAO_PEGTL_STRING("SCAN_OUT"), ws, must<scan_out_words>> {};
+struct g_file_count : digits {};
+struct g_file_word : seq<int_number, token_end> {};
+struct g_file : seq<TAO_PEGTL_STRING("G_FILE"), ws, must<g_file_count>, star<ws, g_file_word>> {};
+struct iocard_value : seq<int_number, token_end> {};
+struct iocard : seq<TAO_PEGTL_STRING("IOCARD"), star<ws, iocard_value>> {};
+struct m0_words : digits {};
+struct m0_size : seq<TAO_PEGTL_STRING("M0_SIZE"), ws, must<m0_words>> {};
+struct m1_words : digits {};
+struct m1_size : seq<TAO_PEGTL_STRING("M1_SIZE"), ws, must<m1_words>> {};
+struct id_code_value : digits {};
+struct id_code : seq<TAO_PEGTL_STRING("ID_CODE"), ws, must<id_code_value>> {};
+struct option_key : identifier {};
+struct option_value : word {};
+struct option_equals : one<'='> {};
+struct option : seq<TAO_PEGTL_STRING("OPTION"), ws, must<option_key>, must<option_equals>, must<option_value>> {};
+struct slot_item : sor<scan_in, scan_out, g_file, iocard, m0_size, m1_size, id_code, option, slot_description> {};
+struct kw_slot : TAO_PEGTL_STRING("SLOT") {};
+struct module_catalog : catalog {};
+struct slot_stmt : seq<kw_slot, ws, must<slot_number>, ws, must<module_catalog>, star<ws, slot_item>, opt_ws> {};
+
+struct project_name : quoted {};
+struct kw_project : TAO_PEGTL_STRING("PROJECT") {};
+struct project_stmt : seq<kw_project, ws, must<project_name>, opt_ws> {};
+
+struct ladder_number : digits {};
+struct ladder_name : sor<quoted, identifier> {};
+struct kw_ladder : TAO_PEGTL_STRING("LADDER") {};
+struct ladder_stmt : seq<kw_ladder, ws, must<ladder_number>, opt<ws, ladder_name>, opt_ws> {};
+
+// ---- Data and forces ----------------------------------------------------------------------------------
+
+// DATA headers name a file and its first element: N7:0, O:0, S:0, HSC0:0 (function files).
+struct data_file_letters : plus<upper> {};
+struct data_file_number : digits {};
+struct data_start : digits {};
+struct data_colon : one<':'> {};
+struct data_header : seq<data_file_letters, opt<data_file_number>, must<data_colon>, must<data_start>> {};
+struct data_label : comment {};
+struct data_number : number {};
+struct data_string : quoted {};
+struct data_item : sor<data_label, data_string, data_number> {};
+struct kw_data : TAO_PEGTL_STRING("DATA") {};
+struct data_stmt : seq<kw_data, ws, must<data_header>, star<ws, not_at<eof>, must<data_item>>, opt_ws> {};
+
+struct force_number : number {};
+struct force_item : sor<comment, force_number> {};
+struct kw_force : TAO_PEGTL_STRING("FORCE") {};
+struct force_stmt : seq<kw_force, ws, must<data_header>, star<ws, not_at<eof>, must<force_item>>, opt_ws> {};
+
+// ---- Symbols -------------------------------------------------------------------------------------------
+
+struct symbol_address : address {};
+struct symbol_def_name : seq<identifier, token_end> {};
+struct symbol_description : comment {};
+struct kw_symbol : TAO_PEGTL_STRING("SYMBOL") {};
+struct symbol_note : comment {};
+struct symbol_stmt : seq<kw_symbol, ws, must<symbol_address>, ws, must<symbol_def_name>, opt<ws, symbol_note>, opt_ws> {};
+struct kw_desc : TAO_PEGTL_STRING("DESC") {};
+struct desc_stmt : seq<kw_desc, ws, must<symbol_address>, ws, must<symbol_description>, opt_ws> {};
+
+// A free comment line (section headings, "% Rung: 0 %" markers, rung comments).
+struct comment_stmt : seq<comment, opt_ws> {};
+
+// One statement; the loader feeds statements one at a time.
+struct statement_end : eof {};
+struct rung_stmt : seq<rung, opt_ws> {};
+struct statement : seq<opt_ws, sor<start_stmt, slot_stmt, project_stmt, ladder_stmt, rung_stmt, data_stmt,
+                                   force_stmt, symbol_stmt, desc_stmt, comment_stmt>, must<statement_end>> {};
+
+}  // namespace softslc::grammar

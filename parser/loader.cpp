@@ -1,0 +1,1058 @@
+// Actions of the export-format grammar and the statement-by-statement driver.
+//
+// The driver splits the text into statements (split_statements), parses each with
+// grammar::statement and the actions below, and turns a syntax error into a diagnostic before
+// moving on to the next statement. Addresses and operands are built in their own small states
+// (PEGTL change_states), so a partial match that backtracks leaves nothing behind.
+#include "parser/loader.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "parser/checker.h"
+#include "parser/grammar.h"
+#include "parser/grammar_messages.h"
+
+namespace softslc {
+
+namespace pegtl = tao::pegtl;
+
+// ---- Numbers ---------------------------------------------------------------------------------------
+
+bool parse_number_text(std::string_view text, NumberValue& out) {
+  if (text.empty()) return false;
+  bool negative = false;
+  std::string_view t = text;
+  if (t.front() == '+' || t.front() == '-') {
+    negative = t.front() == '-';
+    t.remove_prefix(1);
+  }
+  if (t.empty()) return false;
+  auto finish_int = [&](std::uint64_t magnitude) {
+    // Values beyond 64 bits are rejected; range checks against 16/32-bit words happen later.
+    if (magnitude > static_cast<std::uint64_t>(INT64_MAX)) return false;
+    out.is_float = false;
+    out.integer = negative ? -static_cast<std::int64_t>(magnitude) : static_cast<std::int64_t>(magnitude);
+    return true;
+  };
+  if (t.size() > 2 && t[0] == '0' && (t[1] == 'x' || t[1] == 'X')) {
+    std::uint64_t v = 0;
+    auto r = std::from_chars(t.data() + 2, t.data() + t.size(), v, 16);
+    if (r.ec != std::errc() || r.ptr != t.data() + t.size()) return false;
+    return finish_int(v);
+  }
+  if (t.back() == 'h' || t.back() == 'H') {
+    std::uint64_t v = 0;
+    auto r = std::from_chars(t.data(), t.data() + t.size() - 1, v, 16);
+    if (r.ec != std::errc() || r.ptr != t.data() + t.size() - 1) return false;
+    return finish_int(v);
+  }
+  if (t.find_first_of(".eE") != std::string_view::npos) {
+    double d = 0;
+    auto r = std::from_chars(t.data(), t.data() + t.size(), d);
+    if (r.ec != std::errc() || r.ptr != t.data() + t.size() || !std::isfinite(d)) return false;
+    out.is_float = true;
+    out.real = negative ? -d : d;
+    return true;
+  }
+  std::uint64_t v = 0;
+  auto r = std::from_chars(t.data(), t.data() + t.size(), v, 10);
+  if (r.ec != std::errc() || r.ptr != t.data() + t.size()) return false;
+  return finish_int(v);
+}
+
+namespace {
+
+using namespace grammar;
+
+SourcePos pos_of(const pegtl::position& p) {
+  return {static_cast<std::uint32_t>(p.line), static_cast<std::uint32_t>(p.column)};
+}
+
+template <typename Input>
+SourcePos pos_of(const Input& in) {
+  return pos_of(in.position());
+}
+
+template <typename Input>
+int to_int(const Input& in) {
+  // Digit runs come from the grammar; saturate absurd lengths instead of overflowing.
+  auto s = in.string_view();
+  long long v = 0;
+  for (char c : s) {
+    v = v * 10 + (c - '0');
+    if (v > 1'000'000'000) return 1'000'000'000;
+  }
+  return static_cast<int>(v);
+}
+
+std::string strip_percent(std::string_view s) {
+  if (s.size() >= 2 && s.front() == '%' && s.back() == '%') s = s.substr(1, s.size() - 2);
+  auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string_view::npos) return {};
+  auto e = s.find_last_not_of(" \t\r\n");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+std::string strip_quotes(std::string_view s) {
+  if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = s.substr(1, s.size() - 2);
+  return std::string(s);
+}
+
+std::optional<FileType> file_type_from_letters(std::string_view s) {
+  static constexpr std::pair<std::string_view, FileType> kTypes[] = {
+      {"O", FileType::Output}, {"I", FileType::Input},    {"S", FileType::Status},   {"B", FileType::Bit},
+      {"T", FileType::Timer},  {"C", FileType::Counter},  {"R", FileType::Control},  {"N", FileType::Integer},
+      {"F", FileType::Float},  {"L", FileType::Long},     {"ST", FileType::String},  {"A", FileType::Ascii},
+      {"M0", FileType::M0},    {"M1", FileType::M1},
+  };
+  for (const auto& [letters, type] : kTypes)
+    if (letters == s) return type;
+  return std::nullopt;
+}
+
+// ---- States ----------------------------------------------------------------------------------------
+
+struct AddressBuilder {
+  Address a;
+  IndirectRef ref;
+  bool has_file_number = false;
+  bool ref_has_file_number = false;
+  SourcePos pos;
+  bool pos_set = false;
+};
+
+struct OperandBuilder {
+  Operand op;
+  void on_address(const Address& a, SourcePos pos) {
+    op.kind = Operand::Kind::Address;
+    op.address = a;
+    op.pos = pos;
+    op.spelling = to_string(a);
+  }
+};
+
+// The whole-file state: the program being built plus the statement in progress.
+struct LoadState {
+  LoadState(Program& p, DiagnosticList& d, std::string_view src) : program(p), diags(d), source(src) {}
+
+  Program& program;
+  DiagnosticList& diags;
+  std::string_view source;
+
+  // START
+  std::string catalog;
+  SourcePos catalog_pos;
+  std::optional<char> series;
+  std::optional<int> frn;
+  bool have_start = false;
+
+  // LADDER and rungs
+  int current_file = -1;  // index into program.files
+  Rung rung;
+  std::vector<RungElement*> open_branches;  // innermost last
+  Instruction instruction;
+  bool instruction_known = false;
+  std::vector<Operand> operands;
+  std::vector<std::string> pending_comments;
+
+  // SLOT
+  SlotConfig slot;
+  int g_file_count = 0;
+  SourcePos g_file_pos;
+
+  // DATA / FORCE
+  DataBlock data;
+  ForceBlock force;
+  std::vector<std::int64_t> force_values;
+  bool data_opaque = false;
+  std::size_t data_header_end = 0;  // byte offset in `source` where the header ends
+
+  // SYMBOL / DESC
+  Symbol symbol;
+
+  // Where the appended elements of the current rung go: the innermost open branch's last leg.
+  std::vector<RungElement>& current_elements() {
+    return open_branches.empty() ? rung.elements : open_branches.back()->legs.back();
+  }
+
+  void on_address(const Address& a, SourcePos) { symbol.address = a; }
+};
+
+// ---- Actions ---------------------------------------------------------------------------------------
+
+template <typename Rule>
+struct action : pegtl::nothing<Rule> {};
+
+// Addresses are built in a fresh AddressBuilder and handed to the enclosing state on success.
+struct address_action : pegtl::change_states<AddressBuilder> {
+  template <typename Input, typename Outer>
+  static void success(const Input&, AddressBuilder& b, Outer& outer) {
+    Address a = b.a;
+    // I/O and M addresses without a word mean word 0 of the slot: I:1/3 == I:1.0/3.
+    if ((is_io(a.type) || is_mfile(a.type)) && a.word < 0 && !a.indirect_word) a.word = 0;
+    outer.on_address(a, b.pos);
+  }
+};
+template <> struct action<address> : address_action {};
+template <> struct action<symbol_address> : address_action {};
+
+template <> struct action<index_mark> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    b.a.indexed = true;
+    b.pos = pos_of(in);
+    b.pos_set = true;
+  }
+};
+
+template <> struct action<file_type> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    b.a.type = *file_type_from_letters(in.string_view());
+    int fixed = fixed_file_number(b.a.type);
+    if (fixed >= 0) b.a.file = static_cast<std::uint16_t>(fixed);
+    if (b.a.type == FileType::M0) b.a.file = 0;
+    if (b.a.type == FileType::M1) b.a.file = 1;
+    if (!b.pos_set) {
+      b.pos = pos_of(in);
+      b.pos_set = true;
+    }
+  }
+};
+
+template <> struct action<file_number> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    int n = to_int(in);
+    int fixed = fixed_file_number(b.a.type);
+    if (is_mfile(b.a.type))
+      throw pegtl::parse_error("M0/M1 addresses take the slot after ':' (M0:e.w/b), not a file number", in);
+    if (fixed >= 0 && n != fixed)
+      throw pegtl::parse_error(std::string("file ") + std::string(file_letter(b.a.type)) + " is always file " +
+                                   std::to_string(fixed),
+                               in);
+    if (n > 255) throw pegtl::parse_error("file number must be 0-255", in);
+    b.a.file = static_cast<std::uint16_t>(n);
+    b.has_file_number = true;
+  }
+};
+
+// A data file without a fixed number needs one (N7:0, not N:0).
+template <typename Input>
+void require_file_number(const Input& in, const AddressBuilder& b) {
+  if (fixed_file_number(b.a.type) < 0 && !is_mfile(b.a.type) && !b.has_file_number && !b.a.indirect_file)
+    throw pegtl::parse_error(std::string("expected a file number after '") + std::string(file_letter(b.a.type)) +
+                                 "' (for example " + std::string(file_letter(b.a.type)) + "7:0)",
+                             in);
+}
+
+template <> struct action<element_number> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    require_file_number(in, b);
+    b.a.element = to_int(in);
+  }
+};
+
+template <> struct action<indirect_element> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    require_file_number(in, b);
+    b.a.indirect_element = b.ref;
+    b.ref = {};
+  }
+};
+
+template <> struct action<word_number> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) { b.a.word = to_int(in); }
+};
+
+template <> struct action<word_name> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    int w = structured_word_number(b.a.type, in.string_view());
+    if (w < 0) {
+      std::string msg = "unknown sub-element '" + in.string() + "'";
+      if (b.a.type == FileType::Timer || b.a.type == FileType::Counter) msg += " (timers and counters have PRE and ACC)";
+      else if (b.a.type == FileType::Control) msg += " (control elements have LEN and POS)";
+      else msg += " (named sub-elements exist only in T, C and R files)";
+      throw pegtl::parse_error(msg, in);
+    }
+    b.a.word = w;
+  }
+};
+
+template <> struct action<indirect_word> {
+  template <typename Input>
+  static void apply(const Input&, AddressBuilder& b) {
+    b.a.indirect_word = b.ref;
+    b.ref = {};
+  }
+};
+
+template <> struct action<bit_number> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) { b.a.bit = to_int(in); }
+};
+
+template <> struct action<bit_name> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    int bit = b.a.word <= 0 ? structured_bit_number(b.a.type, in.string_view()) : -1;
+    if (bit < 0) {
+      std::string msg = "unknown bit name '" + in.string() + "'";
+      if (b.a.type == FileType::Timer) msg += " (timer bits are EN, TT, DN)";
+      else if (b.a.type == FileType::Counter) msg += " (counter bits are CU, CD, DN, OV, UN, UA)";
+      else if (b.a.type == FileType::Control) msg += " (control bits are EN, EU, DN, EM, ER, UL, IN, FD)";
+      else msg += " (named bits exist only in T, C and R files)";
+      throw pegtl::parse_error(msg, in);
+    }
+    b.a.bit = bit;
+    if (b.a.word < 0) b.a.word = 0;
+  }
+};
+
+template <> struct action<indirect_bit> {
+  template <typename Input>
+  static void apply(const Input&, AddressBuilder& b) {
+    b.a.indirect_bit = b.ref;
+    b.ref = {};
+  }
+};
+
+template <> struct action<bit_offset_number> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    if (b.a.type != FileType::Bit)
+      throw pegtl::parse_error("the bit-offset form F/n exists only for B files (write N7:0/3 for other files)", in);
+    require_file_number(in, b);
+    int n = to_int(in);
+    if (n > 4095) throw pegtl::parse_error("bit offset must be 0-4095 (B files hold 256 words)", in);
+    b.a.element = n / 16;
+    b.a.bit = n % 16;
+  }
+};
+
+template <> struct action<indirect_bit_offset> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    if (b.a.type != FileType::Bit)
+      throw pegtl::parse_error("the bit-offset form F/[...] exists only for B files", in);
+    require_file_number(in, b);
+    b.a.bit_offset_form = true;
+    b.a.element = 0;
+    b.a.indirect_bit = b.ref;
+    b.ref = {};
+  }
+};
+
+template <> struct action<indirect_file> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    if (fixed_file_number(b.a.type) >= 0 || is_mfile(b.a.type))
+      throw pegtl::parse_error("only data files 3-255 can be addressed with an indirect file number", in);
+    b.a.indirect_file = b.ref;
+    b.ref = {};
+  }
+};
+
+// Inside brackets: a direct word address.
+template <> struct action<ref_type> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    b.ref = {};
+    b.ref.type = *file_type_from_letters(in.string_view());
+    int fixed = fixed_file_number(b.ref.type);
+    if (fixed >= 0) b.ref.file = static_cast<std::uint16_t>(fixed);
+    b.ref_has_file_number = false;
+  }
+};
+template <> struct action<ref_file> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    int n = to_int(in);
+    if (n > 255) throw pegtl::parse_error("file number must be 0-255", in);
+    b.ref.file = static_cast<std::uint16_t>(n);
+    b.ref_has_file_number = true;
+  }
+};
+template <> struct action<ref_element> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    if (is_mfile(b.ref.type) || b.ref.type == FileType::Float || b.ref.type == FileType::String)
+      throw pegtl::parse_error("an indirect reference must be an integer word (N, B, T, C, R, S, I, O)", in);
+    if (fixed_file_number(b.ref.type) < 0 && !b.ref_has_file_number)
+      throw pegtl::parse_error("expected a file number in the indirect reference (for example N10:1)", in);
+    b.ref.element = static_cast<std::uint16_t>(std::min(to_int(in), 65535));
+  }
+};
+template <> struct action<ref_word_number> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) { b.ref.word = static_cast<std::int16_t>(std::min(to_int(in), 255)); }
+};
+template <> struct action<ref_word_name> {
+  template <typename Input>
+  static void apply(const Input& in, AddressBuilder& b) {
+    int w = structured_word_number(b.ref.type, in.string_view());
+    if (w < 0) throw pegtl::parse_error("unknown sub-element '" + in.string() + "'", in);
+    b.ref.word = static_cast<std::int16_t>(w);
+  }
+};
+
+// ---- Operands --------------------------------------------------------------------------------------
+
+template <> struct action<operand_token> : pegtl::change_states<OperandBuilder> {
+  template <typename Input>
+  static void success(const Input&, OperandBuilder& ob, LoadState& s) {
+    s.operands.push_back(std::move(ob.op));
+  }
+};
+
+template <> struct action<number> {
+  template <typename Input>
+  static void apply(const Input& in, OperandBuilder& ob) {
+    NumberValue v;
+    auto text = in.string_view();
+    // The rule includes the token end (an empty lookahead), so the text is exactly the number.
+    if (!parse_number_text(text, v)) throw pegtl::parse_error("number out of range: " + std::string(text), in);
+    ob.op.kind = v.is_float ? Operand::Kind::Float : Operand::Kind::Integer;
+    ob.op.integer = v.integer;
+    ob.op.real = v.real;
+    ob.op.spelling = std::string(text);
+    ob.op.pos = pos_of(in);
+  }
+};
+
+template <> struct action<symbol_name> {
+  template <typename Input>
+  static void apply(const Input& in, OperandBuilder& ob) {
+    ob.op.kind = Operand::Kind::Symbol;
+    ob.op.symbol = in.string();
+    ob.op.spelling = in.string();
+    ob.op.pos = pos_of(in);
+  }
+};
+
+// ---- START -----------------------------------------------------------------------------------------
+
+template <> struct action<processor_catalog> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    s.catalog = in.string();
+    s.catalog_pos = pos_of(in);
+  }
+};
+template <> struct action<series_letter> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.series = in.peek_char(0); }
+};
+template <> struct action<frn_number> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.frn = to_int(in); }
+};
+template <> struct action<processor_description> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.program.processor_description = strip_percent(in.string_view()); }
+};
+template <> struct action<start_stmt> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    if (s.have_start) {
+      s.diags.error(s.catalog_pos.line, s.catalog_pos.column, "a second START statement; a program names one processor");
+      return;
+    }
+    s.have_start = true;
+    s.program.processor_pos = pos_of(in);
+    auto model = resolve_processor(s.catalog, s.series, s.frn);
+    if (!model) {
+      s.diags.error(s.catalog_pos.line, s.catalog_pos.column,
+                    "unknown processor catalog '" + s.catalog + "'; known: " + std::string(known_processor_catalogs()));
+      return;
+    }
+    s.program.processor = *model;
+    s.program.series_given = s.series;
+    s.program.frn_given = s.frn;
+  }
+};
+
+// ---- SLOT ------------------------------------------------------------------------------------------
+
+template <> struct action<slot_number> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    s.slot = {};
+    s.slot.slot = to_int(in);
+    s.slot.pos = pos_of(in);
+  }
+};
+template <> struct action<module_catalog> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.slot.catalog = in.string(); }
+};
+template <> struct action<slot_description> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.slot.description = strip_percent(in.string_view()); }
+};
+template <> struct action<scan_in_words> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.slot.scan_in = to_int(in); }
+};
+template <> struct action<scan_out_words> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.slot.scan_out = to_int(in); }
+};
+template <> struct action<g_file_count> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    s.g_file_count = to_int(in);
+    s.g_file_pos = pos_of(in);
+    s.slot.has_g_file = true;
+    s.slot.g_file.clear();
+  }
+};
+template <> struct action<g_file_word> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    NumberValue v;
+    if (!parse_number_text(in.string_view(), v) || v.integer < -32768 || v.integer > 65535) {
+      auto p = pos_of(in);
+      s.diags.error(p.line, p.column, "G-file word must be a 16-bit value (-32768..65535)");
+      return;
+    }
+    s.slot.g_file.push_back(static_cast<std::uint16_t>(v.integer));
+  }
+};
+template <> struct action<g_file> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) {
+    if (static_cast<int>(s.slot.g_file.size()) != s.g_file_count)
+      s.diags.error(s.g_file_pos.line, s.g_file_pos.column,
+                    "G_FILE " + std::to_string(s.g_file_count) + " announces " + std::to_string(s.g_file_count) +
+                        " words but " + std::to_string(s.slot.g_file.size()) + " follow");
+  }
+};
+template <> struct action<iocard_value> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    NumberValue v;
+    parse_number_text(in.string_view(), v);
+    s.slot.iocard.push_back(v.integer);
+  }
+};
+template <> struct action<grammar::m0_words> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.slot.m0_size = to_int(in); }
+};
+template <> struct action<grammar::m1_words> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.slot.m1_size = to_int(in); }
+};
+template <> struct action<id_code_value> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.slot.id_code = to_int(in); }
+};
+template <> struct action<option> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    // "OPTION key=value": split the matched text at the first '='.
+    auto text = in.string_view();
+    text.remove_prefix(text.find_first_not_of(" \t\r\n", 6));
+    auto eq = text.find('=');
+    s.slot.options[std::string(text.substr(0, eq))] = std::string(text.substr(eq + 1));
+  }
+};
+template <> struct action<slot_stmt> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) {
+    for (const auto& existing : s.program.slots)
+      if (existing.slot == s.slot.slot) {
+        s.diags.error(s.slot.pos.line, s.slot.pos.column,
+                      "slot " + std::to_string(s.slot.slot) + " is configured twice (first at line " +
+                          std::to_string(existing.pos.line) + ")");
+        return;
+      }
+    s.program.slots.push_back(std::move(s.slot));
+  }
+};
+
+// ---- PROJECT, LADDER -------------------------------------------------------------------------------
+
+template <> struct action<project_name> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.program.project = strip_quotes(in.string_view()); }
+};
+template <> struct action<ladder_number> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    int n = to_int(in);
+    auto p = pos_of(in);
+    for (std::size_t i = 0; i < s.program.files.size(); ++i)
+      if (s.program.files[i].number == n) {
+        s.diags.error(p.line, p.column,
+                      "program file " + std::to_string(n) + " is defined twice (first at line " +
+                          std::to_string(s.program.files[i].pos.line) + ")");
+        s.current_file = static_cast<int>(i);
+        return;
+      }
+    ProgramFile f;
+    f.number = n;
+    f.pos = p;
+    s.program.files.push_back(std::move(f));
+    s.current_file = static_cast<int>(s.program.files.size() - 1);
+  }
+};
+template <> struct action<ladder_name> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    if (s.current_file >= 0) s.program.files[s.current_file].name = strip_quotes(in.string_view());
+  }
+};
+
+// ---- Rungs -----------------------------------------------------------------------------------------
+
+template <> struct action<kw_sor> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    s.rung = {};
+    s.rung.pos = pos_of(in);
+    s.open_branches.clear();
+    // The comment lines just before SOR are the rung comment; "% Rung: n %" markers are not.
+    for (auto& c : s.pending_comments) {
+      if (!s.rung.comment.empty()) s.rung.comment += '\n';
+      s.rung.comment += c;
+    }
+    s.pending_comments.clear();
+  }
+};
+
+template <> struct action<mnemonic> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    s.instruction = {};
+    s.instruction.pos = pos_of(in);
+    s.operands.clear();
+    auto m = in.string_view();
+    const InstructionSpec* spec = find_instruction(m);
+    s.instruction_known = spec != nullptr;
+    if (spec) {
+      s.instruction.opcode = spec->opcode;
+    } else {
+      s.diags.error(s.instruction.pos.line, s.instruction.pos.column, "unknown instruction '" + std::string(m) + "'");
+    }
+  }
+};
+
+template <> struct action<instruction> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) {
+    if (!s.instruction_known) return;
+    s.instruction.operands = std::move(s.operands);
+    s.operands.clear();
+    RungElement e;
+    e.kind = RungElement::Kind::Instruction;
+    e.pos = s.instruction.pos;
+    e.instruction = std::move(s.instruction);
+    s.current_elements().push_back(std::move(e));
+  }
+};
+
+template <> struct action<branch_open> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    RungElement e;
+    e.kind = RungElement::Kind::Branch;
+    e.pos = pos_of(in);
+    e.legs.emplace_back();
+    auto& container = s.current_elements();
+    container.push_back(std::move(e));
+    s.open_branches.push_back(&container.back());
+  }
+};
+
+template <> struct action<branch_next> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) {
+    if (!s.open_branches.empty()) s.open_branches.back()->legs.emplace_back();
+  }
+};
+
+template <> struct action<branch_close> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) {
+    if (!s.open_branches.empty()) s.open_branches.pop_back();
+  }
+};
+
+template <> struct action<branch_close_required> : action<branch_close> {};
+
+template <> struct action<stray_branch_keyword> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    auto p = pos_of(in);
+    s.diags.error(p.line, p.column, "unbalanced branch: " + std::string(in.string_view().substr(0, 3)) +
+                                        " without a matching BST");
+  }
+};
+
+template <> struct action<rung> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) {
+    if (s.current_file < 0) {
+      s.diags.error(s.rung.pos.line, s.rung.pos.column, "rung before any LADDER statement");
+      return;
+    }
+    s.program.files[s.current_file].rungs.push_back(std::move(s.rung));
+    s.rung = {};
+  }
+};
+
+// ---- Comments --------------------------------------------------------------------------------------
+
+template <> struct action<comment_stmt> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    auto text = strip_percent(std::string_view(in.string_view()).substr(0, in.string_view().rfind('%') + 1));
+    // RSLogix writes "% Rung: 12 %" before every rung; it carries no information.
+    if (text.rfind("Rung:", 0) == 0) return;
+    s.pending_comments.push_back(std::move(text));
+  }
+};
+
+// ---- DATA ------------------------------------------------------------------------------------------
+
+template <> struct action<data_header> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    s.data = {};
+    s.force = {};
+    s.force_values.clear();
+    s.data.pos = pos_of(in);
+    s.data.file_name = in.string();
+    s.data_header_end = static_cast<std::size_t>(in.end() - s.source.data());
+    // Split "N7:0" / "O:0" / "HSC0:0" into letters, number and first element.
+    auto text = in.string_view();
+    std::size_t i = 0;
+    while (i < text.size() && std::isupper(static_cast<unsigned char>(text[i]))) ++i;
+    std::string letters(text.substr(0, i));
+    std::size_t colon = text.find(':');
+    std::string number(text.substr(i, colon - i));
+    s.data.start_element = std::stoi(std::string(text.substr(colon + 1)).substr(0, 9));
+    auto type = file_type_from_letters(letters);
+    int fixed = type ? fixed_file_number(*type) : -1;
+    s.data_opaque = !type || is_mfile(*type);
+    if (!s.data_opaque) {
+      s.data.type = type;
+      if (fixed >= 0) {
+        if (!number.empty() && std::stoi(number.substr(0, 9)) != fixed) s.data_opaque = true;
+        s.data.file = fixed;
+      } else if (number.empty()) {
+        s.diags.error(s.data.pos.line, s.data.pos.column, "expected a file number in '" + s.data.file_name + "'");
+      } else {
+        s.data.file = std::stoi(number.substr(0, 9));
+      }
+    }
+    if (s.data_opaque) s.data.type.reset();
+  }
+};
+
+template <> struct action<data_number> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    if (s.data_opaque) return;
+    NumberValue v;
+    auto p = pos_of(in);
+    if (!parse_number_text(in.string_view(), v)) {
+      s.diags.error(p.line, p.column, "number out of range");
+      return;
+    }
+    if (s.data.type == FileType::Float) {
+      s.data.floats.push_back(v.is_float ? v.real : static_cast<double>(v.integer));
+      return;
+    }
+    if (v.is_float) {
+      s.diags.error(p.line, p.column, "a " + std::string(file_letter(*s.data.type)) + " file holds integers, not '" +
+                                          in.string() + "'");
+      return;
+    }
+    s.data.words.push_back(v.integer);
+  }
+};
+
+template <> struct action<data_string> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    if (s.data_opaque) return;
+    if (s.data.type != FileType::String) {
+      auto p = pos_of(in);
+      s.diags.error(p.line, p.column, "quoted strings belong in ST files only");
+      return;
+    }
+    s.data.strings.push_back(strip_quotes(in.string_view()));
+  }
+};
+
+template <> struct action<data_stmt> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    if (s.data_opaque) {
+      // MicroLogix function files (HSC, PTOX, STI, ...) are kept verbatim; softslc does not
+      // model them, and says so rather than failing on a real export.
+      auto end = static_cast<std::size_t>(in.end() - s.source.data());
+      auto text = s.source.substr(s.data_header_end, end - s.data_header_end);
+      // Keep the block from the line after the header; trim the rest of the header line and
+      // trailing blank lines so the round trip is stable.
+      auto first = text.find_first_not_of(" \t\r");
+      if (first != std::string_view::npos && text[first] == '\n') text.remove_prefix(first + 1);
+      s.data.opaque_text = std::string(text);
+      while (!s.data.opaque_text.empty() && std::isspace(static_cast<unsigned char>(s.data.opaque_text.back())))
+        s.data.opaque_text.pop_back();
+      s.diags.warning(s.data.pos.line, s.data.pos.column,
+                      "data file '" + s.data.file_name +
+                          "' is not an SLC data file (MicroLogix function file?); kept as opaque data, not simulated");
+    }
+    s.program.data.push_back(std::move(s.data));
+    s.data = {};
+  }
+};
+
+// ---- FORCE -----------------------------------------------------------------------------------------
+
+template <> struct action<force_number> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    NumberValue v;
+    auto p = pos_of(in);
+    if (!parse_number_text(in.string_view(), v) || v.is_float || v.integer < -32768 || v.integer > 65535) {
+      s.diags.error(p.line, p.column, "force words are 16-bit values such as 0X00FF");
+      return;
+    }
+    s.force_values.push_back(v.integer);
+  }
+};
+
+template <> struct action<force_stmt> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) {
+    auto p = s.data.pos;
+    if (!s.data.type || !is_io(*s.data.type)) {
+      s.diags.error(p.line, p.column, "forces apply to I and O slots only ('" + s.data.file_name + "')");
+      return;
+    }
+    if (s.force_values.size() % 2 != 0) {
+      s.diags.error(p.line, p.column, "each force row has an ON word and an OFF word");
+      return;
+    }
+    ForceBlock f;
+    f.type = *s.data.type;
+    f.slot = s.data.start_element;
+    f.pos = p;
+    for (std::size_t i = 0; i + 1 < s.force_values.size(); i += 2)
+      f.words.push_back({static_cast<std::uint16_t>(s.force_values[i]), static_cast<std::uint16_t>(s.force_values[i + 1])});
+    s.program.forces.push_back(std::move(f));
+  }
+};
+
+// ---- SYMBOL / DESC ---------------------------------------------------------------------------------
+
+template <> struct action<kw_symbol> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    s.symbol = {};
+    s.symbol.pos = pos_of(in);
+  }
+};
+template <> struct action<kw_desc> : action<kw_symbol> {};
+template <> struct action<symbol_def_name> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.symbol.name = in.string(); }
+};
+template <> struct action<symbol_description> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.symbol.description = strip_percent(in.string_view()); }
+};
+template <> struct action<symbol_note> : action<symbol_description> {};
+template <> struct action<symbol_stmt> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) { s.program.symbols.push_back(std::move(s.symbol)); }
+};
+template <> struct action<desc_stmt> : action<symbol_stmt> {};
+
+// ---- Statement splitting -------------------------------------------------------------------------
+
+enum class SpanKind { Keyword, Comment, Data, Rung, Other };
+
+struct Span {
+  std::size_t begin = 0;
+  std::size_t end = 0;
+  std::size_t line = 1;
+  SpanKind kind = SpanKind::Other;
+};
+
+std::string_view first_token(std::string_view line) {
+  auto b = line.find_first_not_of(" \t\r");
+  if (b == std::string_view::npos) return {};
+  auto e = line.find_first_of(" \t\r%", b);
+  return line.substr(b, e == std::string_view::npos ? std::string_view::npos : e - b);
+}
+
+bool is_statement_keyword(std::string_view t) {
+  static constexpr std::string_view kKeywords[] = {"START", "SLOT", "PROJECT", "LADDER", "SOR",
+                                                   "DATA",  "FORCE", "SYMBOL", "DESC"};
+  for (auto k : kKeywords)
+    if (k == t) return true;
+  return false;
+}
+
+// Splits the text into statements: a statement starts at a line whose first token is a
+// statement keyword, or at a comment line outside DATA/FORCE blocks; other lines continue the
+// current statement (G_FILE words, DATA rows, the rest of a long rung).
+std::vector<Span> split_statements(std::string_view text) {
+  std::vector<Span> spans;
+  std::optional<Span> cur;
+  bool comment_open = false;  // inside a comment that spans lines
+  std::size_t pos = 0, line = 1;
+  auto close = [&](std::size_t at) {
+    if (cur) {
+      cur->end = at;
+      spans.push_back(*cur);
+      cur.reset();
+    }
+  };
+  while (pos < text.size()) {
+    auto nl = text.find('\n', pos);
+    std::size_t next = nl == std::string_view::npos ? text.size() : nl + 1;
+    auto l = text.substr(pos, next - pos);
+    auto tok = first_token(l);
+    bool in_block = cur && cur->kind == SpanKind::Data;
+    auto percent_count = static_cast<std::size_t>(std::count(l.begin(), l.end(), '%'));
+    if (comment_open) {
+      // Continue the open comment whatever this line holds.
+    } else if (tok.empty() && l.find('%') == std::string_view::npos) {
+      if (!in_block) close(pos);
+    } else if (is_statement_keyword(tok)) {
+      close(pos);
+      cur = Span{pos, 0, line, tok == "SOR"                      ? SpanKind::Rung
+                               : (tok == "DATA" || tok == "FORCE") ? SpanKind::Data
+                                                                   : SpanKind::Keyword};
+    } else if (l.find_first_not_of(" \t\r") < l.size() && l[l.find_first_not_of(" \t\r")] == '%' && !in_block &&
+               !(cur && cur->kind == SpanKind::Rung)) {
+      close(pos);
+      cur = Span{pos, 0, line, SpanKind::Comment};
+    } else if (!cur) {
+      cur = Span{pos, 0, line, SpanKind::Other};
+    }
+    if (percent_count % 2 == 1) comment_open = !comment_open;
+    // A comment statement ends with its line once the comment is closed; a rung ends with the
+    // line that closes it with EOR.
+    if (cur && cur->kind == SpanKind::Comment && !comment_open) close(next);
+    if (cur && cur->kind == SpanKind::Rung && !comment_open) {
+      auto t = l.substr(0, l.find_last_not_of(" \t\r\n") + 1);
+      if (t.size() >= 3 && t.substr(t.size() - 3) == "EOR" &&
+          (t.size() == 3 || t[t.size() - 4] == ' ' || t[t.size() - 4] == '\t'))
+        close(next);
+    }
+    pos = next;
+    ++line;
+  }
+  close(text.size());
+  return spans;
+}
+
+void parse_statements(LoadState& state, std::string_view text, const std::string& source_name) {
+  for (const auto& span : split_statements(text)) {
+    pegtl::memory_input in(text.data() + span.begin, text.data() + span.end, source_name, span.begin, span.line, 1);
+    try {
+      pegtl::parse<grammar::statement, action, grammar::control>(in, state);
+      // A rung comment is only the comment directly above its SOR: any other statement in
+      // between detaches it.
+      if (span.kind != SpanKind::Comment && span.kind != SpanKind::Rung) state.pending_comments.clear();
+    } catch (const pegtl::parse_error& e) {
+      const auto& p = e.positions().front();
+      std::string msg(e.message());
+      // An error at the end of a statement (something missing) is reported just after its last
+      // character, on its own line, rather than at the start of the next line.
+      auto last = text.find_last_not_of(" \t\r\n", span.end == 0 ? 0 : span.end - 1);
+      if (last != std::string_view::npos && last >= span.begin && p.byte > last) {
+        auto line_start = text.rfind('\n', last);
+        line_start = line_start == std::string_view::npos ? 0 : line_start + 1;
+        auto line = span.line + static_cast<std::size_t>(std::count(text.begin() + span.begin, text.begin() + last, '\n'));
+        state.diags.error(static_cast<std::uint32_t>(line), static_cast<std::uint32_t>(last - line_start + 2), msg);
+      } else {
+        state.diags.error(static_cast<std::uint32_t>(p.line), static_cast<std::uint32_t>(p.column), msg);
+      }
+      // Leave no partial statement behind.
+      state.open_branches.clear();
+      state.rung = {};
+      state.operands.clear();
+      state.pending_comments.clear();
+    }
+  }
+}
+
+}  // namespace
+
+// ---- Public API ------------------------------------------------------------------------------------
+
+LoadResult parse_program_syntax(std::string text, std::string source_name) {
+  LoadResult r;
+  r.source = std::move(text);
+  r.source_name = std::move(source_name);
+  Program program;
+  program.source_name = r.source_name;
+  LoadState state(program, r.diagnostics, r.source);
+  parse_statements(state, r.source, r.source_name);
+  if (!state.have_start && !r.diagnostics.has_errors())
+    r.diagnostics.error(1, 1, "missing START statement naming the processor (for example 'START 1747-L532')");
+  if (!r.diagnostics.has_errors()) r.program = std::move(program);
+  r.diagnostics.sort_by_position();
+  return r;
+}
+
+LoadResult load_program(std::string text, std::string source_name) {
+  LoadResult r = parse_program_syntax(std::move(text), std::move(source_name));
+  if (!r.program) return r;
+  check_program(*r.program, r.diagnostics);
+  r.diagnostics.sort_by_position();
+  if (r.diagnostics.has_errors()) r.program.reset();
+  return r;
+}
+
+LoadResult load_program_file(const std::filesystem::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) {
+    LoadResult r;
+    r.source_name = path.string();
+    r.diagnostics.error(0, 0, "cannot open file");
+    return r;
+  }
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  return load_program(ss.str(), path.string());
+}
+
+namespace {
+struct AddressOnlyState {
+  std::optional<Address> address;
+  void on_address(const Address& a, SourcePos) { address = a; }
+};
+}  // namespace
+
+std::optional<Address> parse_address(std::string_view text, std::string* error) {
+  pegtl::memory_input in(text.data(), text.data() + text.size(), "address");
+  AddressOnlyState state;
+  try {
+    if (pegtl::parse<grammar::address_only, action, grammar::control>(in, state) && state.address) return state.address;
+    if (error) *error = "not an address: '" + std::string(text) + "'";
+  } catch (const pegtl::parse_error& e) {
+    if (error) *error = "column " + std::to_string(e.positions().front().column) + ": " + std::string(e.message());
+  }
+  return std::nullopt;
+}
+
+}  // namespace softslc

@@ -1,0 +1,50 @@
+// Loading a program: text → Program, with every problem reported as a positioned diagnostic.
+//
+// load_program() parses the export text statement by statement (see grammar.h), then runs the
+// semantic checker (checker.h). The result holds a Program only when there were no errors: a
+// file that fails leaves nothing half-loaded. Warnings do not prevent loading.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "parser/diagnostics.h"
+#include "parser/program.h"
+
+namespace softslc {
+
+struct LoadResult {
+  std::optional<Program> program;  // set only when diagnostics has no errors
+  DiagnosticList diagnostics;
+  std::string source;              // the text that was loaded (for rendering diagnostics)
+  std::string source_name;
+
+  bool ok() const { return program.has_value(); }
+  std::string render_diagnostics() const { return render_all(diagnostics, source_name, source); }
+};
+
+// Parses and checks program text. `source_name` is used in diagnostics.
+LoadResult load_program(std::string text, std::string source_name);
+// Reads and loads a file; an unreadable file is reported as a diagnostic, not an exception.
+LoadResult load_program_file(const std::filesystem::path& path);
+
+// Parses the syntax only (no semantic checks): for tests of the grammar and for tools that
+// want the tree of a program with semantic errors.
+LoadResult parse_program_syntax(std::string text, std::string source_name);
+
+// Parses one address written alone ("N7:0", "T4:0/DN", "I:1/3"). Returns nullopt and sets
+// `error` (with a column) when the text is not an address.
+std::optional<Address> parse_address(std::string_view text, std::string* error = nullptr);
+
+// Parses a numeric constant as the program format writes it (decimal, negative, float, 0x..,
+// ..h). Returns false when the text is not a number.
+struct NumberValue {
+  bool is_float = false;
+  std::int64_t integer = 0;
+  double real = 0.0;
+};
+bool parse_number_text(std::string_view text, NumberValue& out);
+
+}  // namespace softslc

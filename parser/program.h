@@ -1,0 +1,150 @@
+// The loaded program: what an RSLogix 500 library export (.SLC) says, as plain values.
+//
+// The loader builds a Program from text; the checker validates it against the instruction table
+// and the processor; the formatter writes it back as canonical export text; the compiler turns it
+// into bytecode. Every node keeps the position it came from so any later stage can report a
+// positioned diagnostic. A Program is either fully loaded or not produced at all: the loader
+// never hands out a half-built one.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "instructions/instruction_table.h"
+#include "instructions/processor.h"
+#include "parser/address.h"
+
+namespace softslc {
+
+// A 1-based line and column in the source file.
+struct SourcePos {
+  std::uint32_t line = 0;
+  std::uint32_t column = 0;
+  bool operator==(const SourcePos&) const = default;
+};
+
+// One operand of an instruction as written.
+struct Operand {
+  enum class Kind : std::uint8_t { Address, Integer, Float, Symbol };
+  Kind kind = Kind::Integer;
+  Address address;             // Kind::Address, and Kind::Symbol once resolved
+  std::int64_t integer = 0;    // Kind::Integer
+  double real = 0.0;           // Kind::Float
+  std::string symbol;          // Kind::Symbol: the name as written
+  std::string spelling;        // the text as written, for diagnostics
+  SourcePos pos;
+  bool resolved = false;       // Kind::Symbol: address holds the symbol's address
+
+  // True when the operand designates a data-table location (directly or through a symbol).
+  bool is_address() const { return kind == Kind::Address || (kind == Kind::Symbol && resolved); }
+  bool is_number() const { return kind == Kind::Integer || kind == Kind::Float; }
+  // Semantic equality (ignores spelling and position).
+  bool same_as(const Operand& o) const;
+};
+
+struct Instruction {
+  Opcode opcode = Opcode::XIC;
+  std::vector<Operand> operands;
+  SourcePos pos;
+};
+
+// A rung element is an instruction or a branch (BST leg NXB leg ... BND).
+struct RungElement {
+  enum class Kind : std::uint8_t { Instruction, Branch };
+  Kind kind = Kind::Instruction;
+  Instruction instruction;                       // Kind::Instruction
+  std::vector<std::vector<RungElement>> legs;    // Kind::Branch
+  SourcePos pos;
+};
+
+struct Rung {
+  std::vector<RungElement> elements;
+  std::string comment;  // rung comment text (without the % delimiters); empty when none
+  SourcePos pos;        // position of SOR
+};
+
+struct ProgramFile {
+  int number = 2;       // 2 = main, 3..255 subroutines
+  std::string name;
+  std::vector<Rung> rungs;
+  SourcePos pos;
+};
+
+// A SLOT line: one chassis slot and its module.
+struct SlotConfig {
+  int slot = 0;
+  std::string catalog;
+  std::string description;
+  int scan_in = 0;   // input image words
+  int scan_out = 0;  // output image words
+  std::vector<std::uint16_t> g_file;      // G_FILE n followed by n words
+  bool has_g_file = false;
+  std::vector<std::int64_t> iocard;       // IOCARD fields, kept as exported
+  // softslc extensions for specialty modules (see docs/program-format.md).
+  std::optional<int> m0_size;
+  std::optional<int> m1_size;
+  std::optional<int> id_code;
+  std::map<std::string, std::string> options;  // OPTION key=value pairs (DIP switches, module mode)
+  SourcePos pos;
+};
+
+// A DATA block: initial values of one data file, or an opaque MicroLogix function file.
+struct DataBlock {
+  std::string file_name;       // as written in the header: "N7:0", "O:0", "HSC0:0"
+  std::optional<FileType> type;  // nullopt for function files kept opaque
+  int file = 0;
+  int start_element = 0;       // element (or slot for O/I) the block starts at
+  // Values in element order; T/C/R contribute 3 per element, F and L one per element.
+  std::vector<std::int64_t> words;
+  std::vector<double> floats;  // F files
+  std::vector<std::string> strings;  // ST files
+  std::string opaque_text;     // function files: the block's text, kept as written
+  SourcePos pos;
+};
+
+// A FORCE block: forces installed on an I or O slot. Per word: bits forced on and bits forced off.
+struct ForceBlock {
+  FileType type = FileType::Input;
+  int slot = 0;
+  struct Word {
+    std::uint16_t on = 0;   // the ON column: bits forced to 1
+    std::uint16_t off = 0;  // the OFF column as exported (see docs: 1 = not forced off)
+  };
+  std::vector<Word> words;
+  SourcePos pos;
+};
+
+struct Symbol {
+  std::string name;
+  Address address;
+  std::string description;
+  SourcePos pos;
+};
+
+struct Program {
+  std::string source_name;     // file name for diagnostics
+  ProcessorModel processor;
+  std::optional<char> series_given;  // SERIES on the START line, when written
+  std::optional<int> frn_given;      // FRN on the START line, when written
+  std::string processor_description;
+  SourcePos processor_pos;
+  std::string project;
+  std::vector<SlotConfig> slots;       // in SLOT order as written
+  std::vector<ProgramFile> files;      // in LADDER order as written
+  std::vector<DataBlock> data;
+  std::vector<ForceBlock> forces;
+  std::vector<Symbol> symbols;         // in definition order (a DESC line gives a nameless entry)
+
+  const ProgramFile* find_file(int number) const;
+  const SlotConfig* find_slot(int slot) const;
+  const Symbol* find_symbol(std::string_view name) const;
+};
+
+// Semantic equality of two programs: same processor, configuration, rungs, data and symbols.
+// Positions, spellings and free comments are ignored. Used by the fmt round-trip tests.
+bool same_program(const Program& a, const Program& b, std::string* first_difference = nullptr);
+
+}  // namespace softslc

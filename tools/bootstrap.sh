@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Set up softslc on a fresh Debian 12 machine and run it. Idempotent: installs only the Debian
+# packages that are missing, configures the build once, rebuilds what changed.
+#
+#   tools/bootstrap.sh demo   install, build, run softslc on the shipped example program
+#   tools/bootstrap.sh test   install, build, run the whole test suite
+set -euo pipefail
+
+mode="${1:-}"
+case "$mode" in
+  demo|test) ;;
+  *) echo "usage: tools/bootstrap.sh demo|test" >&2; exit 2 ;;
+esac
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${SOFTSLC_BUILD_DIR:-$root/build}"
+
+packages=(g++ cmake ninja-build pkg-config tao-pegtl-dev libcli11-dev libspdlog-dev libgtest-dev libgmock-dev
+          libbenchmark-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "softslc: installing missing Debian packages: ${missing[*]}"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+extra=()
+if [ "${CI:-}" = "true" ]; then extra+=(-DSOFTSLC_WERROR=ON); fi
+mkdir -p "$build"
+cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${extra[@]}" > "$build/configure.log" 2>&1 \
+  || { cat "$build/configure.log"; exit 1; }
+cmake --build "$build" -j "$(nproc)"
+
+softslc="$build/tools/softslc/softslc"
+case "$mode" in
+  demo)
+    example="$root/examples/ladder/seal_in/seal_in.slc"
+    echo "== softslc check $example"
+    "$softslc" check "$example"
+    echo "== softslc fmt $example"
+    "$softslc" fmt "$example"
+    echo "== softslc throughput examples/throughput/rio_example1.json"
+    "$softslc" throughput "$root/examples/throughput/rio_example1.json"
+    ;;
+  test)
+    cd "$build"
+    ctest --output-on-failure -j "$(nproc)"
+    ;;
+esac

@@ -136,7 +136,8 @@ std::string to_string(const Address& a) {
   if (a.indirect_word) {
     s += ".[" + to_string(*a.indirect_word) + ']';
   } else if (is_structured(a.type)) {
-    if (a.word > 0) {
+    // T4:0 is the whole element; T4:0.0 its control word; T4:0/DN a bit of that word.
+    if (a.word > 0 || (a.word == 0 && !a.has_bit())) {
       auto name = structured_word_name(a.type, a.word);
       s += '.';
       s += name.empty() ? std::to_string(a.word) : std::string(name);

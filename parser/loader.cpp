@@ -195,6 +195,8 @@ struct address_action : pegtl::change_states<AddressBuilder> {
     Address a = b.a;
     // I/O and M addresses without a word mean word 0 of the slot: I:1/3 == I:1.0/3.
     if ((is_io(a.type) || is_mfile(a.type)) && a.word < 0 && !a.indirect_word) a.word = 0;
+    // A bit of a T/C/R element is a bit of its word 0: T4:0/13 == T4:0/DN == T4:0.0/13.
+    if (is_structured(a.type) && a.has_bit() && a.word < 0 && !a.indirect_word) a.word = 0;
     outer.on_address(a, b.pos);
   }
 };
@@ -377,6 +379,11 @@ template <> struct action<ref_file> {
   template <typename Input>
   static void apply(const Input& in, AddressBuilder& b) {
     int n = to_int(in);
+    int fixed = fixed_file_number(b.ref.type);
+    if (fixed >= 0 && n != fixed)
+      throw pegtl::parse_error(std::string("file ") + std::string(file_letter(b.ref.type)) + " is always file " +
+                                   std::to_string(fixed),
+                               in);
     if (n > 255) throw pegtl::parse_error("file number must be 0-255", in);
     b.ref.file = static_cast<std::uint16_t>(n);
     b.ref_has_file_number = true;

@@ -15,21 +15,12 @@ esac
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${SOFTSLC_BUILD_DIR:-$root/build}"
 
-packages=(g++ cmake ninja-build pkg-config tao-pegtl-dev libcli11-dev libspdlog-dev libgtest-dev libgmock-dev
-          libbenchmark-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "softslc: installing missing Debian packages: ${missing[*]}"
-  sudo=""
-  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+source "$root/tools/lib/ensure-packages.sh"
+ensure_packages g++ cmake ninja-build pkg-config tao-pegtl-dev libcli11-dev libspdlog-dev libgtest-dev libgmock-dev \
+  libbenchmark-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev
 
-extra=()
+# Extra configure options (the sanitizer job of .ci/run passes -DSOFTSLC_SANITIZE=ON).
+read -r -a extra <<< "${SOFTSLC_CMAKE_ARGS:-}"
 if [ "${CI:-}" = "true" ]; then extra+=(-DSOFTSLC_WERROR=ON); fi
 mkdir -p "$build"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "${extra[@]}" > "$build/configure.log" 2>&1 \

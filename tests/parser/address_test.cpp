@@ -57,6 +57,9 @@ INSTANTIATE_TEST_SUITE_P(
                       AddressCase{"T4:0.1", FileType::Timer, 4, 0, 1, -1, "T4:0.PRE"},  // PT1 4-9: T4:0.1 = .PRE
                       AddressCase{"T4:0/DN", FileType::Timer, 4, 0, 0, 13, "T4:0/DN"},
                       AddressCase{"T4:0/EN", FileType::Timer, 4, 0, 0, 15, "T4:0/EN"},
+                      AddressCase{"T4:0/13", FileType::Timer, 4, 0, 0, 13, "T4:0/DN"},
+                      AddressCase{"T9:0.0", FileType::Timer, 9, 0, 0, -1, "T9:0.0"},  // fuzz-found: control word
+                      AddressCase{"T4:0", FileType::Timer, 4, 0, -1, -1, "T4:0"},
                       AddressCase{"T4:0/TT", FileType::Timer, 4, 0, 0, 14, "T4:0/TT"},
                       AddressCase{"C5:1.PRE", FileType::Counter, 5, 1, 1, -1, "C5:1.PRE"},
                       AddressCase{"C5:1/OV", FileType::Counter, 5, 1, 0, 12, "C5:1/OV"},

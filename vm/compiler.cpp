@@ -1,0 +1,883 @@
+#include "vm/compiler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "parser/checker.h"
+
+namespace softslc {
+
+std::string CompileError::to_string() const {
+  std::string s;
+  if (file >= 0) s += "file " + std::to_string(file);
+  if (rung >= 0) s += " rung " + std::to_string(rung);
+  if (pos.line > 0) s += (s.empty() ? "" : " ") + std::string("(line ") + std::to_string(pos.line) + ")";
+  if (!s.empty()) s += ": ";
+  return s + message;
+}
+
+std::string CompileResult::render() const {
+  std::string s;
+  for (const auto& e : errors) s += e.to_string() + "\n";
+  return s;
+}
+
+std::string module_instruction_unsupported(Opcode op) {
+  return std::string(spec(op).mnemonic) +
+         " is not supported until the 1747-SN/1747-SDN module lands (specialty-module instructions need their "
+         "module's implementation; the program cannot run without it)";
+}
+
+namespace {
+
+std::uint32_t wpe_of(FileType t) {
+  if (is_io(t) || t == FileType::Status) return 1;
+  return static_cast<std::uint32_t>(words_per_element(t));
+}
+
+bool is_module_instruction(Opcode op) { return op == Opcode::BTR || op == Opcode::BTW || op == Opcode::DEM; }
+
+struct FileUse {
+  bool present = false;
+  FileType type = FileType::Integer;
+  std::uint32_t elements = 0;
+  SourcePos pos;
+};
+
+struct Fixup {
+  std::uint32_t at;  // code index of the TARGET word
+  int target;        // label number (JMP) or file number (JSR)
+  SourcePos pos;
+  int file;
+  int rung;
+};
+
+class Compiler {
+ public:
+  Compiler(const Program& p, const CompileOptions& o) : prog_(p), opts_(o), proc_(o.processor ? *o.processor : p.processor) {}
+
+  CompileResult run() {
+    size_files();
+    if (errors_.empty()) build_layout();
+    if (errors_.empty()) load_data();
+    if (errors_.empty()) emit_program();
+    CompileResult r;
+    r.errors = std::move(errors_);
+    if (r.errors.empty()) {
+      out_.processor = proc_;
+      out_.source_name = prog_.source_name;
+      out_.layout = std::make_shared<const DataTableLayout>(layout_);
+      out_.initial_words = std::move(init_);
+      out_.slots = prog_.slots;
+      out_.forces = prog_.forces;
+      r.program = std::move(out_);
+    }
+    return r;
+  }
+
+ private:
+  void error(SourcePos pos, std::string msg) { errors_.push_back({cur_file_, cur_rung_, pos, std::move(msg)}); }
+
+  const SlotConfig* slot_config(int slot) const {
+    for (const auto& s : prog_.slots)
+      if (s.slot == slot) return &s;
+    return nullptr;
+  }
+
+  // ---- Pass 1: which files exist, their types and sizes -------------------------------------------
+
+  bool file_type_allowed(FileType t) const {
+    switch (t) {
+      case FileType::Float: return proc_.has_float_files();
+      case FileType::Long: return proc_.family == ProcessorFamily::MicroLogix;
+      case FileType::String:
+      case FileType::Ascii:
+        return proc_.family == ProcessorFamily::Slc503 || proc_.family == ProcessorFamily::Slc504 ||
+               proc_.family == ProcessorFamily::Slc505 || proc_.family == ProcessorFamily::MicroLogix;
+      default: return true;
+    }
+  }
+
+  void note_file(int file, FileType t, std::uint32_t elements, SourcePos pos) {
+    if (file < 3 || file > 255) return;  // O/I/S are sized from the configuration
+    auto& u = use_[static_cast<std::size_t>(file)];
+    if (!u.present) {
+      if (!file_type_allowed(t)) {
+        error(pos, std::string(file_letter(t)) + " files do not exist on " + proc_.display_name);
+        return;
+      }
+      u.present = true;
+      u.type = t;
+      u.pos = pos;
+    } else if (u.type != t) {
+      error(pos, "file " + std::to_string(file) + " is used as " + std::string(file_letter(t)) + std::to_string(file) +
+                     " but it is already " + std::string(file_letter(u.type)) + std::to_string(file) + " (line " +
+                     std::to_string(u.pos.line) + ")");
+      return;
+    }
+    if (elements > kMaxElements) {
+      error(pos, std::string(file_letter(t)) + std::to_string(file) + " would need " + std::to_string(elements) +
+                     " elements; a data file has at most 256 (0-255)");
+      return;
+    }
+    u.elements = std::max(u.elements, elements);
+  }
+
+  void note_ref(const IndirectRef& r, SourcePos pos) {
+    Address a;
+    a.type = r.type;
+    a.file = r.file;
+    a.element = r.element;
+    a.word = r.word;
+    note_address(a, 1, pos);
+  }
+
+  void note_address(const Address& a, std::uint32_t extent, SourcePos pos) {
+    if (a.indirect_file) note_ref(*a.indirect_file, pos);
+    if (a.indirect_element) note_ref(*a.indirect_element, pos);
+    if (a.indirect_word) note_ref(*a.indirect_word, pos);
+    if (a.indirect_bit) note_ref(*a.indirect_bit, pos);
+    if (is_io(a.type) || is_mfile(a.type) || a.type == FileType::Status) return;
+    if (a.indirect_file) return;  // which file is only known at run time
+    std::uint32_t elements = 1;
+    if (!a.indirect_element && !(a.bit_offset_form && a.indirect_bit)) {
+      if (a.element < 0) {
+        error(pos, "negative element in " + to_string(a));
+        return;
+      }
+      elements = static_cast<std::uint32_t>(a.element) + std::max<std::uint32_t>(extent, 1);
+    }
+    note_file(a.file, a.type, elements, pos);
+  }
+
+  static std::int64_t literal(const Instruction& in, std::size_t i) {
+    if (i < in.operands.size() && in.operands[i].kind == Operand::Kind::Integer) return in.operands[i].integer;
+    return 0;
+  }
+
+  // How many elements from its start a file-instruction operand covers (1 for other operands).
+  static std::uint32_t extent(const Instruction& in, std::size_t i) {
+    auto len = [&](std::size_t k) { return static_cast<std::uint32_t>(std::clamp<std::int64_t>(literal(in, k), 0, 4096)); };
+    auto type_of = [&](std::size_t k) {
+      return in.operands.size() > k && in.operands[k].is_address() ? in.operands[k].address.type : FileType::Integer;
+    };
+    switch (in.opcode) {
+      case Opcode::COP:
+        if (i == 1) return len(2);
+        if (i == 0) {
+          const std::uint32_t words = len(2) * wpe_of(type_of(1));
+          const std::uint32_t w = wpe_of(type_of(0));
+          return (words + w - 1) / w;
+        }
+        return 1;
+      case Opcode::FLL: return i == 1 ? len(2) : 1;
+      case Opcode::BSL:
+      case Opcode::BSR: return i == 0 ? (len(3) + 15) / 16 : 1;
+      case Opcode::SQO:
+      case Opcode::SQC: return i == 0 ? len(4) + 1 : 1;
+      case Opcode::SQL: return i == 0 ? len(3) + 1 : 1;
+      case Opcode::FFL:
+      case Opcode::LFL: return i == 1 ? len(3) : 1;
+      case Opcode::FFU:
+      case Opcode::LFU: return i == 0 ? len(3) : 1;
+      default: return 1;
+    }
+  }
+
+  void note_elements(const std::vector<RungElement>& elems) {
+    for (const auto& e : elems) {
+      if (e.kind == RungElement::Kind::Branch) {
+        for (const auto& leg : e.legs) note_elements(leg);
+        continue;
+      }
+      const auto& in = e.instruction;
+      for (std::size_t i = 0; i < in.operands.size(); ++i) {
+        const auto& op = in.operands[i];
+        if (op.is_address()) note_address(op.address, extent(in, i), op.pos);
+      }
+    }
+  }
+
+  void size_files() {
+    // The default files exist on every processor (RM E-3); F8 where the processor has floats.
+    const SourcePos none{};
+    note_file(3, FileType::Bit, 1, none);
+    note_file(4, FileType::Timer, 1, none);
+    note_file(5, FileType::Counter, 1, none);
+    note_file(6, FileType::Control, 1, none);
+    note_file(7, FileType::Integer, 1, none);
+    if (proc_.has_float_files()) note_file(8, FileType::Float, 1, none);
+    for (const auto& d : prog_.data) {
+      if (!d.type || is_io(*d.type) || *d.type == FileType::Status || is_mfile(*d.type)) continue;
+      const FileType t = *d.type;
+      const std::size_t n = t == FileType::Float    ? d.floats.size()
+                            : t == FileType::String ? d.strings.size()
+                            : is_structured(t)      ? (d.words.size() + 2) / 3
+                                                    : d.words.size();
+      note_file(d.file, t, static_cast<std::uint32_t>(d.start_element) + static_cast<std::uint32_t>(std::max<std::size_t>(n, 1)),
+                d.pos);
+    }
+    for (const auto& f : prog_.files) {
+      cur_file_ = f.number;
+      for (std::size_t r = 0; r < f.rungs.size(); ++r) {
+        cur_rung_ = static_cast<int>(r);
+        note_elements(f.rungs[r].elements);
+      }
+    }
+    cur_file_ = cur_rung_ = -1;
+  }
+
+  void build_layout() {
+    std::uint32_t next = 0;
+    // O0 and I1: each configured slot's image words, in slot order.
+    std::vector<const SlotConfig*> slots;
+    for (const auto& s : prog_.slots) {
+      if (s.slot < 0 || s.slot >= kMaxSlots) {
+        error(s.pos, "slot " + std::to_string(s.slot) + " is outside the chassis (0-30)");
+        continue;
+      }
+      slots.push_back(&s);
+    }
+    std::sort(slots.begin(), slots.end(), [](auto* a, auto* b) { return a->slot < b->slot; });
+    auto io_file = [&](int number, FileType t, auto words_of, auto& table) {
+      FileLayout& f = layout_.files[static_cast<std::size_t>(number)];
+      f.present = true;
+      f.type = t;
+      f.base = next;
+      f.words_per_element = 1;
+      std::uint32_t off = 0;
+      for (const auto* s : slots) {
+        const int n = words_of(*s);
+        if (n <= 0) continue;
+        table[static_cast<std::size_t>(s->slot)] = SlotImage{true, off, static_cast<std::uint32_t>(n)};
+        off += static_cast<std::uint32_t>(n);
+      }
+      f.elements = off;
+      next += off;
+    };
+    io_file(0, FileType::Output, [](const SlotConfig& s) { return s.scan_out; }, layout_.output_slots);
+    io_file(1, FileType::Input, [](const SlotConfig& s) { return s.scan_in; }, layout_.input_slots);
+    FileLayout& st = layout_.files[2];
+    st.present = true;
+    st.type = FileType::Status;
+    st.base = next;
+    st.elements = std::max<std::uint32_t>(static_cast<std::uint32_t>(status_file_words(proc_)), kMinStatusWords);
+    st.words_per_element = 1;
+    next += st.elements;
+    for (int n = 3; n < 256; ++n) {
+      const auto& u = use_[static_cast<std::size_t>(n)];
+      if (!u.present) continue;
+      FileLayout& f = layout_.files[static_cast<std::size_t>(n)];
+      f.present = true;
+      f.type = u.type;
+      f.base = next;
+      f.elements = std::max<std::uint32_t>(u.elements, 1);
+      f.words_per_element = static_cast<std::uint8_t>(wpe_of(u.type));
+      next += f.words();
+    }
+    layout_.total_words = next;
+    if (next > bc::kMaxWordIndex) error({}, "the data table is too large to address");
+  }
+
+  // ---- Initial data ------------------------------------------------------------------------------------
+
+  void set_init(std::uint32_t word, std::uint16_t v) {
+    init_[word] = v;
+    initialised_[word] = true;
+  }
+
+  void load_data() {
+    init_.assign(layout_.total_words, 0);
+    initialised_.assign(layout_.total_words, false);
+    for (const auto& d : prog_.data) {
+      if (!d.type || is_mfile(*d.type)) continue;
+      const FileType t = *d.type;
+      if (is_io(t)) {
+        const FileLayout& f = layout_.files[static_cast<std::size_t>(fixed_file_number(t))];
+        const auto& slots = t == FileType::Input ? layout_.input_slots : layout_.output_slots;
+        // The block's words run on from the image of its first slot through the following slots.
+        std::uint32_t off = 0;
+        if (d.start_element >= 0 && d.start_element < kMaxSlots) {
+          const auto& s = slots[static_cast<std::size_t>(d.start_element)];
+          off = s.present ? s.first : f.elements;
+        }
+        for (std::size_t i = 0; i < d.words.size() && off + i < f.elements; ++i)
+          set_init(f.base + off + static_cast<std::uint32_t>(i), static_cast<std::uint16_t>(d.words[i]));
+        continue;
+      }
+      if (t == FileType::Status) {
+        const FileLayout& f = layout_.files[2];
+        for (std::size_t i = 0; i < d.words.size(); ++i) {
+          const std::size_t w = static_cast<std::size_t>(d.start_element) + i;
+          if (w >= f.elements) break;
+          set_init(f.base + static_cast<std::uint32_t>(w), static_cast<std::uint16_t>(d.words[i]));
+        }
+        continue;
+      }
+      if (d.file < 3 || d.file > 255) continue;
+      const FileLayout& f = layout_.files[static_cast<std::size_t>(d.file)];
+      if (!f.present || f.type != t) continue;
+      const std::uint32_t start = f.base + static_cast<std::uint32_t>(d.start_element) * f.words_per_element;
+      if (t == FileType::Float) {
+        for (std::size_t i = 0; i < d.floats.size(); ++i) {
+          const std::uint32_t w = start + static_cast<std::uint32_t>(i) * 2;
+          if (w + 2 > f.end()) break;
+          const float v = static_cast<float>(d.floats[i]);
+          std::uint16_t parts[2];
+          std::memcpy(parts, &v, sizeof v);
+          set_init(w, parts[0]);
+          set_init(w + 1, parts[1]);
+        }
+      } else if (t == FileType::Long) {
+        for (std::size_t i = 0; i < d.words.size(); ++i) {
+          const std::uint32_t w = start + static_cast<std::uint32_t>(i) * 2;
+          if (w + 2 > f.end()) break;
+          const auto v = static_cast<std::int32_t>(d.words[i]);
+          std::uint16_t parts[2];
+          std::memcpy(parts, &v, sizeof v);
+          set_init(w, parts[0]);
+          set_init(w + 1, parts[1]);
+        }
+      } else if (t == FileType::String) {
+        // ST element: word 0 = length, then two characters per word, first in the high byte [U].
+        for (std::size_t i = 0; i < d.strings.size(); ++i) {
+          const std::uint32_t w = start + static_cast<std::uint32_t>(i) * 42;
+          if (w + 42 > f.end()) break;
+          const std::string& s = d.strings[i];
+          const std::size_t n = std::min<std::size_t>(s.size(), 82);
+          set_init(w, static_cast<std::uint16_t>(n));
+          for (std::size_t c = 0; c < n; ++c) {
+            const std::uint32_t ww = w + 1 + static_cast<std::uint32_t>(c / 2);
+            const auto ch = static_cast<std::uint8_t>(s[c]);
+            init_[ww] = static_cast<std::uint16_t>(c % 2 == 0 ? (init_[ww] & 0x00FF) | (ch << 8) : (init_[ww] & 0xFF00) | ch);
+            initialised_[ww] = true;
+          }
+        }
+      } else {
+        for (std::size_t i = 0; i < d.words.size(); ++i) {
+          const std::uint32_t w = start + static_cast<std::uint32_t>(i);
+          if (w >= f.end()) break;
+          set_init(w, static_cast<std::uint16_t>(d.words[i]));
+        }
+      }
+    }
+    // Watchdog: S:3 high byte, default 10 ticks = 100 ms (PT1 27-13) when no DATA gives one.
+    const std::uint32_t s3 = layout_.status_word(status::kWatchdog);
+    if ((init_[s3] >> 8) == 0) init_[s3] = static_cast<std::uint16_t>((init_[s3] & 0x00FF) | (10u << 8));
+  }
+
+  // A literal operand initialises an element word unless DATA (or an earlier instruction) did.
+  void init_literal(std::uint32_t op_word, std::uint32_t sub, std::int64_t value) {
+    if (bc::mode_of(op_word) != bc::kWord) return;  // indexed/indirect elements are not known here
+    const std::uint32_t w = bc::payload_of(op_word) + sub;
+    if (w >= init_.size() || initialised_[w]) return;
+    set_init(w, static_cast<std::uint16_t>(value));
+  }
+
+  // ---- Pass 2: operands ------------------------------------------------------------------------------
+
+  std::int32_t ref_word(const IndirectRef& r, SourcePos pos) {
+    Address a;
+    a.type = r.type;
+    a.file = r.file;
+    a.element = r.element;
+    a.word = r.word;
+    std::string err;
+    auto loc = layout_.locate(a, &err);
+    if (!loc || loc->vtype != ValueType::Int16) {
+      error(pos, "indirect reference [" + to_string(r) + "]: " + (loc ? "must be a 16-bit integer word" : err));
+      return -1;
+    }
+    return static_cast<std::int32_t>(loc->word);
+  }
+
+  std::uint32_t dyn_operand(const Address& a, bool file_start, SourcePos pos) {
+    DynOperand d;
+    d.address = a;
+    d.type = a.type;
+    d.vtype = a.has_bit() || is_structured(a.type) ? ValueType::Int16 : value_type_of(a.type);
+    d.indexed = a.indexed && !file_start;
+    d.bit_offset = a.bit_offset_form;
+    d.file = a.file;
+    d.element = a.element;
+    d.word = a.word;
+    d.bit = a.bit;
+    if (a.indirect_file) d.ptr_file = ref_word(*a.indirect_file, pos);
+    if (a.indirect_element) d.ptr_element = ref_word(*a.indirect_element, pos);
+    if (a.indirect_word) d.ptr_word = ref_word(*a.indirect_word, pos);
+    if (a.indirect_bit) d.ptr_bit = ref_word(*a.indirect_bit, pos);
+    if (is_mfile(a.type)) {
+      d.mfile = true;
+      d.access_row = current_row_;
+      d.which = a.type == FileType::M0 ? MFile::M0 : MFile::M1;
+      if (a.is_indirect() || (a.indexed && !file_start))
+        error(pos, "indexed or indirect M0/M1 addresses are not supported: " + to_string(a));
+      const SlotConfig* s = slot_config(a.element);
+      const int size = s ? (d.which == MFile::M0 ? m0_words(*s) : m1_words(*s)) : 0;
+      if (!s || size <= 0)
+        error(pos, to_string(a) + ": slot " + std::to_string(a.element) + " has no module with an " +
+                       std::string(file_letter(a.type)) + " file");
+      else if (a.word_in_element() >= size)
+        error(pos, to_string(a) + " is beyond the module's " + std::string(file_letter(a.type)) + " file (" +
+                       std::to_string(size) + " words)");
+    } else if (!a.indirect_file) {
+      // The file itself must exist even when the element is computed at run time.
+      if (!is_io(a.type) && a.type != FileType::Status) {
+        const auto& f = layout_.files[a.file];
+        if (!f.present || f.type != a.type) error(pos, to_string(a) + ": the file does not exist");
+      }
+    }
+    out_.dyn.push_back(d);
+    return bc::operand(bc::kDyn, static_cast<std::uint32_t>(out_.dyn.size() - 1));
+  }
+
+  bool needs_dyn(const Address& a, bool file_start) const {
+    return is_mfile(a.type) || a.is_indirect() || (a.indexed && !file_start);
+  }
+
+  // A value operand (Source, Dest, File). Sets `is_float` when it is a float.
+  std::uint32_t value_operand(const Operand& op, bool dest, bool file_start, bool& is_float, SourcePos pos) {
+    if (op.kind == Operand::Kind::Symbol && !op.resolved) {
+      error(pos, "unknown symbol '" + op.symbol + "'");
+      return 0;
+    }
+    if (!op.is_address()) {
+      if (dest || file_start) {
+        error(pos, "'" + op.spelling + "' is a constant; this operand must be an address");
+        return 0;
+      }
+      if (op.kind == Operand::Kind::Float) {
+        is_float = true;
+        out_.float_constants.push_back(static_cast<float>(op.real));
+        return bc::operand(bc::kKFloat, static_cast<std::uint32_t>(out_.float_constants.size() - 1));
+      }
+      std::int64_t v = op.integer;
+      // A hex constant 0x8000-0xFFFF is a 16-bit pattern (masks such as 0xFF00), so it means the
+      // signed word with those bits, as the SLC stores it.
+      const bool hex = op.spelling.size() > 2 && (op.spelling[1] == 'x' || op.spelling[1] == 'X' ||
+                                                  op.spelling.back() == 'h' || op.spelling.back() == 'H');
+      if (hex && v >= 0x8000 && v <= 0xFFFF) v -= 0x10000;
+      if (v >= bc::kImmMin && v <= bc::kImmMax) return bc::imm(static_cast<std::int32_t>(v));
+      out_.int_constants.push_back(v);
+      return bc::operand(bc::kKInt, static_cast<std::uint32_t>(out_.int_constants.size() - 1));
+    }
+    const Address& a = op.address;
+    if (a.has_bit()) {
+      error(pos, to_string(a) + " is a bit; this operand takes a word");
+      return 0;
+    }
+    if (needs_dyn(a, file_start)) {
+      const std::uint32_t o = dyn_operand(a, file_start, pos);
+      is_float = is_float || out_.dyn.back().vtype == ValueType::Float32;
+      return o;
+    }
+    std::string err;
+    auto loc = layout_.locate(a, &err, file_start);
+    if (!loc) {
+      error(pos, err);
+      return 0;
+    }
+    switch (loc->vtype) {
+      case ValueType::Int16: return bc::operand(bc::kWord, loc->word);
+      case ValueType::Int32: return bc::operand(bc::kLong, loc->word);
+      case ValueType::Float32: is_float = true; return bc::operand(bc::kFloat, loc->word);
+    }
+    return 0;
+  }
+
+  std::uint32_t bit_operand(const Operand& op, SourcePos pos) {
+    if (op.kind == Operand::Kind::Symbol && !op.resolved) {
+      error(pos, "unknown symbol '" + op.symbol + "'");
+      return 0;
+    }
+    if (!op.is_address() || !op.address.has_bit()) {
+      error(pos, "'" + op.spelling + "' is not a bit address");
+      return 0;
+    }
+    const Address& a = op.address;
+    if (needs_dyn(a, false)) return dyn_operand(a, false, pos);
+    std::string err;
+    auto loc = layout_.locate(a, &err);
+    if (!loc) {
+      error(pos, err);
+      return 0;
+    }
+    return bc::bit_operand(loc->word, loc->bit);
+  }
+
+  std::uint32_t element_operand(const Operand& op, OperandKind kind, SourcePos pos, FileType& type) {
+    if (op.kind == Operand::Kind::Symbol && !op.resolved) {
+      error(pos, "unknown symbol '" + op.symbol + "'");
+      return 0;
+    }
+    const Address& a = op.address;
+    const bool ok_type = op.is_address() &&
+                         ((kind == OperandKind::Timer && a.type == FileType::Timer) ||
+                          (kind == OperandKind::Counter && a.type == FileType::Counter) ||
+                          (kind == OperandKind::Control && a.type == FileType::Control) ||
+                          (kind == OperandKind::Resettable && is_structured(a.type)));
+    if (!ok_type || a.has_bit() || a.word > 0 || a.indirect_word) {
+      error(pos, "'" + op.spelling + "' is not a " +
+                     (kind == OperandKind::Timer     ? "timer (T) element"
+                      : kind == OperandKind::Counter ? "counter (C) element"
+                      : kind == OperandKind::Control ? "control (R) element"
+                                                     : "timer, counter or control element"));
+      return 0;
+    }
+    type = a.type;
+    if (needs_dyn(a, false)) return dyn_operand(a, false, pos);
+    std::string err;
+    auto loc = layout_.locate(a, &err);
+    if (!loc) {
+      error(pos, err);
+      return 0;
+    }
+    return bc::operand(bc::kWord, loc->word);
+  }
+
+  std::uint32_t slot_word_operand(const Instruction& in, const Operand& op, SourcePos pos) {
+    if (!op.is_address() || !is_io(op.address.type) || op.address.is_indirect() || op.address.indexed) {
+      error(pos, "'" + op.spelling + "' must name a slot word such as I:1.0 or O:2.0");
+      return 0;
+    }
+    const Address& a = op.address;
+    const bool input = a.type == FileType::Input;
+    if ((in.opcode == Opcode::IIM) != input) {
+      error(pos, std::string(spec(in.opcode).mnemonic) + " takes an " + (in.opcode == Opcode::IIM ? "I:" : "O:") +
+                     " slot word");
+      return 0;
+    }
+    const auto& slots = input ? layout_.input_slots : layout_.output_slots;
+    const std::int64_t len = literal(in, 2);
+    const int word = a.word_in_element();
+    if (a.element < 0 || a.element >= kMaxSlots || !slots[static_cast<std::size_t>(a.element)].present ||
+        word + len > static_cast<std::int64_t>(slots[static_cast<std::size_t>(a.element)].words)) {
+      error(pos, to_string(a) + " with length " + std::to_string(len) + " is outside the slot's " +
+                     (input ? "input" : "output") + " image");
+      return 0;
+    }
+    return bc::imm(a.element * 256 + word);
+  }
+
+  // ---- Pass 2: instructions ------------------------------------------------------------------------
+
+  void emit(std::uint32_t w) { out_.code.push_back(w); }
+
+  void emit_instruction(const Instruction& in, bool mcr_unconditional) {
+    const InstructionSpec& sp = spec(in.opcode);
+    if (is_module_instruction(in.opcode)) {
+      std::optional<std::string> refusal =
+          opts_.module_instruction ? opts_.module_instruction(in) : module_instruction_unsupported(in.opcode);
+      if (refusal) {
+        error(in.pos, *refusal);
+        return;
+      }
+    }
+    if (in.operands.size() != sp.operand_count) {
+      error(in.pos, std::string(sp.mnemonic) + " takes " + std::to_string(sp.operand_count) + " operand(s), not " +
+                        std::to_string(in.operands.size()));
+      return;
+    }
+    if (in.opcode == Opcode::END) {
+      emit(bc::header(Op::END, 0, 0, 0));
+      return;
+    }
+    if (in.opcode == Opcode::RET && cur_file_ == 2) {
+      error(in.pos, "RET in the main program file (2); RET returns from a subroutine");
+      return;
+    }
+    std::uint32_t flags = 0;
+    std::uint32_t aux = 0;
+    bool any_float = false;
+    bool bad_int_operand = false;  // a float or long where only 16-bit words are allowed
+    std::vector<std::uint32_t> ops;
+    FileType element_type = FileType::Timer;
+    for (std::size_t i = 0; i < sp.operand_count; ++i) {
+      const OperandSpec& os = sp.operands[i];
+      const Operand& op = in.operands[i];
+      const SourcePos pos = op.pos.line ? op.pos : in.pos;
+      current_row_ = os.mfile;
+      if (op.is_address() && is_mfile(op.address.type) && os.mfile == MFileAccess::NoM) {
+        error(pos, std::string(sp.mnemonic) + " cannot use an M0/M1 address as its " + std::string(os.label));
+        ops.push_back(0);
+        continue;
+      }
+      std::uint32_t w = 0;
+      switch (os.kind) {
+        case OperandKind::Bit: w = bit_operand(op, pos); break;
+        case OperandKind::Source:
+        case OperandKind::Dest:
+        case OperandKind::File: {
+          bool f = false;
+          w = value_operand(op, os.kind == OperandKind::Dest, os.kind == OperandKind::File, f, pos);
+          any_float = any_float || f;
+          const bool is_long = bc::mode_of(w) == bc::kLong ||
+                               (bc::mode_of(w) == bc::kDyn && out_.dyn[bc::payload_of(w)].vtype == ValueType::Int32);
+          if (f || is_long) bad_int_operand = true;
+          break;
+        }
+        case OperandKind::Timer:
+        case OperandKind::Counter:
+        case OperandKind::Control:
+        case OperandKind::Resettable: w = element_operand(op, os.kind, pos, element_type); break;
+        case OperandKind::TimeBase: {
+          const double tb = op.kind == Operand::Kind::Float     ? op.real
+                            : op.kind == Operand::Kind::Integer ? static_cast<double>(op.integer)
+                                                                : -1.0;
+          if (tb == 1.0) {
+            w = bc::imm(100);
+            flags |= bc::kFlagA;
+          } else if (std::fabs(tb - 0.01) < 1e-9) {
+            w = bc::imm(1);
+          } else {
+            error(pos, "time base must be 1.0 or 0.01 seconds (RM 2-8), not '" + op.spelling + "'");
+          }
+          break;
+        }
+        case OperandKind::Literal:
+        case OperandKind::Label:
+        case OperandKind::ProgramFile:
+          if (op.kind != Operand::Kind::Integer) {
+            error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + " must be an integer constant");
+          } else if (op.integer < os.min || op.integer > os.max) {
+            error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + " must be " + std::to_string(os.min) +
+                           "-" + std::to_string(os.max));
+          } else {
+            w = bc::imm(static_cast<std::int32_t>(op.integer));
+          }
+          break;
+        case OperandKind::SlotWord: w = slot_word_operand(in, op, pos); break;
+        case OperandKind::Buffer:
+        case OperandKind::ControlBlock3:
+        case OperandKind::ControlBlock70:
+          // Only module instructions have these, and a hook that accepted one owns its encoding;
+          // the generic encoding keeps the address for the listing.
+          if (op.is_address() && !is_mfile(op.address.type) && !needs_dyn(op.address, false)) {
+            bool f = false;
+            w = value_operand(op, false, false, f, pos);
+          } else if (op.is_address()) {
+            w = dyn_operand(op.address, false, pos);
+          }
+          break;
+      }
+      if (bc::mode_of(w) == bc::kDyn) flags |= bc::kFlagDyn;
+      ops.push_back(w);
+    }
+
+    // Operand-type rules that depend on the instruction.
+    switch (in.opcode) {
+      case Opcode::AND:
+      case Opcode::OR:
+      case Opcode::XOR:
+      case Opcode::NOT:
+      case Opcode::MVM:
+      case Opcode::MEQ:
+        if (any_float) error(in.pos, std::string(sp.mnemonic) + " is a bitwise instruction; it takes no float operands");
+        break;
+      case Opcode::BSL:
+      case Opcode::BSR:
+      case Opcode::SQO:
+      case Opcode::SQC:
+      case Opcode::SQL:
+      case Opcode::FFL:
+      case Opcode::FFU:
+      case Opcode::LFL:
+      case Opcode::LFU:
+      case Opcode::IIM:
+      case Opcode::IOM:
+        if (bad_int_operand)
+          error(in.pos, std::string(sp.mnemonic) + " works on 16-bit words; F and L operands are not allowed");
+        break;
+      default: break;
+    }
+    if (any_float) flags |= bc::kFlagFloat;
+    if (in.opcode == Opcode::RES) aux = static_cast<std::uint32_t>(element_type);
+    if (in.opcode == Opcode::MCR && mcr_unconditional) flags |= bc::kFlagA;
+
+    // Literals that initialise their element (unless DATA did).
+    switch (in.opcode) {
+      case Opcode::TON:
+      case Opcode::TOF:
+      case Opcode::RTO:
+        init_literal(ops[0], 1, literal(in, 2));
+        init_literal(ops[0], 2, literal(in, 3));
+        break;
+      case Opcode::CTU:
+      case Opcode::CTD:
+        init_literal(ops[0], 1, literal(in, 1));
+        init_literal(ops[0], 2, literal(in, 2));
+        break;
+      case Opcode::BSL:
+      case Opcode::BSR: init_literal(ops[1], 1, literal(in, 3)); break;
+      case Opcode::SQO:
+      case Opcode::SQC:
+        init_literal(ops[3], 1, literal(in, 4));
+        init_literal(ops[3], 2, literal(in, 5));
+        break;
+      case Opcode::SQL:
+      case Opcode::FFL:
+      case Opcode::FFU:
+      case Opcode::LFL:
+      case Opcode::LFU:
+        init_literal(ops[2], 1, literal(in, 3));
+        init_literal(ops[2], 2, literal(in, 4));
+        break;
+      default: break;
+    }
+
+    // Jump and call targets are filled in once every label and file is placed.
+    std::uint32_t extra = 0;
+    if (in.opcode == Opcode::JMP || in.opcode == Opcode::JSR) extra = 1;
+    emit(bc::header(to_op(in.opcode), static_cast<std::uint32_t>(ops.size()) + extra, flags, aux));
+    for (auto w : ops) emit(w);
+    if (in.opcode == Opcode::JMP) {
+      jumps_.push_back({static_cast<std::uint32_t>(out_.code.size()), static_cast<int>(literal(in, 0)), in.pos, cur_file_, cur_rung_});
+      emit(bc::operand(bc::kTarget, 0));
+    } else if (in.opcode == Opcode::JSR) {
+      calls_.push_back({static_cast<std::uint32_t>(out_.code.size()), static_cast<int>(literal(in, 0)), in.pos, cur_file_, cur_rung_});
+      emit(bc::operand(bc::kTarget, 0));
+    }
+  }
+
+  void emit_elements(const std::vector<RungElement>& elems, int depth, bool mcr_unconditional) {
+    for (const auto& e : elems) {
+      if (e.kind == RungElement::Kind::Instruction) {
+        emit_instruction(e.instruction, mcr_unconditional);
+        continue;
+      }
+      if (depth + 1 > kMaxBranchDepth) {
+        error(e.pos, "branches nested deeper than " + std::to_string(kMaxBranchDepth) + " levels");
+        return;
+      }
+      out_.max_branch_depth = std::max(out_.max_branch_depth, depth + 1);
+      emit(bc::header(Op::BST, 0, 0, 0));
+      for (std::size_t l = 0; l < e.legs.size(); ++l) {
+        if (l > 0) emit(bc::header(Op::NXB, 0, 0, 0));
+        emit_elements(e.legs[l], depth + 1, false);
+      }
+      emit(bc::header(Op::BND, 0, 0, 0));
+    }
+  }
+
+  static bool contains(const std::vector<RungElement>& elems, Opcode op) {
+    for (const auto& e : elems) {
+      if (e.kind == RungElement::Kind::Instruction) {
+        if (e.instruction.opcode == op) return true;
+      } else {
+        for (const auto& leg : e.legs)
+          if (contains(leg, op)) return true;
+      }
+    }
+    return false;
+  }
+
+  void emit_file(const ProgramFile& f) {
+    cur_file_ = f.number;
+    CompiledFile cf;
+    cf.number = f.number;
+    cf.begin = static_cast<std::uint32_t>(out_.code.size());
+    std::map<int, std::uint32_t> labels;
+    std::map<int, SourcePos> label_pos;
+    const std::size_t first_jump = jumps_.size();
+    if (f.rungs.size() > 0xFFFF) error(f.pos, "more than 65535 rungs in one file");
+    for (std::size_t r = 0; r < f.rungs.size() && r <= 0xFFFF; ++r) {
+      cur_rung_ = static_cast<int>(r);
+      const Rung& rung = f.rungs[r];
+      const std::uint32_t sor = static_cast<std::uint32_t>(out_.code.size());
+      cf.rungs.push_back({sor, rung.pos});
+      const bool has_mcr = contains(rung.elements, Opcode::MCR);
+      emit(bc::header(Op::SOR, 0, has_mcr ? bc::kFlagA : 0, static_cast<std::uint32_t>(r)));
+      // Every LBL of the rung makes the rung a jump target (the checker wants it first).
+      std::vector<const RungElement*> stack;
+      for (const auto& e : rung.elements) stack.push_back(&e);
+      while (!stack.empty()) {
+        const RungElement* e = stack.back();
+        stack.pop_back();
+        if (e->kind == RungElement::Kind::Branch) {
+          for (const auto& leg : e->legs)
+            for (const auto& x : leg) stack.push_back(&x);
+        } else if (e->instruction.opcode == Opcode::LBL) {
+          const int label = static_cast<int>(literal(e->instruction, 0));
+          if (labels.count(label))
+            error(e->instruction.pos, "label " + std::to_string(label) + " is defined twice in file " +
+                                          std::to_string(f.number) + " (line " +
+                                          std::to_string(label_pos[label].line) + ")");
+          labels[label] = sor;
+          label_pos[label] = e->instruction.pos;
+        }
+      }
+      const bool mcr_unconditional =
+          rung.elements.size() == 1 && rung.elements[0].kind == RungElement::Kind::Instruction &&
+          rung.elements[0].instruction.opcode == Opcode::MCR;
+      emit_elements(rung.elements, 0, mcr_unconditional);
+    }
+    cur_rung_ = -1;
+    emit(bc::header(Op::EOF_, 0, 0, 0));
+    cf.end = static_cast<std::uint32_t>(out_.code.size());
+    for (std::size_t j = first_jump; j < jumps_.size(); ++j) {
+      auto it = labels.find(jumps_[j].target);
+      if (it == labels.end()) {
+        errors_.push_back({jumps_[j].file, jumps_[j].rung, jumps_[j].pos,
+                           "JMP to label " + std::to_string(jumps_[j].target) + ", which file " +
+                               std::to_string(f.number) + " does not define"});
+        continue;
+      }
+      out_.code[jumps_[j].at] = bc::operand(bc::kTarget, it->second);
+    }
+    out_.files.push_back(std::move(cf));
+  }
+
+  void emit_program() {
+    out_.file_index.fill(-1);
+    std::vector<const ProgramFile*> files;
+    for (const auto& f : prog_.files) {
+      if (f.number < 2 || f.number > 255) {
+        error(f.pos, "program file " + std::to_string(f.number) + " is outside 2-255");
+        continue;
+      }
+      files.push_back(&f);
+    }
+    std::sort(files.begin(), files.end(), [](auto* a, auto* b) { return a->number < b->number; });
+    if (files.empty() || files.front()->number != 2) {
+      error({}, "the program has no main program file (LADDER 2)");
+      return;
+    }
+    for (const auto* f : files) {
+      out_.file_index[static_cast<std::size_t>(f->number)] = static_cast<std::int16_t>(out_.files.size());
+      emit_file(*f);
+    }
+    for (const auto& c : calls_) {
+      const CompiledFile* target = out_.file(c.target);
+      if (!target) {
+        errors_.push_back({c.file, c.rung, c.pos, "JSR to program file " + std::to_string(c.target) + ", which does not exist"});
+        continue;
+      }
+      out_.code[c.at] = bc::operand(bc::kTarget, target->begin);
+    }
+  }
+
+  const Program& prog_;
+  const CompileOptions& opts_;
+  ProcessorModel proc_;
+  std::vector<CompileError> errors_;
+  std::array<FileUse, 256> use_{};
+  DataTableLayout layout_;
+  std::vector<std::uint16_t> init_;
+  std::vector<bool> initialised_;
+  CompiledProgram out_;
+  std::vector<Fixup> jumps_;
+  std::vector<Fixup> calls_;
+  int cur_file_ = -1;
+  int cur_rung_ = -1;
+  MFileAccess current_row_ = MFileAccess::OtherM;  // access-time row of the operand being compiled
+};
+
+}  // namespace
+
+CompileResult compile(const Program& program, const CompileOptions& options) {
+  return Compiler(program, options).run();
+}
+
+}  // namespace softslc

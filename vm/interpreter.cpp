@@ -1,0 +1,1377 @@
+#include "vm/interpreter.h"
+
+#include "vm/compiler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <utility>
+
+namespace softslc {
+
+namespace {
+
+constexpr std::uint16_t kStatusBits = 0x000F;  // S:0 C V Z S
+
+std::string hex4(unsigned v) {
+  static const char* digits = "0123456789ABCDEF";
+  std::string s = "0000";
+  for (int i = 3; i >= 0; --i, v >>= 4) s[static_cast<std::size_t>(i)] = digits[v & 0xF];
+  return s + "h";
+}
+
+}  // namespace
+
+std::string FaultInfo::to_string() const {
+  std::string s = "major fault " + hex4(code);
+  if (file >= 0) s += " in file " + std::to_string(file);
+  if (rung >= 0) s += " rung " + std::to_string(rung);
+  return s + ": " + message;
+}
+
+Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, ChassisAccess& chassis,
+                         const ScanTimeModel& model)
+    : prog_(program),
+      table_(table),
+      chassis_(chassis),
+      model_(model),
+      w_(table.words()),
+      code_(program.code.data()) {
+  // Costs are tabulated once so the hot loop does one load and one add per instruction. Every
+  // instruction costs at least 1 ns so an endless JMP loop always reaches the watchdog.
+  cost_.assign(kOpCount * 2, 0);
+  for (std::size_t i = 0; i < kInstructionCount; ++i) {
+    const auto op = static_cast<Opcode>(i);
+    cost_[i * 2 + 0] = std::max<Nanoseconds>(1, model.instruction_cost(op, false));
+    cost_[i * 2 + 1] = std::max<Nanoseconds>(1, model.instruction_cost(op, true));
+    countable_[i] = 1;
+    per_word_[i] = std::max<Nanoseconds>(0, model.per_word_cost(op));
+  }
+  max_depth_ = std::clamp(program.processor.max_subroutine_depth(), 1, kMaxCallDepth);
+  const auto& L = *program.layout;
+  s0_ = L.status_word(status::kArith);
+  s2_ = L.status_word(status::kControl);
+  s5_ = L.status_word(status::kMinor);
+  s13_ = L.status_word(status::kMathLow);
+  s14_ = L.status_word(status::kMathHigh);
+  s24_ = L.status_word(status::kIndex);
+}
+
+void Interpreter::raise(std::uint16_t code, std::string message) {
+  if (faulted_) return;
+  faulted_ = true;
+  fault_.code = code;
+  fault_.message = std::move(message);
+}
+
+// ---- The checked run-time resolver ---------------------------------------------------------------------
+
+bool Interpreter::resolve_common(const DynOperand& d, Ref& out, std::uint16_t& code, std::string& message) {
+  const DataTableLayout& L = *prog_.layout;
+  const bool indirect = d.ptr_file >= 0 || d.ptr_element >= 0 || d.ptr_word >= 0 || d.ptr_bit >= 0;
+  code = indirect ? fault::kIndirectOutOfRange : fault::kIndexOutOfRange;
+  const auto ptr = [&](std::int32_t idx) { return static_cast<int>(static_cast<std::int16_t>(w_[idx])); };
+  const auto index_note = [&] {
+    std::string s;
+    if (d.indexed) s += " (S:24 = " + std::to_string(static_cast<std::int16_t>(w_[s24_])) + ")";
+    for (std::int32_t p : {d.ptr_file, d.ptr_element, d.ptr_word, d.ptr_bit})
+      if (p >= 0) s += " (" + L.describe(static_cast<std::uint32_t>(p)) + " = " + std::to_string(ptr(p)) + ")";
+    return s;
+  };
+  if (d.mfile) {
+    out = {};
+    out.mfile = true;
+    out.slot = d.element;
+    out.which = d.which;
+    out.word = static_cast<std::uint32_t>(std::max(d.word, 0));
+    out.bit = d.bit;
+    return true;
+  }
+  int file = d.type == FileType::Status ? 2 : is_io(d.type) ? fixed_file_number(d.type) : d.file;
+  if (d.ptr_file >= 0) {
+    file = ptr(d.ptr_file);
+    if (file < 3 || file > 255 || !L.files[static_cast<std::size_t>(file)].present ||
+        L.files[static_cast<std::size_t>(file)].type != d.type) {
+      message = to_string(d.address) + index_note() + ": there is no " + std::string(file_letter(d.type)) +
+                " file number " + std::to_string(file);
+      return false;
+    }
+  }
+  const FileLayout& f = L.files[static_cast<std::size_t>(file)];
+  std::int64_t word_index = 0;
+  int bit = d.bit;
+  if (is_io(d.type)) {
+    const auto& slots = d.type == FileType::Input ? L.input_slots : L.output_slots;
+    const int slot = d.ptr_element >= 0 ? ptr(d.ptr_element) : d.element;
+    const int word = d.ptr_word >= 0 ? ptr(d.ptr_word) : std::max(d.word, 0);
+    if (slot < 0 || slot >= kMaxSlots || !slots[static_cast<std::size_t>(slot)].present) {
+      message = to_string(d.address) + index_note() + ": slot " + std::to_string(slot) + " has no image in " +
+                std::string(file_letter(d.type)) + ":";
+      return false;
+    }
+    const SlotImage& si = slots[static_cast<std::size_t>(slot)];
+    std::int64_t off = static_cast<std::int64_t>(si.first) + word;
+    // An indexed I/O address moves through the whole image file (RM E-11: offsets in words).
+    if (d.indexed) off += static_cast<std::int16_t>(w_[s24_]);
+    const bool inside = d.indexed ? (off >= 0 && off < static_cast<std::int64_t>(f.elements))
+                                  : (word >= 0 && static_cast<std::uint32_t>(word) < si.words);
+    if (!inside) {
+      message = to_string(d.address) + index_note() + " is outside the " + std::string(file_letter(d.type)) +
+                ": image";
+      return false;
+    }
+    word_index = f.base + off;
+  } else {
+    std::int64_t elem;
+    if (d.bit_offset && d.ptr_bit >= 0) {
+      // B3/[N7:0]: the pointer is a bit number counted from the start of the file.
+      const int n = ptr(d.ptr_bit);
+      if (n < 0) {
+        message = to_string(d.address) + index_note() + ": negative bit offset";
+        return false;
+      }
+      elem = n / 16;
+      bit = n % 16;
+    } else {
+      elem = d.ptr_element >= 0 ? ptr(d.ptr_element) : d.element;
+    }
+    if (d.indexed) elem += static_cast<std::int16_t>(w_[s24_]);
+    const std::string fname = std::string(file_letter(f.type)) + (file > 2 ? std::to_string(file) : std::string());
+    if (elem < 0 || elem >= static_cast<std::int64_t>(f.elements)) {
+      message = to_string(d.address) + index_note() + " is beyond the end of " + fname + " (elements 0-" +
+                std::to_string(static_cast<int>(f.elements) - 1) + ")";
+      return false;
+    }
+    int sub = 0;
+    if (is_structured(d.type)) {
+      sub = d.ptr_word >= 0 ? ptr(d.ptr_word) : std::max(d.word, 0);
+      if (sub < 0 || sub > 2) {
+        message = to_string(d.address) + index_note() + ": sub-element " + std::to_string(sub) + " does not exist";
+        return false;
+      }
+    }
+    word_index = f.base + elem * f.words_per_element + sub;
+  }
+  if (d.ptr_bit >= 0 && !d.bit_offset) bit = ptr(d.ptr_bit);
+  if (bit >= 0) {
+    const int limit = d.type == FileType::Long ? 32 : 16;
+    if (bit >= limit) {
+      message = to_string(d.address) + index_note() + ": bit " + std::to_string(bit) + " does not exist";
+      return false;
+    }
+    word_index += bit / 16;
+    bit %= 16;
+  }
+  out = {};
+  out.word = static_cast<std::uint32_t>(word_index);
+  out.bit = bit;
+  out.file = file;
+  return true;
+}
+
+bool Interpreter::resolve(const DynOperand& d, Ref& out) {
+  std::uint16_t code = 0;
+  std::string message;
+  if (resolve_common(d, out, code, message)) return true;
+  raise(code, message);
+  return false;
+}
+
+bool Interpreter::resolve_for_tool(const DynOperand& d, Location& out, std::string& message) {
+  w_ = table_.words();
+  Ref r;
+  std::uint16_t code = 0;
+  if (d.mfile) {
+    message = "M0/M1 words are read through the module, not the data table";
+    return false;
+  }
+  if (!resolve_common(d, r, code, message)) return false;
+  out.word = r.word;
+  out.bit = r.bit;
+  out.vtype = r.bit >= 0 ? ValueType::Int16 : d.vtype;
+  out.type = d.type;
+  out.file = r.file;
+  return true;
+}
+
+// ---- Operand access ----------------------------------------------------------------------------------------
+
+inline bool Interpreter::rd_bit(std::uint32_t o) {
+  if (bc::mode_of(o) == bc::kBit) [[likely]]
+    return (w_[bc::word_of_bit(o)] >> bc::bit_of(o)) & 1u;
+  return rd_bit_slow(o);
+}
+
+inline void Interpreter::wr_bit(std::uint32_t o, bool v) {
+  if (bc::mode_of(o) == bc::kBit) [[likely]] {
+    std::uint16_t& word = w_[bc::word_of_bit(o)];
+    const auto mask = static_cast<std::uint16_t>(1u << bc::bit_of(o));
+    word = static_cast<std::uint16_t>(v ? (word | mask) : (word & ~mask));
+    return;
+  }
+  wr_bit_slow(o, v);
+}
+
+bool Interpreter::rd_bit_slow(std::uint32_t o) {
+  if (bc::mode_of(o) != bc::kDyn) return false;
+  const DynOperand& d = prog_.dyn[bc::payload_of(o)];
+  Ref r;
+  if (!resolve(d, r)) return false;
+  if (r.mfile) {
+    std::uint16_t v = 0;
+    charge_m(d.access_row, 1);
+    const MAccess a = chassis_.read_m(r.slot, r.which, static_cast<int>(r.word), v);
+    if (a != MAccess::Ok) {
+      raise(fault::module_access(r.slot), "reading " + to_string(d.address) + ": module refused (" +
+                                              std::string(to_string(a)) + ")");
+      return false;
+    }
+    return (v >> r.bit) & 1u;
+  }
+  return (w_[r.word] >> r.bit) & 1u;
+}
+
+void Interpreter::wr_bit_slow(std::uint32_t o, bool v) {
+  if (bc::mode_of(o) != bc::kDyn) return;
+  const DynOperand& d = prog_.dyn[bc::payload_of(o)];
+  Ref r;
+  if (!resolve(d, r)) return;
+  const auto mask = static_cast<std::uint16_t>(1u << r.bit);
+  if (r.mfile) {
+    // A bit write is a read-modify-write of the module word, charged as one access.
+    std::uint16_t word = 0;
+    charge_m(d.access_row, 1);
+    MAccess a = chassis_.read_m(r.slot, r.which, static_cast<int>(r.word), word);
+    if (a == MAccess::Ok)
+      a = chassis_.write_m(r.slot, r.which, static_cast<int>(r.word),
+                           static_cast<std::uint16_t>(v ? (word | mask) : (word & ~mask)));
+    if (a != MAccess::Ok)
+      raise(fault::module_access(r.slot), "writing " + to_string(d.address) + ": module refused (" +
+                                              std::string(to_string(a)) + ")");
+    return;
+  }
+  std::uint16_t& word = w_[r.word];
+  word = static_cast<std::uint16_t>(v ? (word | mask) : (word & ~mask));
+}
+
+ValueType Interpreter::dest_type(std::uint32_t o) const {
+  switch (bc::mode_of(o)) {
+    case bc::kLong: return ValueType::Int32;
+    case bc::kFloat: return ValueType::Float32;
+    case bc::kDyn: {
+      const DynOperand& d = prog_.dyn[bc::payload_of(o)];
+      return d.mfile ? ValueType::Int16 : d.vtype;
+    }
+    default: return ValueType::Int16;
+  }
+}
+
+std::int64_t Interpreter::rd_int(std::uint32_t o) {
+  const std::uint32_t p = bc::payload_of(o);
+  switch (bc::mode_of(o)) {
+    case bc::kWord: return static_cast<std::int16_t>(w_[p]);
+    case bc::kImm: return bc::imm_of(o);
+    case bc::kLong: return table_.i32(p);
+    case bc::kKInt: return prog_.int_constants[p];
+    case bc::kFloat:
+    case bc::kKFloat: {
+      bool ignored = false;
+      return numeric::float_to_integer(rd_flt(o), ValueType::Int32, ignored);
+    }
+    case bc::kDyn: {
+      const DynOperand& d = prog_.dyn[p];
+      Ref r;
+      if (!resolve(d, r)) return 0;
+      if (r.mfile) {
+        std::uint16_t v = 0;
+        // MVM's read of its M destination is part of the "MVM to M file" access, charged on write.
+        if (d.access_row != MFileAccess::MvmToM) charge_m(d.access_row, 1);
+        const MAccess a = chassis_.read_m(r.slot, r.which, static_cast<int>(r.word), v);
+        if (a != MAccess::Ok) {
+          raise(fault::module_access(r.slot),
+                "reading " + to_string(d.address) + ": module refused (" + std::string(to_string(a)) + ")");
+          return 0;
+        }
+        return static_cast<std::int16_t>(v);
+      }
+      switch (d.vtype) {
+        case ValueType::Int16: return static_cast<std::int16_t>(w_[r.word]);
+        case ValueType::Int32: return table_.i32(r.word);
+        case ValueType::Float32: {
+          bool ignored = false;
+          return numeric::float_to_integer(table_.f32(r.word), ValueType::Int32, ignored);
+        }
+      }
+      return 0;
+    }
+    default: return 0;
+  }
+}
+
+float Interpreter::rd_flt(std::uint32_t o) {
+  const std::uint32_t p = bc::payload_of(o);
+  switch (bc::mode_of(o)) {
+    case bc::kFloat: return numeric::flush_denormal(table_.f32(p));
+    case bc::kKFloat: return numeric::flush_denormal(prog_.float_constants[p]);
+    case bc::kDyn: {
+      const DynOperand& d = prog_.dyn[p];
+      if (!d.mfile && d.vtype == ValueType::Float32) {
+        Ref r;
+        if (!resolve(d, r)) return 0.0f;
+        return numeric::flush_denormal(table_.f32(r.word));
+      }
+      return static_cast<float>(rd_int(o));
+    }
+    default: return static_cast<float>(rd_int(o));
+  }
+}
+
+std::uint16_t Interpreter::rd_word(std::uint32_t o) {
+  if (bc::mode_of(o) == bc::kWord) return w_[bc::payload_of(o)];
+  return static_cast<std::uint16_t>(rd_int(o));
+}
+
+void Interpreter::wr_word(std::uint32_t o, std::uint16_t v) {
+  const std::uint32_t p = bc::payload_of(o);
+  switch (bc::mode_of(o)) {
+    case bc::kWord: w_[p] = v; return;
+    case bc::kLong: table_.set_i32(p, static_cast<std::int16_t>(v)); return;
+    case bc::kFloat: table_.set_f32(p, static_cast<std::int16_t>(v)); return;
+    case bc::kDyn: {
+      const DynOperand& d = prog_.dyn[p];
+      Ref r;
+      if (!resolve(d, r)) return;
+      if (r.mfile) {
+        charge_m(d.access_row, 1);
+        const MAccess a = chassis_.write_m(r.slot, r.which, static_cast<int>(r.word), v);
+        if (a != MAccess::Ok)
+          raise(fault::module_access(r.slot),
+                "writing " + to_string(d.address) + ": module refused (" + std::string(to_string(a)) + ")");
+        return;
+      }
+      switch (d.vtype) {
+        case ValueType::Int16: w_[r.word] = v; return;
+        case ValueType::Int32: table_.set_i32(r.word, static_cast<std::int16_t>(v)); return;
+        case ValueType::Float32: table_.set_f32(r.word, static_cast<std::int16_t>(v)); return;
+      }
+      return;
+    }
+    default: return;  // constants are never destinations (the compiler refuses them)
+  }
+}
+
+std::uint16_t* Interpreter::element(std::uint32_t o) {
+  if (bc::mode_of(o) == bc::kWord) [[likely]]
+    return w_ + bc::payload_of(o);
+  if (bc::mode_of(o) == bc::kDyn) {
+    Ref r;
+    if (resolve(prog_.dyn[bc::payload_of(o)], r) && !r.mfile) return w_ + r.word;
+  }
+  scratch_.fill(0);
+  return scratch_.data();
+}
+
+std::int64_t Interpreter::st_int(std::uint32_t o, std::int64_t v, bool& overflow) {
+  const ValueType vt = dest_type(o);
+  if (vt == ValueType::Float32) {
+    // An integer result into an F destination converts exactly (within float precision).
+    bool ignored = false;
+    return static_cast<std::int64_t>(st_flt(o, static_cast<float>(v), ignored));
+  }
+  const std::int64_t hi = vt == ValueType::Int32 ? INT32_MAX : INT16_MAX;
+  const std::int64_t lo = vt == ValueType::Int32 ? INT32_MIN : INT16_MIN;
+  std::int64_t stored = v;
+  if (v > hi || v < lo) {
+    overflow = true;
+    // S:2/14 = 1: keep the truncated low bits; 0 (default): clamp (PT1 20-5, ML B-10).
+    if (w_[s2_] & status::kOverflowSelect)
+      stored = vt == ValueType::Int32 ? static_cast<std::int64_t>(static_cast<std::int32_t>(static_cast<std::uint32_t>(v)))
+                                      : static_cast<std::int64_t>(static_cast<std::int16_t>(static_cast<std::uint16_t>(v)));
+    else
+      stored = v > hi ? hi : lo;
+  }
+  return st_bits(o, stored);
+}
+
+std::int64_t Interpreter::st_bits(std::uint32_t o, std::int64_t v) {
+  const ValueType vt = dest_type(o);
+  if (vt == ValueType::Int32) {
+    const auto stored = static_cast<std::int32_t>(static_cast<std::uint32_t>(v));
+    if (bc::mode_of(o) == bc::kLong) {
+      table_.set_i32(bc::payload_of(o), stored);
+    } else if (bc::mode_of(o) == bc::kDyn) {
+      Ref r;
+      if (resolve(prog_.dyn[bc::payload_of(o)], r)) table_.set_i32(r.word, stored);
+    }
+    return stored;
+  }
+  if (vt == ValueType::Float32) {
+    bool ignored = false;
+    return static_cast<std::int64_t>(st_flt(o, static_cast<float>(v), ignored));
+  }
+  const auto stored = static_cast<std::int16_t>(static_cast<std::uint16_t>(v));
+  wr_word(o, static_cast<std::uint16_t>(stored));
+  return stored;
+}
+
+double Interpreter::st_flt(std::uint32_t o, float v, bool& overflow) {
+  const ValueType vt = dest_type(o);
+  if (vt == ValueType::Float32) {
+    v = numeric::flush_denormal(v);
+    if (!std::isfinite(v)) overflow = true;
+    if (bc::mode_of(o) == bc::kFloat) {
+      table_.set_f32(bc::payload_of(o), v);
+    } else if (bc::mode_of(o) == bc::kDyn) {
+      Ref r;
+      if (resolve(prog_.dyn[bc::payload_of(o)], r)) table_.set_f32(r.word, v);
+    }
+    return v;
+  }
+  // A float result into an integer destination rounds half to even and saturates, whatever
+  // S:2/14 says (ML1400 RM p.204).
+  const std::int64_t i = numeric::float_to_integer(v, vt, overflow);
+  return static_cast<double>(st_bits(o, i));
+}
+
+void Interpreter::set_flags(bool c, bool v, bool z, bool s) {
+  const auto f = static_cast<std::uint16_t>((c ? status::kCarry : 0) | (v ? status::kOverflow : 0) |
+                                            (z ? status::kZero : 0) | (s ? status::kSign : 0));
+  w_[s0_] = static_cast<std::uint16_t>((w_[s0_] & ~kStatusBits) | f);
+  // RM B-5: whenever V is set, the overflow trap S:5/0 is set too.
+  if (v) w_[s5_] |= status::kOverflowTrap;
+}
+
+bool Interpreter::file_span(std::uint32_t o, std::uint32_t elements, Span& out, std::string_view what) {
+  out = {};
+  const DataTableLayout& L = *prog_.layout;
+  std::uint32_t base = 0;
+  int file = -1;
+  const bc::Mode m = bc::mode_of(o);
+  if (m == bc::kWord || m == bc::kLong || m == bc::kFloat) {
+    base = bc::payload_of(o);
+    file = L.file_containing(base);
+  } else if (m == bc::kDyn) {
+    const DynOperand& d = prog_.dyn[bc::payload_of(o)];
+    Ref r;
+    if (!resolve(d, r)) return false;
+    if (r.mfile) {
+      out.mfile = true;
+      out.row = d.access_row;
+      out.slot = r.slot;
+      out.which = r.which;
+      out.base = r.word;
+      out.count = elements;
+      return true;
+    }
+    base = r.word;
+    file = r.file;
+  } else {
+    return false;
+  }
+  if (file < 0) return false;
+  const FileLayout& f = L.files[static_cast<std::size_t>(file)];
+  out.wpe = f.words_per_element;
+  out.vtype = is_structured(f.type) ? ValueType::Int16 : value_type_of(f.type);
+  const std::uint64_t words = static_cast<std::uint64_t>(elements) * out.wpe;
+  if (base + words > f.end()) {
+    // The message is built only here: the normal path allocates nothing.
+    const std::string name = m == bc::kDyn ? to_string(prog_.dyn[bc::payload_of(o)].address) : L.describe(base);
+    raise(fault::kIndexOutOfRange, std::string(what) + " of " + std::to_string(elements) + " element(s) from " + name +
+                                       " runs past the end of its file");
+    return false;
+  }
+  out.base = base;
+  out.count = static_cast<std::uint32_t>(words);
+  return true;
+}
+
+std::uint16_t Interpreter::span_get(const Span& s, std::uint32_t i) {
+  if (!s.mfile) return w_[s.base + i];
+  std::uint16_t v = 0;
+  const MAccess a = chassis_.read_m(s.slot, s.which, static_cast<int>(s.base + i), v);
+  if (a != MAccess::Ok)
+    raise(fault::module_access(s.slot), "reading M" + std::to_string(static_cast<int>(s.which)) + ":" +
+                                            std::to_string(s.slot) + "." + std::to_string(s.base + i) +
+                                            ": module refused (" + std::string(to_string(a)) + ")");
+  return v;
+}
+
+void Interpreter::span_set(const Span& s, std::uint32_t i, std::uint16_t v) {
+  if (!s.mfile) {
+    w_[s.base + i] = v;
+    return;
+  }
+  const MAccess a = chassis_.write_m(s.slot, s.which, static_cast<int>(s.base + i), v);
+  if (a != MAccess::Ok)
+    raise(fault::module_access(s.slot), "writing M" + std::to_string(static_cast<int>(s.which)) + ":" +
+                                            std::to_string(s.slot) + "." + std::to_string(s.base + i) +
+                                            ": module refused (" + std::string(to_string(a)) + ")");
+}
+
+// ---- Timers, counters, reset ----------------------------------------------------------------------------------
+
+bool Interpreter::timer(Op op, const std::uint32_t* o, std::uint32_t h, bool rung, Nanoseconds now_in_scan) {
+  std::uint16_t* t = element(o[0]);
+  if (faulted_) return true;  // a DYN fault: the dispatch loop stops the scan after this instruction
+  const auto pre = static_cast<std::int16_t>(t[1]);
+  int acc = static_cast<std::int16_t>(t[2]);
+  if (pre < 0 || acc < 0) {
+    const DataTableLayout& L = *prog_.layout;
+    const std::string name = bc::mode_of(o[0]) == bc::kWord ? L.describe(bc::payload_of(o[0]))
+                                                            : to_string(prog_.dyn[bc::payload_of(o[0])].address);
+    raise(fault::kNegativeTimerValue, std::string(mnemonic(op)) + " " + name + " has a negative " +
+                                          (pre < 0 ? "PRE (" + std::to_string(pre) + ")" : "ACC (" + std::to_string(acc) + ")"));
+    return false;
+  }
+  std::uint16_t ctl = t[0];
+  const bool base1s = (bc::flags_of(h) & bc::kFlagA) != 0;
+  // The 10 ms tick count at this instruction's virtual time; timers keep its low byte.
+  const auto now8 = static_cast<std::uint8_t>((scan_start_ + now_in_scan) / kTick);
+  const auto restart = [&] { ctl = static_cast<std::uint16_t>((ctl & ~bits::kStampMask) | now8); };
+  // Whole time-base units since the stamp; the remainder of a 1.0 s unit stays in the stamp.
+  const auto advance = [&] {
+    const auto stamp = static_cast<std::uint8_t>(ctl & bits::kStampMask);
+    const unsigned delta = static_cast<std::uint8_t>(now8 - stamp);
+    const unsigned units = base1s ? delta / 100 : delta;
+    const unsigned used = base1s ? units * 100 : delta;
+    ctl = static_cast<std::uint16_t>((ctl & ~bits::kStampMask) | static_cast<std::uint8_t>(stamp + used));
+    return static_cast<int>(units);
+  };
+  const auto set_done = [&](bool done) {
+    ctl = static_cast<std::uint16_t>(done ? ((ctl | bits::kDN) & ~bits::kTT) : ((ctl | bits::kTT) & ~bits::kDN));
+  };
+  switch (op) {
+    case Op::TON:
+      // RM 2-9: EN follows the rung; TT while timing; DN at ACC >= PRE; a false rung resets all.
+      if (!rung) {
+        ctl &= static_cast<std::uint16_t>(~(bits::kEN | bits::kTT | bits::kDN));
+        acc = 0;
+        break;
+      }
+      if (first_pass_ || !(ctl & bits::kEN)) {
+        // Starting to time, or the first scan after entering Run: RM 2-9 resets ACC on return
+        // to Run with the rung true.
+        if (first_pass_) acc = 0;
+        restart();
+      } else if (acc < pre) {
+        acc = std::min<int>(pre, acc + advance());
+      }
+      ctl |= bits::kEN;
+      set_done(acc >= pre);
+      break;
+    case Op::TOF:
+      // RM 2-10: DN while the rung is true; after it goes false ACC counts, DN clears at PRE.
+      if (first_pass_ && !rung) {
+        ctl &= static_cast<std::uint16_t>(~(bits::kEN | bits::kTT | bits::kDN));
+        acc = pre;
+        break;
+      }
+      if (rung) {
+        ctl = static_cast<std::uint16_t>((ctl | bits::kEN | bits::kDN) & ~bits::kTT);
+        acc = 0;
+        break;
+      }
+      if (ctl & bits::kEN) {
+        ctl &= static_cast<std::uint16_t>(~bits::kEN);
+        restart();
+        if (ctl & bits::kDN) ctl |= bits::kTT;
+      } else if (ctl & bits::kTT) {
+        acc = std::min<int>(pre, acc + advance());
+      }
+      if ((ctl & bits::kTT) && acc >= pre) ctl &= static_cast<std::uint16_t>(~(bits::kTT | bits::kDN));
+      break;
+    case Op::RTO:
+      // Like TON, but a false rung only clears EN and TT; ACC and DN hold until RES.
+      if (!rung) {
+        ctl &= static_cast<std::uint16_t>(~(bits::kEN | bits::kTT));
+        break;
+      }
+      if (first_pass_ || !(ctl & bits::kEN)) {
+        restart();
+      } else if (acc < pre) {
+        acc = std::min<int>(pre, acc + advance());
+      }
+      ctl |= bits::kEN;
+      set_done(acc >= pre);
+      break;
+    default: break;
+  }
+  t[0] = ctl;
+  t[2] = static_cast<std::uint16_t>(acc);
+  return true;
+}
+
+void Interpreter::counter(Op op, const std::uint32_t* o, bool rung) {
+  std::uint16_t* c = element(o[0]);
+  if (faulted_) return;
+  std::uint16_t ctl = c[0];
+  int acc = static_cast<std::int16_t>(c[2]);
+  const int pre = static_cast<std::int16_t>(c[1]);
+  // RM 2-14: count on a false-to-true transition only (CU/CD remember the last rung state). On
+  // the first scan after entering Run the SLC has set CU/CD, so a true rung does not count.
+  if (op == Op::CTU) {
+    if (rung && !(ctl & bits::kCU) && !first_pass_) {
+      if (acc == 32767) {
+        acc = -32768;
+        // Wrapping up out of an underflowed count brings it back in range: UN clears.
+        if (ctl & bits::kUN) ctl &= static_cast<std::uint16_t>(~bits::kUN);
+        else ctl |= bits::kOV;
+      } else {
+        ++acc;
+      }
+    }
+    ctl = static_cast<std::uint16_t>(rung ? (ctl | bits::kCU) : (ctl & ~bits::kCU));
+  } else {
+    if (rung && !(ctl & bits::kCD) && !first_pass_) {
+      if (acc == -32768) {
+        acc = 32767;
+        // RM 2-14: OV clears when a CTD brings the count back to <= +32767.
+        if (ctl & bits::kOV) ctl &= static_cast<std::uint16_t>(~bits::kOV);
+        else ctl |= bits::kUN;
+      } else {
+        --acc;
+      }
+    }
+    ctl = static_cast<std::uint16_t>(rung ? (ctl | bits::kCD) : (ctl & ~bits::kCD));
+  }
+  ctl = static_cast<std::uint16_t>(acc >= pre ? (ctl | bits::kDN) : (ctl & ~bits::kDN));
+  c[0] = ctl;
+  c[2] = static_cast<std::uint16_t>(acc);
+}
+
+void Interpreter::reset(const std::uint32_t* o, std::uint32_t h) {
+  std::uint16_t* e = element(o[0]);
+  if (faulted_) return;
+  switch (static_cast<FileType>(bc::aux_of(h))) {
+    case FileType::Timer:
+      e[0] &= static_cast<std::uint16_t>(~(bits::kEN | bits::kTT | bits::kDN));
+      e[2] = 0;
+      break;
+    case FileType::Counter:
+      e[0] &= static_cast<std::uint16_t>(~(bits::kCU | bits::kCD | bits::kDN | bits::kOV | bits::kUN));
+      e[2] = 0;
+      break;
+    default:  // Control: every status bit and the error code clear; POS = 0; LEN stays.
+      e[0] = 0;
+      e[2] = 0;
+      break;
+  }
+}
+
+// ---- Compare, math, logical, move ----------------------------------------------------------------------------
+
+bool Interpreter::compare(Op op, const std::uint32_t* o, std::uint32_t h) {
+  if (op == Op::MEQ) {
+    const std::uint16_t mask = rd_word(o[1]);
+    return (rd_word(o[0]) & mask) == (rd_word(o[2]) & mask);
+  }
+  if (bc::flags_of(h) & bc::kFlagFloat) {
+    const double a = rd_flt(o[0]), b = rd_flt(o[1]);
+    switch (op) {
+      case Op::EQU: return a == b;
+      case Op::NEQ: return a != b;
+      case Op::LES: return a < b;
+      case Op::LEQ: return a <= b;
+      case Op::GRT: return a > b;
+      case Op::GEQ: return a >= b;
+      case Op::LIM: {
+        const double hi = rd_flt(o[2]);
+        return a <= hi ? (a <= b && b <= hi) : (b >= a || b <= hi);
+      }
+      default: return false;
+    }
+  }
+  const std::int64_t a = rd_int(o[0]), b = rd_int(o[1]);
+  switch (op) {
+    case Op::EQU: return a == b;
+    case Op::NEQ: return a != b;
+    case Op::LES: return a < b;
+    case Op::LEQ: return a <= b;
+    case Op::GRT: return a > b;
+    case Op::GEQ: return a >= b;
+    case Op::LIM: {
+      // LIM low test high: low <= high tests inside the band, low > high outside it.
+      const std::int64_t hi = rd_int(o[2]);
+      return a <= hi ? (a <= b && b <= hi) : (b >= a || b <= hi);
+    }
+    default: return false;
+  }
+}
+
+void Interpreter::math(Op op, const std::uint32_t* o, std::uint32_t h) {
+  bool overflow = false;
+  if (bc::flags_of(h) & bc::kFlagFloat) {
+    const float a = rd_flt(o[0]), b = rd_flt(o[1]);
+    float r = 0.0f;
+    switch (op) {
+      case Op::ADD: r = a + b; break;
+      case Op::SUB: r = a - b; break;
+      case Op::MUL: r = a * b; break;
+      case Op::DIV: r = a / b; break;  // b == 0 gives inf or NaN, reported as overflow
+      default: break;
+    }
+    const double stored = st_flt(o[2], r, overflow);
+    set_flags(false, overflow, stored == 0.0, stored < 0.0);
+    return;
+  }
+  const std::int64_t a = rd_int(o[0]), b = rd_int(o[1]);
+  const bool wide = dest_type(o[2]) == ValueType::Int32;
+  const std::uint64_t width_mask = wide ? 0xFFFFFFFFull : 0xFFFFull;
+  bool carry = false;
+  std::int64_t r = 0;
+  switch (op) {
+    case Op::ADD:
+      r = a + b;
+      // C: carry out of the destination width, adding the operands as unsigned (RM B-5).
+      carry = ((static_cast<std::uint64_t>(a) & width_mask) + (static_cast<std::uint64_t>(b) & width_mask)) > width_mask;
+      break;
+    case Op::SUB:
+      r = a - b;
+      carry = (static_cast<std::uint64_t>(a) & width_mask) < (static_cast<std::uint64_t>(b) & width_mask);
+      break;
+    case Op::MUL: {
+      r = a * b;
+      // RM 4-10: the 32-bit product goes to S:13 (low word) and S:14 (high word).
+      const auto p = static_cast<std::uint32_t>(r);
+      w_[s13_] = static_cast<std::uint16_t>(p & 0xFFFF);
+      w_[s14_] = static_cast<std::uint16_t>(p >> 16);
+      break;
+    }
+    case Op::DIV: {
+      if (b == 0) {
+        // RM 4-10: divide by zero sets V (and the S:5/0 trap) and puts the maximum in dest.
+        const std::int64_t stored = st_bits(o[2], wide ? INT32_MAX : INT16_MAX);
+        set_flags(false, true, stored == 0, stored < 0);
+        return;
+      }
+      const std::int64_t q = a / b;
+      const std::int64_t rem = a % b;
+      // RM 4-10: dest gets the rounded quotient (11/2 -> 6), S:14 the unrounded quotient and
+      // S:13 the remainder. Halves round away from zero (-11/2 -> -6) [U: symmetric].
+      r = q;
+      if (2 * (rem < 0 ? -rem : rem) >= (b < 0 ? -b : b)) r += ((a < 0) != (b < 0)) ? -1 : 1;
+      w_[s14_] = static_cast<std::uint16_t>(q);
+      w_[s13_] = static_cast<std::uint16_t>(rem);
+      break;
+    }
+    default: break;
+  }
+  const std::int64_t stored = st_int(o[2], r, overflow);
+  // DIV always resets C (RM 4-10); MUL has no carry.
+  set_flags(op == Op::ADD || op == Op::SUB ? carry : false, overflow, stored == 0, stored < 0);
+}
+
+void Interpreter::unary(Op op, const std::uint32_t* o, std::uint32_t h) {
+  bool overflow = false;
+  if (op == Op::CLR) {
+    if (dest_type(o[0]) == ValueType::Float32) st_flt(o[0], 0.0f, overflow);
+    else st_bits(o[0], 0);
+    set_flags(false, false, true, false);
+    return;
+  }
+  // NEG
+  if (bc::flags_of(h) & bc::kFlagFloat) {
+    const double stored = st_flt(o[1], -rd_flt(o[0]), overflow);
+    set_flags(false, overflow, stored == 0.0, stored < 0.0);
+    return;
+  }
+  const std::int64_t a = rd_int(o[0]);
+  const std::int64_t stored = st_int(o[1], -a, overflow);
+  // C: 0 - a borrows whenever a is not zero [U].
+  set_flags(a != 0, overflow, stored == 0, stored < 0);
+}
+
+void Interpreter::logical(Op op, const std::uint32_t* o) {
+  std::int64_t r = 0;
+  std::uint32_t dest = 0;
+  switch (op) {
+    case Op::AND: r = rd_int(o[0]) & rd_int(o[1]); dest = o[2]; break;
+    case Op::OR: r = rd_int(o[0]) | rd_int(o[1]); dest = o[2]; break;
+    case Op::XOR: r = rd_int(o[0]) ^ rd_int(o[1]); dest = o[2]; break;
+    case Op::NOT: r = ~rd_int(o[0]); dest = o[1]; break;
+    default: return;
+  }
+  const std::int64_t stored = st_bits(dest, r);
+  set_flags(false, false, stored == 0, stored < 0);
+}
+
+void Interpreter::move(Op op, const std::uint32_t* o, std::uint32_t h) {
+  if (op == Op::MVM) {
+    const std::uint16_t mask = rd_word(o[1]);
+    const auto r = static_cast<std::uint16_t>((rd_word(o[0]) & mask) | (rd_word(o[2]) & ~mask));
+    wr_word(o[2], r);
+    set_flags(false, false, r == 0, (r & 0x8000) != 0);
+    return;
+  }
+  bool overflow = false;
+  if (bc::flags_of(h) & bc::kFlagFloat) {
+    const double stored = st_flt(o[1], rd_flt(o[0]), overflow);
+    set_flags(false, overflow, stored == 0.0, stored < 0.0);
+    return;
+  }
+  // An integer MOV that does not fit (L into N) saturates and sets V, like float-to-integer
+  // conversion; S:2/14 governs only ADD/SUB/MUL/DIV (PT1 20-5).
+  const std::int64_t v = rd_int(o[0]);
+  const ValueType vt = dest_type(o[1]);
+  const std::int64_t hi = vt == ValueType::Int32 ? INT32_MAX : INT16_MAX;
+  const std::int64_t lo = vt == ValueType::Int32 ? INT32_MIN : INT16_MIN;
+  std::int64_t c = v;
+  if (vt != ValueType::Float32 && (v > hi || v < lo)) {
+    overflow = true;
+    c = v > hi ? hi : lo;
+  }
+  const std::int64_t stored = st_bits(o[1], c);
+  set_flags(false, overflow, stored == 0, stored < 0);
+}
+
+// ---- File instructions -----------------------------------------------------------------------------------------
+
+void Interpreter::copy_file(const std::uint32_t* o) {
+  const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
+  Span dst;
+  if (!file_span(o[1], len, dst, "COP destination")) return;
+  // COP moves raw words, counted in destination elements (RM E-11).
+  Span src;
+  const std::uint32_t src_wpe = [&] {
+    Span probe;
+    if (!file_span(o[0], 1, probe, "COP source")) return 1u;
+    return probe.wpe;
+  }();
+  if (faulted_) return;
+  if (!file_span(o[0], (dst.count + src_wpe - 1) / src_wpe, src, "COP source")) return;
+  if (!src.mfile && !dst.mfile) {
+    std::memmove(w_ + dst.base, w_ + src.base, dst.count * sizeof(std::uint16_t));
+  } else {
+    if (src.mfile) charge_m(src.row, static_cast<int>(dst.count));
+    if (dst.mfile) charge_m(dst.row, static_cast<int>(dst.count));
+    for (std::uint32_t i = 0; i < dst.count && !faulted_; ++i) span_set(dst, i, span_get(src, i));
+  }
+  charge_words(Op::COP, dst.count);
+  // File instructions use the index register; it holds the last offset they used [U].
+  w_[s24_] = static_cast<std::uint16_t>(len - 1);
+}
+
+void Interpreter::fill_file(const std::uint32_t* o, std::uint32_t h) {
+  const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
+  Span dst;
+  if (!file_span(o[1], len, dst, "FLL destination")) return;
+  charge_words(Op::FLL, dst.count);
+  if (dst.mfile) charge_m(dst.row, static_cast<int>(dst.count));
+  if (dst.vtype == ValueType::Float32) {
+    const float v = rd_flt(o[0]);
+    for (std::uint32_t e = 0; e < len; ++e) table_.set_f32(dst.base + e * 2, v);
+  } else {
+    // The source converts to the destination type (rounding, saturating); flags are untouched.
+    bool ignored = false;
+    const std::int64_t v = (bc::flags_of(h) & bc::kFlagFloat)
+                               ? numeric::float_to_integer(rd_flt(o[0]), dst.vtype, ignored)
+                               : std::clamp<std::int64_t>(rd_int(o[0]), dst.vtype == ValueType::Int32 ? INT32_MIN : INT16_MIN,
+                                                          dst.vtype == ValueType::Int32 ? INT32_MAX : INT16_MAX);
+    if (dst.vtype == ValueType::Int32) {
+      for (std::uint32_t e = 0; e < len; ++e) table_.set_i32(dst.base + e * 2, static_cast<std::int32_t>(v));
+    } else {
+      for (std::uint32_t i = 0; i < dst.count && !faulted_; ++i) span_set(dst, i, static_cast<std::uint16_t>(v));
+    }
+  }
+  w_[s24_] = static_cast<std::uint16_t>(len - 1);
+}
+
+void Interpreter::bit_shift(Op op, const std::uint32_t* o, bool rung) {
+  std::uint16_t* r = element(o[1]);
+  if (faulted_) return;
+  if (!rung) {
+    r[0] &= static_cast<std::uint16_t>(~(bits::kEN | bits::kDN));
+    return;
+  }
+  if (r[0] & bits::kEN) return;  // shifts only on a false-to-true transition
+  r[0] |= bits::kEN;
+  const int len = static_cast<std::int16_t>(r[1]);
+  if (len <= 0) {
+    // A zero or negative length is an instruction error: ER is set and nothing shifts [U].
+    r[0] |= bits::kER;
+    return;
+  }
+  const auto words = static_cast<std::uint32_t>((len + 15) / 16);
+  Span f;
+  if (!file_span(o[0], words, f, mnemonic(op))) return;
+  const bool in = rd_bit(o[2]);
+  charge_words(op, words);
+  const auto get = [&](int i) { return (w_[f.base + static_cast<std::uint32_t>(i / 16)] >> (i % 16)) & 1u; };
+  const auto put = [&](int i, bool v) {
+    std::uint16_t& w = w_[f.base + static_cast<std::uint32_t>(i / 16)];
+    const auto m = static_cast<std::uint16_t>(1u << (i % 16));
+    w = static_cast<std::uint16_t>(v ? (w | m) : (w & ~m));
+  };
+  bool out;
+  if (op == Op::BSL) {
+    // Bits move up one position; the source enters at bit 0; the top bit goes to UL.
+    out = get(len - 1);
+    for (int i = len - 1; i > 0; --i) put(i, get(i - 1));
+    put(0, in);
+  } else {
+    out = get(0);
+    for (int i = 0; i < len - 1; ++i) put(i, get(i + 1));
+    put(len - 1, in);
+  }
+  r[0] = static_cast<std::uint16_t>((out ? (r[0] | bits::kUL) : (r[0] & ~bits::kUL)) | bits::kDN);
+  r[0] &= static_cast<std::uint16_t>(~bits::kER);
+  w_[s24_] = static_cast<std::uint16_t>(words - 1);
+}
+
+void Interpreter::sequencer(Op op, const std::uint32_t* o, bool rung) {
+  // Operand positions: SQO/SQC file, mask, dest/source, control; SQL file, source, control.
+  const std::uint32_t control = op == Op::SQL ? o[2] : o[3];
+  std::uint16_t* r = element(control);
+  if (faulted_) return;
+  if (!rung) {
+    r[0] &= static_cast<std::uint16_t>(~bits::kEN);
+    return;
+  }
+  if (r[0] & bits::kEN) return;  // steps only on a false-to-true transition
+  r[0] |= bits::kEN;
+  const int len = static_cast<std::int16_t>(r[1]);
+  int pos = static_cast<std::int16_t>(r[2]);
+  if (len <= 0 || pos < 0 || pos > len) {
+    r[0] |= bits::kER;
+    return;
+  }
+  Span f;
+  if (!file_span(o[0], static_cast<std::uint32_t>(len) + 1, f, mnemonic(op))) return;
+  r[0] &= static_cast<std::uint16_t>(~bits::kER);
+  // Step to the next position; after the last step the sequencer wraps to step 1 (step 0 is
+  // the start-up position).
+  pos = pos + 1 > len ? 1 : pos + 1;
+  const std::uint16_t step = w_[f.base + static_cast<std::uint32_t>(pos)];
+  switch (op) {
+    case Op::SQO: {
+      const std::uint16_t mask = rd_word(o[1]);
+      wr_word(o[2], static_cast<std::uint16_t>((rd_word(o[2]) & ~mask) | (step & mask)));
+      break;
+    }
+    case Op::SQC: {
+      const std::uint16_t mask = rd_word(o[1]);
+      const bool found = (rd_word(o[2]) & mask) == (step & mask);
+      r[0] = static_cast<std::uint16_t>(found ? (r[0] | bits::kFD) : (r[0] & ~bits::kFD));
+      break;
+    }
+    case Op::SQL: w_[f.base + static_cast<std::uint32_t>(pos)] = rd_word(o[1]); break;
+    default: break;
+  }
+  r[2] = static_cast<std::uint16_t>(pos);
+  r[0] = static_cast<std::uint16_t>(pos == len ? (r[0] | bits::kDN) : (r[0] & ~bits::kDN));
+  w_[s24_] = static_cast<std::uint16_t>(pos);
+}
+
+void Interpreter::stack(Op op, const std::uint32_t* o, bool rung) {
+  // FFL/LFL: source, stack, control; FFU/LFU: stack, dest, control. Loads use EN, unloads EU.
+  const bool load = op == Op::FFL || op == Op::LFL;
+  const std::uint16_t edge = load ? bits::kEN : bits::kEU;
+  std::uint16_t* r = element(o[2]);
+  if (faulted_) return;
+  if (!rung) {
+    r[0] &= static_cast<std::uint16_t>(~edge);
+    return;
+  }
+  if (r[0] & edge) return;
+  r[0] |= edge;
+  const int len = static_cast<std::int16_t>(r[1]);
+  int pos = static_cast<std::int16_t>(r[2]);
+  if (len <= 0 || pos < 0 || pos > len) {
+    r[0] |= bits::kER;
+    return;
+  }
+  Span f;
+  if (!file_span(load ? o[1] : o[0], static_cast<std::uint32_t>(len), f, mnemonic(op))) return;
+  r[0] &= static_cast<std::uint16_t>(~bits::kER);
+  std::uint16_t* s = w_ + f.base;
+  if (load) {
+    if (pos < len) s[pos++] = rd_word(o[0]);  // a full stack ignores the load (DN stays set)
+  } else if (pos > 0) {
+    if (op == Op::FFU) {
+      // FIFO: the first word comes out; the rest move down one; a zero enters at the top.
+      charge_words(op, static_cast<std::uint32_t>(len));
+      wr_word(o[1], s[0]);
+      std::memmove(s, s + 1, static_cast<std::size_t>(len - 1) * sizeof(std::uint16_t));
+      s[len - 1] = 0;
+    } else {
+      // LIFO: the last word loaded comes out and its place is cleared.
+      --pos;
+      wr_word(o[1], s[pos]);
+      s[pos] = 0;
+    }
+    if (op == Op::FFU) --pos;
+  }
+  r[2] = static_cast<std::uint16_t>(pos);
+  r[0] = static_cast<std::uint16_t>(pos >= len ? (r[0] | bits::kDN) : (r[0] & ~bits::kDN));
+  r[0] = static_cast<std::uint16_t>(pos == 0 ? (r[0] | bits::kEM) : (r[0] & ~bits::kEM));
+  w_[s24_] = static_cast<std::uint16_t>(pos);
+}
+
+// ---- The dispatch loop -----------------------------------------------------------------------------------------
+
+ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds elapsed, bool first_pass,
+                                            Nanoseconds watchdog) {
+  ProgramScanResult res;
+  scan_start_ = scan_start;
+  first_pass_ = first_pass;
+  faulted_ = false;
+  fault_ = {};
+  extra_ns_ = 0;
+  w_ = table_.words();
+
+  struct BranchFrame {
+    bool entry;  // the rung condition at BST: every leg starts from it
+    bool acc;    // OR of the legs finished so far
+  };
+  struct CallFrame {
+    const std::uint32_t* ret;
+    int file;
+    int rung;
+    bool mcr_off;
+    int bsp;
+    int bsp_base;
+  };
+  std::array<BranchFrame, kMaxBranchDepth * (kMaxCallDepth + 1)> bstack;
+  std::array<CallFrame, kMaxCallDepth> frames;
+  int bsp = 0;
+  int bsp_base = 0;
+  int fsp = 0;
+  int cur_file = 2;
+  int cur_rung = -1;
+  bool mcr_off = false;  // inside an MCR zone whose MCR rung was false
+  bool rung = true;
+  // The instruction count and the cost table are reached through `this` in the general switch,
+  // which leaves the compiler registers for the program counter and the scan time.
+  count_ = 0;
+  const CompiledFile* main_file = prog_.file(2);
+  const std::uint32_t* pc = code_ + main_file->begin;
+
+  for (;;) {
+    // The bit-logic fast path: the ops a ladder program is mostly made of, in a tight loop with
+    // only pc, the rung condition, the scan time and the branch stack live, so they stay in
+    // registers. Everything else leaves it for the general switch below. (Measured with
+    // tests/benchmarks/vm_bench: the single big switch kept `rung` in memory.)
+    {
+      unsigned r = rung;
+      Nanoseconds t = elapsed;
+      std::uint64_t n = 0;
+      std::uint16_t* const w = w_;
+      const Nanoseconds* const cost = cost_.data();
+      for (;;) {
+        // The operand word is read only by the ops that have one: a 0-operand op may be the last
+        // word of the code array.
+        std::uint32_t fo;
+        switch (bc::op_of(*pc)) {
+          case Op::XIC:
+            fo = pc[1];
+            if (bc::mode_of(fo) != bc::kBit) goto general;
+            t += cost[(static_cast<unsigned>(Op::XIC) << 1) | r];
+            r &= (w[bc::word_of_bit(fo)] >> bc::bit_of(fo)) & 1u;
+            ++n;
+            pc += 2;
+            continue;
+          case Op::XIO:
+            fo = pc[1];
+            if (bc::mode_of(fo) != bc::kBit) goto general;
+            t += cost[(static_cast<unsigned>(Op::XIO) << 1) | r];
+            r &= ~(w[bc::word_of_bit(fo)] >> bc::bit_of(fo)) & 1u;
+            ++n;
+            pc += 2;
+            continue;
+          case Op::OTE: {
+            fo = pc[1];
+            if (bc::mode_of(fo) != bc::kBit) goto general;
+            t += cost[(static_cast<unsigned>(Op::OTE) << 1) | r];
+            std::uint16_t& word = w[bc::word_of_bit(fo)];
+            const auto mask = static_cast<std::uint16_t>(1u << bc::bit_of(fo));
+            word = static_cast<std::uint16_t>((word & ~mask) | (-r & mask));
+            ++n;
+            pc += 2;
+            continue;
+          }
+          case Op::BST:
+            bstack[static_cast<std::size_t>(bsp++)] = {r != 0, false};
+            pc += 1;
+            continue;
+          case Op::NXB: {
+            BranchFrame& b = bstack[static_cast<std::size_t>(bsp - 1)];
+            b.acc |= r != 0;
+            r = b.entry;
+            pc += 1;
+            continue;
+          }
+          case Op::BND:
+            r |= bstack[static_cast<std::size_t>(bsp - 1)].acc;
+            --bsp;
+            pc += 1;
+            continue;
+          default: goto general;
+        }
+      }
+    general:
+      rung = r != 0;
+      elapsed = t;
+      count_ += n;
+    }
+    const std::uint32_t h = *pc;
+    const Op op = bc::op_of(h);
+    const std::uint32_t* const o = pc + 1;
+    elapsed += cost_[(static_cast<unsigned>(op) << 1) | static_cast<unsigned>(rung)];
+    count_ += countable_[static_cast<unsigned>(op)];
+    switch (op) {
+      // ---- Rung structure ----
+      case Op::SOR:
+        cur_rung = static_cast<int>(bc::aux_of(h));
+        bsp = bsp_base;  // a JMP out of a branch leaves nothing behind
+        if (elapsed >= watchdog) [[unlikely]] {
+          raise(fault::kWatchdog, "scan time reached the watchdog (S:3 high byte, " +
+                                      std::to_string(watchdog / kTick) + " x 10 ms)");
+          goto fault;
+        }
+        rung = !mcr_off || (bc::flags_of(h) & bc::kFlagA);
+        break;
+      // BST/NXB/BND (and direct-bit XIC/XIO/OTE) are normally taken by the fast path above;
+      // these cases give the same result if the general switch ever sees them.
+      case Op::BST: bstack[static_cast<std::size_t>(bsp++)] = {rung, false}; break;
+      case Op::NXB: {
+        BranchFrame& b = bstack[static_cast<std::size_t>(bsp - 1)];
+        b.acc |= rung;
+        rung = b.entry;
+        break;
+      }
+      case Op::BND:
+        rung |= bstack[static_cast<std::size_t>(bsp - 1)].acc;
+        --bsp;
+        break;
+      case Op::EOF_:
+        // The implicit END: RSLogix shows it as the rung after the last one.
+        if (fsp == 0) {
+          cur_rung = static_cast<int>(prog_.file(cur_file)->rungs.size());
+          goto end_of_scan;
+        }
+        goto return_from_subroutine;
+      case Op::END:
+        if (fsp == 0) goto end_of_scan;
+        goto return_from_subroutine;
+
+      // ---- Bit ----
+      // The direct-bit cases are written out branch-free: a rung condition that depends on
+      // field data is unpredictable, and a mispredicted branch costs more than the whole XIC.
+      case Op::XIC:
+        if (bc::mode_of(o[0]) == bc::kBit) [[likely]]
+          rung &= static_cast<bool>((w_[bc::word_of_bit(o[0])] >> bc::bit_of(o[0])) & 1u);
+        else
+          rung &= rd_bit_slow(o[0]);
+        break;
+      case Op::XIO:
+        if (bc::mode_of(o[0]) == bc::kBit) [[likely]]
+          rung &= !((w_[bc::word_of_bit(o[0])] >> bc::bit_of(o[0])) & 1u);
+        else
+          rung &= !rd_bit_slow(o[0]);
+        break;
+      case Op::OTE:
+        if (bc::mode_of(o[0]) == bc::kBit) [[likely]] {
+          std::uint16_t& word = w_[bc::word_of_bit(o[0])];
+          const auto mask = static_cast<std::uint16_t>(1u << bc::bit_of(o[0]));
+          word = static_cast<std::uint16_t>((word & ~mask) | (-static_cast<unsigned>(rung) & mask));
+        } else {
+          wr_bit_slow(o[0], rung);
+        }
+        break;
+      case Op::OTL:
+        if (rung) wr_bit(o[0], true);
+        break;
+      case Op::OTU:
+        if (rung) wr_bit(o[0], false);
+        break;
+      case Op::OSR: {
+        const bool stored = rd_bit(o[0]);
+        wr_bit(o[0], rung);
+        rung = rung && !stored;
+        break;
+      }
+
+      // ---- Timers and counters ----
+      case Op::TON:
+      case Op::TOF:
+      case Op::RTO:
+        if (!timer(op, o, h, rung, elapsed)) goto fault;
+        break;
+      case Op::CTU:
+      case Op::CTD: counter(op, o, rung); break;
+      case Op::RES:
+        if (rung) reset(o, h);
+        break;
+
+      // ---- Compare ----
+      case Op::EQU:
+      case Op::NEQ:
+      case Op::LES:
+      case Op::LEQ:
+      case Op::GRT:
+      case Op::GEQ:
+      case Op::LIM:
+      case Op::MEQ:
+        // A false rung stays false; the comparison is still charged (false execution time).
+        if (rung) rung = compare(op, o, h);
+        break;
+
+      // ---- Math and logic ----
+      case Op::ADD:
+      case Op::SUB:
+      case Op::MUL:
+      case Op::DIV:
+        if (rung) math(op, o, h);
+        break;
+      case Op::NEG:
+      case Op::CLR:
+        if (rung) unary(op, o, h);
+        break;
+      case Op::AND:
+      case Op::OR:
+      case Op::XOR:
+      case Op::NOT:
+        if (rung) logical(op, o);
+        break;
+
+      // ---- Move and file ----
+      case Op::MOV:
+      case Op::MVM:
+        if (rung) move(op, o, h);
+        break;
+      case Op::COP:
+        if (rung) copy_file(o);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
+      case Op::FLL:
+        if (rung) fill_file(o, h);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
+      case Op::BSL:
+      case Op::BSR:
+        bit_shift(op, o, rung);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
+      case Op::SQO:
+      case Op::SQC:
+      case Op::SQL:
+        sequencer(op, o, rung);
+        if (faulted_) goto fault;
+        break;
+      case Op::LFL:
+      case Op::LFU:
+      case Op::FFL:
+      case Op::FFU:
+        stack(op, o, rung);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
+
+      // ---- Program control ----
+      case Op::JMP:
+        if (rung) {
+          pc = code_ + bc::payload_of(o[1]);
+          continue;
+        }
+        break;
+      case Op::LBL:
+      case Op::SBR: break;
+      case Op::JSR:
+        if (rung) {
+          if (fsp >= max_depth_) {
+            raise(fault::kSubroutineNesting, "JSR " + std::to_string(bc::imm_of(o[0])) + " would nest subroutines " +
+                                                 std::to_string(fsp + 1) + " deep; " + prog_.processor.display_name +
+                                                 " allows " + std::to_string(max_depth_) + " (RM 6-4)");
+            goto fault;
+          }
+          frames[static_cast<std::size_t>(fsp++)] = {o + bc::count_of(h), cur_file, cur_rung, mcr_off, bsp, bsp_base};
+          cur_file = bc::imm_of(o[0]);
+          pc = code_ + bc::payload_of(o[1]);
+          mcr_off = false;
+          bsp_base = bsp;
+          continue;
+        }
+        break;
+      case Op::RET:
+        if (!rung) break;
+        if (fsp == 0) goto end_of_scan;
+        goto return_from_subroutine;
+      case Op::TND:
+        if (rung) goto end_of_scan;
+        break;
+      case Op::MCR:
+        // An unconditional MCR closes the zone; a conditional one opens a zone that is live
+        // when its rung is true. In a false zone every rung's rung-in is false (SOR above).
+        mcr_off = (bc::flags_of(h) & bc::kFlagA) ? false : !rung;
+        break;
+
+      // ---- Immediate I/O ----
+      case Op::IIM:
+      case Op::IOM:
+        if (rung) {
+          const int sw = bc::imm_of(o[0]);
+          const std::uint16_t mask = rd_word(o[1]);
+          if (op == Op::IIM) chassis_.immediate_input(sw / 256, sw % 256, bc::imm_of(o[2]), mask);
+          else chassis_.immediate_output(sw / 256, sw % 256, bc::imm_of(o[2]), mask);
+        }
+        break;
+
+      // ---- Specialty-module instructions ----
+      case Op::BTR:
+      case Op::BTW:
+      case Op::DEM:
+        // The compiler refuses these until their modules exist; reaching one is a fault, never a no-op.
+        raise(fault::kUnsupportedInstruction, module_instruction_unsupported(to_opcode(op)));
+        goto fault;
+    }
+    if (bc::flags_of(h) & bc::kFlagDyn) [[unlikely]] {
+      if (faulted_) goto fault;
+      elapsed += extra_ns_;
+      extra_ns_ = 0;
+    }
+    // The program counter advances here, after the handler, so only one copy of it is live
+    // across the switch (computing it before the switch made the compiler spill it).
+    pc = o + bc::count_of(h);
+    continue;
+
+  return_from_subroutine: {
+    const CallFrame& f = frames[static_cast<std::size_t>(--fsp)];
+    pc = f.ret;
+    cur_file = f.file;
+    cur_rung = f.rung;
+    mcr_off = f.mcr_off;
+    bsp = f.bsp;
+    bsp_base = f.bsp_base;
+    rung = true;  // the JSR's rung was true, and an output passes its rung on
+    continue;
+  }
+  }
+
+end_of_scan:
+  // PT1 20-2: the overflow trap still set at END or TND is major fault 0020h.
+  if (w_[s5_] & status::kOverflowTrap) {
+    raise(fault::kMinorErrorAtEnd, "math overflow trap S:5/0 still set at the end of the program scan");
+    goto fault;
+  }
+  res.elapsed = elapsed;
+  res.instructions = count_;
+  res.last_file = cur_file;
+  res.last_rung = cur_rung;
+  return res;
+
+fault:
+  res.faulted = true;
+  res.fault = fault_;
+  res.fault.file = cur_file;
+  res.fault.rung = cur_rung;
+  res.elapsed = elapsed;
+  res.instructions = count_;
+  res.last_file = cur_file;
+  res.last_rung = cur_rung;
+  return res;
+}
+
+}  // namespace softslc

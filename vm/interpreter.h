@@ -1,0 +1,185 @@
+// The interpreter: executes the program scan of a CompiledProgram against a DataTable.
+//
+// Design. One function, Interpreter::program_scan, holds the dispatch loop: a plain `switch` on
+// the op byte of each header word, one case per Op (the compiler warns, via -Wswitch, if an
+// instruction-table opcode has no case). The loop's state lives in locals: the program counter,
+// the rung condition, the branch stack, the call stack and the scan time so far. Direct operands
+// are data-table word indices, so a bit instruction is a load, a shift and an AND; nothing on
+// that path allocates, calls through a pointer or looks anything up. Long handlers (timers,
+// math, file instructions) are ordinary member functions called directly, kept out of line.
+//
+// Fast path. In front of the general switch sits a small switch over the ops most ladder is made
+// of (XIC, XIO, OTE with direct bits; BST, NXB, BND). It keeps only the program counter, the rung
+// condition, the scan time and the branch-stack index live, so the compiler holds them in
+// registers; anything else drops to the general switch, whose cases implement every op
+// (including these, for run-time-resolved operands). Measured with tests/benchmarks/vm_bench:
+// the general switch alone kept the rung condition in memory and ran about 6 ns per bit
+// instruction; with the fast path about 2.4 ns (docs/bytecode.md, "Performance").
+//
+// Run-time addresses (indexed, indirect, M0/M1) go through resolve(), the one checked path: it
+// either yields an index inside the data table (or a module word) or records a major fault
+// (0029h/002Ah/xx55h) and yields a harmless scratch location. Instructions with such operands
+// carry the DYN flag and the loop checks for a recorded fault after them, so a faulting
+// instruction never writes outside the table and the scan stops at that rung.
+//
+// Virtual time. Each executed instruction adds its cost (from the ScanTimeModel, tabulated once)
+// to the scan time. Timers read the 10 ms tick count at the current virtual time
+// (scan start + scan time so far); every rung start checks the watchdog (S:3 high byte), so an
+// endless JMP loop ends in fault 0022h after the watchdog's worth of virtual time.
+//
+// Invariants: the branch stack and call stack are fixed arrays bounded by kMaxBranchDepth and
+// the processor's nesting limit (checked before every push); the program counter only takes
+// values the compiler produced (headers, jump targets, file starts).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "vm/bytecode.h"
+#include "vm/data_table.h"
+#include "vm/faults.h"
+#include "vm/module.h"
+#include "vm/scan_time_model.h"
+
+namespace softslc {
+
+// What the interpreter needs from the chassis mid-scan: M0/M1 immediate access and the
+// immediate I/O instructions. The runtime implements it; it is only reached from M-file
+// operands and IIM/IOM, never from the bit-logic path.
+class ChassisAccess {
+ public:
+  virtual ~ChassisAccess() = default;
+  virtual MAccess read_m(int slot, MFile f, int word, std::uint16_t& value) = 0;
+  virtual MAccess write_m(int slot, MFile f, int word, std::uint16_t value) = 0;
+  // IIM: copy `count` input words of `slot` from word `first` into the I file under `mask`.
+  virtual void immediate_input(int slot, int first, int count, std::uint16_t mask) = 0;
+  // IOM: send `count` O-file words of `slot` from word `first` to the module under `mask`.
+  virtual void immediate_output(int slot, int first, int count, std::uint16_t mask) = 0;
+};
+
+struct ProgramScanResult {
+  bool faulted = false;
+  FaultInfo fault;
+  Nanoseconds elapsed = 0;         // scan time at the end of the program scan
+  std::uint64_t instructions = 0;  // instruction-table instructions executed
+  int last_file = 2;
+  int last_rung = -1;
+};
+
+// Maximum call depth the interpreter's call stack holds (the processor's limit is at most 8).
+inline constexpr int kMaxCallDepth = 16;
+
+class Interpreter {
+ public:
+  Interpreter(const CompiledProgram& program, DataTable& table, ChassisAccess& chassis, const ScanTimeModel& model);
+
+  // Runs the main program file once. `scan_start`: virtual time the scan began; `elapsed`: scan
+  // time already used before the program scan (input scan); `first_pass`: the first scan after
+  // entering Run/Test; `watchdog`: the scan time at which fault 0022h is raised.
+  ProgramScanResult program_scan(VirtualTime scan_start, Nanoseconds elapsed, bool first_pass, Nanoseconds watchdog);
+
+  // The cost table (ns) indexed by op * 2 + rung-in.
+  const std::vector<Nanoseconds>& costs() const { return cost_; }
+
+  // Resolves a run-time operand for tools (Runtime::get/set of indexed/indirect addresses).
+  // Returns false with `message` when it would leave the data table.
+  bool resolve_for_tool(const DynOperand& d, Location& out, std::string& message);
+
+ private:
+  struct Ref {
+    std::uint32_t word = 0;  // data-table index (or M-file word when mfile)
+    int bit = -1;
+    int file = -1;
+    bool mfile = false;
+    int slot = 0;
+    MFile which = MFile::M0;
+  };
+  struct Span {
+    std::uint32_t base = 0;  // first data-table word (or first M-file word)
+    std::uint32_t count = 0;
+    bool mfile = false;
+    MFileAccess row = MFileAccess::OtherM;
+    int slot = 0;
+    MFile which = MFile::M0;
+    ValueType vtype = ValueType::Int16;
+    std::uint32_t wpe = 1;
+  };
+
+  // Fault recording: the first fault of a scan wins.
+  [[gnu::noinline, gnu::cold]] void raise(std::uint16_t code, std::string message);
+
+  // The checked run-time resolver. Returns false (and raises) when the address leaves the table.
+  bool resolve(const DynOperand& d, Ref& out);
+  bool resolve_common(const DynOperand& d, Ref& out, std::uint16_t& code, std::string& message);
+
+  // Operand access. The fast cases are inline in the .cpp; the *_slow functions take the DYN path.
+  bool rd_bit(std::uint32_t o);
+  void wr_bit(std::uint32_t o, bool v);
+  [[gnu::noinline, gnu::cold]] bool rd_bit_slow(std::uint32_t o);
+  [[gnu::noinline, gnu::cold]] void wr_bit_slow(std::uint32_t o, bool v);
+  std::int64_t rd_int(std::uint32_t o);
+  float rd_flt(std::uint32_t o);
+  std::uint16_t rd_word(std::uint32_t o);
+  void wr_word(std::uint32_t o, std::uint16_t v);
+  ValueType dest_type(std::uint32_t o) const;
+  std::uint16_t* element(std::uint32_t o);
+  // Stores an integer-domain result with the S:2/14 overflow rule; returns the value stored.
+  std::int64_t st_int(std::uint32_t o, std::int64_t v, bool& overflow);
+  // Stores raw bits (logical instructions): truncation to the destination width, no overflow.
+  std::int64_t st_bits(std::uint32_t o, std::int64_t v);
+  // Stores a float-domain result (float destination, or rounding/saturating into an integer).
+  double st_flt(std::uint32_t o, float v, bool& overflow);
+  void set_flags(bool c, bool v, bool z, bool s);
+  bool file_span(std::uint32_t o, std::uint32_t elements, Span& out, std::string_view what);
+  std::uint16_t span_get(const Span& s, std::uint32_t i);
+  void span_set(const Span& s, std::uint32_t i, std::uint16_t v);
+
+  // Instruction handlers that are too long to inline in the dispatch loop. They are kept out of
+  // line on purpose: inlined, they made the compiler spill the loop's hot registers.
+#define SOFTSLC_HANDLER [[gnu::noinline]]
+  SOFTSLC_HANDLER bool timer(Op op, const std::uint32_t* o, std::uint32_t h, bool rung, Nanoseconds now_in_scan);
+  SOFTSLC_HANDLER void counter(Op op, const std::uint32_t* o, bool rung);
+  SOFTSLC_HANDLER void reset(const std::uint32_t* o, std::uint32_t h);
+  SOFTSLC_HANDLER bool compare(Op op, const std::uint32_t* o, std::uint32_t h);
+  SOFTSLC_HANDLER void math(Op op, const std::uint32_t* o, std::uint32_t h);
+  SOFTSLC_HANDLER void unary(Op op, const std::uint32_t* o, std::uint32_t h);
+  SOFTSLC_HANDLER void logical(Op op, const std::uint32_t* o);
+  SOFTSLC_HANDLER void move(Op op, const std::uint32_t* o, std::uint32_t h);
+  SOFTSLC_HANDLER void copy_file(const std::uint32_t* o);
+  SOFTSLC_HANDLER void fill_file(const std::uint32_t* o, std::uint32_t h);
+  SOFTSLC_HANDLER void bit_shift(Op op, const std::uint32_t* o, bool rung);
+  SOFTSLC_HANDLER void sequencer(Op op, const std::uint32_t* o, bool rung);
+  SOFTSLC_HANDLER void stack(Op op, const std::uint32_t* o, bool rung);
+
+  // Virtual time spent on the slow paths (M0/M1 accesses, file-instruction words); folded into
+  // the scan time after the instruction.
+  void charge_m(MFileAccess row, int words) { extra_ns_ += model_.mfile_access_cost(row, words); }
+  void charge_words(Op op, std::uint32_t words) {
+    extra_ns_ += per_word_[static_cast<std::size_t>(op)] * static_cast<Nanoseconds>(words);
+  }
+
+  const CompiledProgram& prog_;
+  DataTable& table_;
+  ChassisAccess& chassis_;
+  const ScanTimeModel& model_;
+  std::array<Nanoseconds, kInstructionCount> per_word_{};
+  Nanoseconds extra_ns_ = 0;
+  std::uint16_t* w_;
+  const std::uint32_t* code_;
+  std::vector<Nanoseconds> cost_;
+  std::array<std::uint8_t, kOpCount> countable_{};
+  int max_depth_;
+  std::uint32_t s0_, s2_, s5_, s13_, s14_, s24_;
+
+  // Per-scan state used by the handlers.
+  VirtualTime scan_start_ = 0;
+  bool first_pass_ = false;
+  bool faulted_ = false;
+  std::uint64_t count_ = 0;  // instructions executed this scan
+  FaultInfo fault_;
+  std::array<std::uint16_t, 64> scratch_{};  // where a faulting operand's access lands
+#undef SOFTSLC_HANDLER
+};
+
+}  // namespace softslc

@@ -1,0 +1,24 @@
+#include "vm/module.h"
+
+namespace softslc {
+
+std::string_view to_string(Mode m) {
+  switch (m) {
+    case Mode::Program: return "program";
+    case Mode::Run: return "run";
+    case Mode::Test: return "test";
+    case Mode::Faulted: return "faulted";
+  }
+  return "?";
+}
+
+std::string_view to_string(MAccess a) {
+  switch (a) {
+    case MAccess::Ok: return "ok";
+    case MAccess::NoSuchWord: return "no such word";
+    case MAccess::Forbidden: return "forbidden";
+  }
+  return "?";
+}
+
+}  // namespace softslc

@@ -1,0 +1,522 @@
+#include "vm/runtime.h"
+
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "parser/checker.h"
+#include "parser/loader.h"
+#include "vm/discrete_io.h"
+
+namespace softslc {
+
+namespace {
+
+// S:1/0-4 mode codes (DF1 p.10-3): 1 program, 6 run, 8 test single scan.
+std::uint16_t mode_code(Mode m) {
+  switch (m) {
+    case Mode::Program: return 1;
+    case Mode::Run: return 6;
+    case Mode::Test: return 8;
+    case Mode::Faulted: return 1;
+  }
+  return 1;
+}
+
+std::uint16_t clamp_u8(std::int64_t v) { return static_cast<std::uint16_t>(std::clamp<std::int64_t>(v, 0, 255)); }
+std::uint16_t clamp_u16(std::int64_t v) { return static_cast<std::uint16_t>(std::clamp<std::int64_t>(v, 0, 32767)); }
+
+}  // namespace
+
+std::string RuntimeResult::render_errors() const {
+  std::string s;
+  for (const auto& e : errors) s += e.to_string() + "\n";
+  return s;
+}
+
+RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
+  CompileOptions co;
+  co.processor = options.processor;
+  co.module_instruction = options.module_instruction;
+  CompileResult cr = compile(program, co);
+  RuntimeResult r;
+  if (!cr.ok()) {
+    r.errors = std::move(cr.errors);
+    return r;
+  }
+  auto compiled = std::make_unique<CompiledProgram>(std::move(*cr.program));
+  r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
+  return r;
+}
+
+Runtime::Runtime(std::unique_ptr<CompiledProgram> program, RuntimeOptions options)
+    : program_(std::move(program)),
+      model_(options.time_model ? options.time_model : std::make_shared<DefaultScanTimeModel>()),
+      data_(program_->layout, program_->initial_words) {
+  const DataTableLayout& L = *program_->layout;
+  // Modules: a specialty module from the factory, else generic discrete I/O, for every slot.
+  for (const auto& s : program_->slots) {
+    if (s.slot < 0 || s.slot >= kMaxSlots) continue;
+    std::unique_ptr<Module> m = options.module_factory ? options.module_factory(s) : nullptr;
+    if (!m) m = std::make_unique<DiscreteIoModule>(s.slot, s.catalog, s.scan_in, s.scan_out);
+    m->attach(*this);
+    modules_[static_cast<std::size_t>(s.slot)] = m.get();
+    owned_modules_.push_back(std::move(m));
+  }
+  interp_ = std::make_unique<Interpreter>(*program_, data_, static_cast<ChassisAccess&>(*this), *model_);
+
+  const std::uint32_t in_words = L.files[1].elements, out_words = L.files[0].elements;
+  in_force_mask_.assign(in_words, 0);
+  in_force_value_.assign(in_words, 0);
+  out_force_mask_.assign(out_words, 0);
+  out_force_value_.assign(out_words, 0);
+  out_sent_.assign(out_words, 0);
+  std::size_t biggest = 0;
+  for (const Module* m : modules_)
+    if (m) biggest = std::max<std::size_t>(biggest, static_cast<std::size_t>(std::max(m->input_words(), 0)));
+  io_scratch_.assign(biggest, 0);
+
+  // The program's FORCE blocks: ON bits forced to 1; an OFF column bit of 0 forces the bit to 0.
+  for (const auto& f : program_->forces) {
+    if (f.slot < 0 || f.slot >= kMaxSlots) continue;
+    const bool input = f.type == FileType::Input;
+    const SlotImage& si = (input ? L.input_slots : L.output_slots)[static_cast<std::size_t>(f.slot)];
+    if (!si.present) continue;
+    auto& mask = input ? in_force_mask_ : out_force_mask_;
+    auto& value = input ? in_force_value_ : out_force_value_;
+    for (std::size_t k = 0; k < f.words.size() && k < si.words; ++k) {
+      const std::size_t i = si.first + k;
+      mask[i] = static_cast<std::uint16_t>(f.words[k].on | ~f.words[k].off);
+      value[i] = f.words[k].on;
+    }
+  }
+  // A downloaded status file may carry the state it was saved in; a fresh processor is neither
+  // faulted nor in its first pass until it enters Run.
+  data_.set_status(status::kMode, static_cast<std::uint16_t>(data_.status(status::kMode) &
+                                                              ~(status::kMajorHalt | status::kFirstPass)));
+  write_mode_bits();
+}
+
+Runtime::~Runtime() = default;
+
+// ---- Modes ------------------------------------------------------------------------------------------------
+
+void Runtime::write_mode_bits() {
+  std::uint16_t s1 = data_.status(status::kMode);
+  s1 = static_cast<std::uint16_t>((s1 & ~0x001Fu) | mode_code(mode_));
+  bool installed = false;
+  for (auto m : in_force_mask_) installed = installed || m != 0;
+  for (auto m : out_force_mask_) installed = installed || m != 0;
+  s1 = static_cast<std::uint16_t>(installed ? (s1 | status::kForcesInstalled) : (s1 & ~status::kForcesInstalled));
+  s1 = static_cast<std::uint16_t>(installed && forces_enabled_ ? (s1 | status::kForcesEnabled)
+                                                               : (s1 & ~status::kForcesEnabled));
+  data_.set_status(status::kMode, s1);
+}
+
+void Runtime::notify_modes(Mode from, Mode to) {
+  for (Module* m : modules_)
+    if (m) m->on_mode_change(from, to);
+}
+
+RuntimeStatus Runtime::set_mode(Mode m) {
+  if (m == Mode::Faulted) return RuntimeStatus::failure("only a major fault puts the processor in Faulted mode");
+  if (fault_ || mode_ == Mode::Faulted)
+    return RuntimeStatus::failure("a major fault is active (" + fault_->to_string() + "); clear it first");
+  if (m == mode_) return {};
+  const Mode from = mode_;
+  mode_ = m;
+  if (m == Mode::Run || m == Mode::Test) {
+    // Entering Run or Test: a first pass (S:1/15) and S:4 zeroed (PT1 27-13).
+    first_pass_ = true;
+    data_.set_status(status::kClock, 0);
+    s4_tick_ = clock_.now() / kTick;
+    single_scan_pending_ = false;
+  }
+  write_mode_bits();
+  notify_modes(from, m);
+  return {};
+}
+
+void Runtime::clear_fault() {
+  if (!fault_ && mode_ != Mode::Faulted) return;
+  fault_.reset();
+  data_.set_status(status::kMode, static_cast<std::uint16_t>(data_.status(status::kMode) & ~status::kMajorHalt));
+  const Mode from = mode_;
+  mode_ = Mode::Program;
+  write_mode_bits();
+  notify_modes(from, mode_);
+}
+
+void Runtime::enter_fault(const FaultInfo& f) {
+  FaultInfo info = f;
+  info.time = clock_.now();
+  fault_ = info;
+  data_.set_status(status::kFaultCode, f.code);
+  data_.set_status(status::kMode, static_cast<std::uint16_t>(data_.status(status::kMode) | status::kMajorHalt));
+  const Mode from = mode_;
+  mode_ = Mode::Faulted;
+  notify_modes(from, mode_);
+}
+
+// ---- The scan cycle ----------------------------------------------------------------------------------------
+
+Nanoseconds Runtime::input_scan() {
+  const DataTableLayout& L = *program_->layout;
+  const FileLayout& in = L.files[1];
+  std::uint16_t* w = data_.words();
+  Nanoseconds cost = 0;
+  for (Module* m : modules_) {
+    if (!m) continue;
+    const SlotImage& si = L.input_slots[static_cast<std::size_t>(m->slot())];
+    if (si.present) m->input_scan(std::span<std::uint16_t>(w + in.base + si.first, si.words));
+    cost += model_->input_scan_cost(*m);
+  }
+  apply_input_forces(0, in.elements);
+  return cost;
+}
+
+void Runtime::apply_input_forces(std::uint32_t first, std::uint32_t count) {
+  if (!forces_enabled_) return;
+  std::uint16_t* w = data_.words() + program_->layout->files[1].base;
+  for (std::uint32_t i = first; i < first + count && i < in_force_mask_.size(); ++i)
+    w[i] = static_cast<std::uint16_t>((w[i] & ~in_force_mask_[i]) | (in_force_value_[i] & in_force_mask_[i]));
+}
+
+std::uint16_t Runtime::forced_output(std::uint32_t i) const {
+  const std::uint16_t v = data_.word(program_->layout->files[0].base + i);
+  if (!forces_enabled_) return v;
+  return static_cast<std::uint16_t>((v & ~out_force_mask_[i]) | (out_force_value_[i] & out_force_mask_[i]));
+}
+
+ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elapsed) {
+  // S:4 counts 10 ms ticks of virtual time; it is brought up to date once per scan.
+  const std::int64_t tick = (scan_start + elapsed) / kTick;
+  data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
+  s4_tick_ = tick;
+  std::uint16_t s1 = data_.status(status::kMode);
+  data_.set_status(status::kMode, static_cast<std::uint16_t>(first_pass_ ? (s1 | status::kFirstPass)
+                                                                         : (s1 & ~status::kFirstPass)));
+  const Nanoseconds watchdog = static_cast<Nanoseconds>(data_.status(status::kWatchdog) >> 8) * kTick;
+  return interp_->program_scan(scan_start, elapsed, first_pass_, watchdog);
+}
+
+Nanoseconds Runtime::output_scan() {
+  const DataTableLayout& L = *program_->layout;
+  // Outputs are energised only in Run; Program, Test and Faulted de-energise them.
+  const bool live = mode_ == Mode::Run;
+  for (std::uint32_t i = 0; i < out_sent_.size(); ++i) out_sent_[i] = live ? forced_output(i) : 0;
+  Nanoseconds cost = 0;
+  for (Module* m : modules_) {
+    if (!m) continue;
+    const SlotImage& si = L.output_slots[static_cast<std::size_t>(m->slot())];
+    if (si.present) m->output_scan(std::span<const std::uint16_t>(out_sent_.data() + si.first, si.words));
+    cost += model_->output_scan_cost(*m);
+  }
+  return cost;
+}
+
+Nanoseconds Runtime::housekeeping(Nanoseconds scan_time, bool executed) {
+  if (!executed) return model_->housekeeping_cost();
+  // RM B-19, B-42: S:3 low byte = this scan in 10 ms ticks; S:22 max, S:23 running average
+  // (avg*7 + scan)/8, both in 10 ms units unless S:33/13 selects 1 ms; S:35 = last scan in ms.
+  const std::int64_t ticks = scan_time / kTick;
+  const std::uint16_t s3 = data_.status(status::kWatchdog);
+  data_.set_status(status::kWatchdog, static_cast<std::uint16_t>((s3 & 0xFF00) | clamp_u8(ticks)));
+  const bool ms_units = (data_.status(status::kCommBits) & status::kScanIn1ms) != 0;
+  const std::int64_t unit = ms_units ? scan_time / kNsPerMs : ticks;
+  data_.set_status(status::kMaxScan, std::max<std::uint16_t>(data_.status(status::kMaxScan), clamp_u16(unit)));
+  const std::int64_t avg = (static_cast<std::int64_t>(data_.status(status::kAvgScan)) * 7 + unit) / 8;
+  data_.set_status(status::kAvgScan, clamp_u16(avg));
+  data_.set_status(status::kLastScanMs, clamp_u16(scan_time / kNsPerMs));
+  stats_.scans += 1;
+  stats_.last = scan_time;
+  stats_.max = std::max(stats_.max, scan_time);
+  stats_.total += scan_time;
+  return model_->housekeeping_cost();
+}
+
+void Runtime::scan_once(bool single_scan_step) {
+  const VirtualTime start = clock_.now();
+  Nanoseconds used = input_scan();
+  const bool execute = mode_ == Mode::Run || (mode_ == Mode::Test && single_scan_step);
+  if (execute) {
+    ProgramScanResult r = program_scan(start, used);
+    used = r.elapsed;
+    stats_.instructions += r.instructions;
+    if (r.faulted) enter_fault(r.fault);
+    used += output_scan();
+    used += model_->housekeeping_cost();
+    // The watchdog covers the whole scan cycle: a scan whose I/O pushed it past S:3H faults at
+    // its end (the program-scan check only sees the time up to each rung).
+    const Nanoseconds watchdog = static_cast<Nanoseconds>(data_.status(status::kWatchdog) >> 8) * kTick;
+    if (!r.faulted && used >= watchdog) {
+      FaultInfo f;
+      f.code = fault::kWatchdog;
+      f.file = r.last_file;
+      f.rung = r.last_rung;
+      f.message = "scan time reached the watchdog (S:3 high byte, " + std::to_string(watchdog / kTick) + " x 10 ms)";
+      enter_fault(f);
+    }
+    housekeeping(used, true);
+    first_pass_ = false;
+    data_.set_status(status::kMode, static_cast<std::uint16_t>(data_.status(status::kMode) & ~status::kFirstPass));
+  } else {
+    used += output_scan();
+    used += housekeeping(used, false);
+  }
+  // Every scan takes some time, so run_for and run_until always make progress.
+  used = std::max<Nanoseconds>(used, kNsPerUs);
+  events_.run_until(start + used);
+}
+
+int Runtime::scan(int n) {
+  int done = 0;
+  for (; done < n; ++done) {
+    const bool had_fault = fault_.has_value();
+    scan_once(true);
+    if (!had_fault && fault_) return done + 1;
+  }
+  return done;
+}
+
+int Runtime::run_for(Nanoseconds duration) {
+  const VirtualTime end = clock_.now() + std::max<Nanoseconds>(duration, 0);
+  int n = 0;
+  while (clock_.now() < end) {
+    scan_once(false);
+    ++n;
+  }
+  return n;
+}
+
+bool Runtime::run_until(const std::function<bool(const Runtime&)>& pred, Nanoseconds limit) {
+  if (pred(*this)) return true;
+  const VirtualTime end = clock_.now() + std::max<Nanoseconds>(limit, 0);
+  while (clock_.now() < end) {
+    scan_once(false);
+    if (pred(*this)) return true;
+  }
+  return false;
+}
+
+// ---- Data access for tools ----------------------------------------------------------------------------------
+
+std::optional<Location> Runtime::resolve_tool_address(const Address& a, std::string& error) const {
+  const DataTableLayout& L = *program_->layout;
+  if (!a.is_indirect() && !a.indexed) {
+    auto loc = L.locate(a, &error);
+    return loc;
+  }
+  // Indexed and indirect addresses go through the interpreter's checked resolver.
+  DynOperand d;
+  d.address = a;
+  d.type = a.type;
+  d.vtype = a.has_bit() || is_structured(a.type) ? ValueType::Int16 : value_type_of(a.type);
+  d.indexed = a.indexed;
+  d.bit_offset = a.bit_offset_form;
+  d.file = a.file;
+  d.element = a.element;
+  d.word = a.word;
+  d.bit = a.bit;
+  const auto ref = [&](const std::optional<IndirectRef>& r) -> std::int32_t {
+    if (!r) return -1;
+    Address p;
+    p.type = r->type;
+    p.file = r->file;
+    p.element = r->element;
+    p.word = r->word;
+    auto loc = L.locate(p, &error);
+    return loc ? static_cast<std::int32_t>(loc->word) : -2;
+  };
+  d.ptr_file = ref(a.indirect_file);
+  d.ptr_element = ref(a.indirect_element);
+  d.ptr_word = ref(a.indirect_word);
+  d.ptr_bit = ref(a.indirect_bit);
+  if (d.ptr_file == -2 || d.ptr_element == -2 || d.ptr_word == -2 || d.ptr_bit == -2) return std::nullopt;
+  Location loc;
+  if (!interp_->resolve_for_tool(d, loc, error)) return std::nullopt;
+  return loc;
+}
+
+RuntimeStatus Runtime::set(std::string_view address, Value v) {
+  std::string error;
+  auto a = parse_address(address, &error);
+  if (!a) return RuntimeStatus::failure(error);
+  return set(*a, v);
+}
+
+RuntimeStatus Runtime::set(const Address& a, Value v) {
+  if (a.type == FileType::Input && !a.is_indirect() && !a.indexed) {
+    Module* m = module(a.element);
+    if (!m) return RuntimeStatus::failure(to_string(a) + ": no module in slot " + std::to_string(a.element));
+    const std::uint16_t mask = a.bit >= 0 ? static_cast<std::uint16_t>(1u << a.bit) : 0xFFFF;
+    const auto value = static_cast<std::uint16_t>(a.bit >= 0 ? (v.as_bool() ? mask : 0) : v.as_int());
+    if (!m->set_field_input(a.word_in_element(), value, mask))
+      return RuntimeStatus::failure(to_string(a) + ": the module in slot " + std::to_string(a.element) +
+                                    " has no such simulated input");
+    return {};
+  }
+  if (is_mfile(a.type)) {
+    const MFile f = a.type == FileType::M0 ? MFile::M0 : MFile::M1;
+    std::uint16_t word = 0;
+    MAccess r = read_m(a.element, f, a.word_in_element(), word);
+    if (r == MAccess::Ok) {
+      if (a.bit >= 0) {
+        const auto mask = static_cast<std::uint16_t>(1u << a.bit);
+        word = static_cast<std::uint16_t>(v.as_bool() ? (word | mask) : (word & ~mask));
+      } else {
+        word = static_cast<std::uint16_t>(v.as_int());
+      }
+      r = write_m(a.element, f, a.word_in_element(), word);
+    }
+    if (r != MAccess::Ok) return RuntimeStatus::failure(to_string(a) + ": module refused (" + std::string(to_string(r)) + ")");
+    return {};
+  }
+  std::string error;
+  auto loc = resolve_tool_address(a, error);
+  if (!loc) return RuntimeStatus::failure(error);
+  data_.write(*loc, v);
+  return {};
+}
+
+std::optional<Value> Runtime::get(std::string_view address, std::string* error) const {
+  std::string err;
+  auto a = parse_address(address, &err);
+  if (!a) {
+    if (error) *error = err;
+    return std::nullopt;
+  }
+  return get(*a, error);
+}
+
+std::optional<Value> Runtime::get(const Address& a, std::string* error) const {
+  std::string err;
+  if (is_mfile(a.type)) {
+    std::uint16_t word = 0;
+    Module* m = module(a.element);
+    const MAccess r = m ? m->read_m(a.type == FileType::M0 ? MFile::M0 : MFile::M1, a.word_in_element(), word)
+                        : MAccess::NoSuchWord;
+    if (r != MAccess::Ok) {
+      if (error) *error = to_string(a) + ": module refused (" + std::string(to_string(r)) + ")";
+      return std::nullopt;
+    }
+    if (a.bit >= 0) return Value::bit((word >> a.bit) & 1u);
+    return Value::of_int(static_cast<std::int16_t>(word));
+  }
+  auto loc = resolve_tool_address(a, err);
+  if (!loc) {
+    if (error) *error = err;
+    return std::nullopt;
+  }
+  return data_.read(*loc);
+}
+
+Value Runtime::value(std::string_view address) const {
+  std::string err;
+  auto v = get(address, &err);
+  if (!v) throw std::invalid_argument(err);
+  return *v;
+}
+
+std::string Runtime::format(std::string_view address) const { return value(address).to_string(); }
+
+// ---- Forces ------------------------------------------------------------------------------------------------
+
+RuntimeStatus Runtime::force(std::string_view address, bool on) {
+  std::string error;
+  auto a = parse_address(address, &error);
+  if (!a) return RuntimeStatus::failure(error);
+  if (!is_io(a->type) || a->bit < 0 || a->is_indirect() || a->indexed)
+    return RuntimeStatus::failure(std::string(address) + ": only I: and O: bits can be forced");
+  auto loc = program_->layout->locate(*a, &error);
+  if (!loc) return RuntimeStatus::failure(error);
+  const bool input = a->type == FileType::Input;
+  const std::uint32_t i = loc->word - program_->layout->files[input ? 1 : 0].base;
+  auto& mask = input ? in_force_mask_ : out_force_mask_;
+  auto& value = input ? in_force_value_ : out_force_value_;
+  const auto bit = static_cast<std::uint16_t>(1u << loc->bit);
+  mask[i] |= bit;
+  value[i] = static_cast<std::uint16_t>(on ? (value[i] | bit) : (value[i] & ~bit));
+  write_mode_bits();
+  return {};
+}
+
+RuntimeStatus Runtime::unforce(std::string_view address) {
+  std::string error;
+  auto a = parse_address(address, &error);
+  if (!a) return RuntimeStatus::failure(error);
+  if (!is_io(a->type) || a->bit < 0 || a->is_indirect() || a->indexed)
+    return RuntimeStatus::failure(std::string(address) + ": only I: and O: bits can be forced");
+  auto loc = program_->layout->locate(*a, &error);
+  if (!loc) return RuntimeStatus::failure(error);
+  const bool input = a->type == FileType::Input;
+  const std::uint32_t i = loc->word - program_->layout->files[input ? 1 : 0].base;
+  auto& mask = input ? in_force_mask_ : out_force_mask_;
+  mask[i] = static_cast<std::uint16_t>(mask[i] & ~(1u << loc->bit));
+  write_mode_bits();
+  return {};
+}
+
+void Runtime::clear_forces() {
+  std::fill(in_force_mask_.begin(), in_force_mask_.end(), 0);
+  std::fill(out_force_mask_.begin(), out_force_mask_.end(), 0);
+  write_mode_bits();
+}
+
+void Runtime::enable_forces(bool enabled) {
+  forces_enabled_ = enabled;
+  write_mode_bits();
+}
+
+// ---- Modules ------------------------------------------------------------------------------------------------
+
+Module* Runtime::module(int slot) const {
+  if (slot < 0 || slot >= kMaxSlots) return nullptr;
+  return modules_[static_cast<std::size_t>(slot)];
+}
+
+EventQueue::EventId Runtime::schedule_at(VirtualTime at, EventQueue::Callback cb) {
+  return events_.schedule_at(at, std::move(cb));
+}
+
+bool Runtime::cancel_event(EventQueue::EventId id) { return events_.cancel(id); }
+
+MAccess Runtime::read_m(int slot, MFile f, int word, std::uint16_t& value) {
+  Module* m = module(slot);
+  return m ? m->read_m(f, word, value) : MAccess::NoSuchWord;
+}
+
+MAccess Runtime::write_m(int slot, MFile f, int word, std::uint16_t value) {
+  Module* m = module(slot);
+  return m ? m->write_m(f, word, value) : MAccess::NoSuchWord;
+}
+
+void Runtime::immediate_input(int slot, int first, int count, std::uint16_t mask) {
+  Module* m = module(slot);
+  const DataTableLayout& L = *program_->layout;
+  if (!m || slot < 0 || slot >= kMaxSlots) return;
+  const SlotImage& si = L.input_slots[static_cast<std::size_t>(slot)];
+  if (!si.present) return;
+  // The module fills a scratch image; only the requested words, under the mask, reach I:.
+  std::span<std::uint16_t> tmp(io_scratch_.data(), si.words);
+  m->input_scan(tmp);
+  std::uint16_t* w = data_.words() + L.files[1].base + si.first;
+  for (int k = first; k < first + count && k < static_cast<int>(si.words); ++k)
+    w[k] = static_cast<std::uint16_t>((w[k] & ~mask) | (tmp[static_cast<std::size_t>(k)] & mask));
+  apply_input_forces(si.first + static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(count));
+}
+
+void Runtime::immediate_output(int slot, int first, int count, std::uint16_t mask) {
+  Module* m = module(slot);
+  const DataTableLayout& L = *program_->layout;
+  if (!m || slot < 0 || slot >= kMaxSlots || mode_ != Mode::Run) return;
+  const SlotImage& si = L.output_slots[static_cast<std::size_t>(slot)];
+  if (!si.present) return;
+  for (int k = first; k < first + count && k < static_cast<int>(si.words); ++k) {
+    const std::uint32_t i = si.first + static_cast<std::uint32_t>(k);
+    out_sent_[i] = static_cast<std::uint16_t>((out_sent_[i] & ~mask) | (forced_output(i) & mask));
+  }
+  m->output_scan(std::span<const std::uint16_t>(out_sent_.data() + si.first, si.words));
+}
+
+}  // namespace softslc

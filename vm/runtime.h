@@ -1,0 +1,199 @@
+// The runtime: one simulated SLC 500 processor and its chassis, for tools and tests.
+//
+// A Runtime is built from a loaded Program. It compiles it, lays out the data table, puts a
+// module in every configured slot (a specialty module from RuntimeOptions::module_factory, else
+// generic discrete I/O), installs the program's forces, and starts in Program mode at virtual
+// time 0. Nothing happens until the caller scans or runs it.
+//
+// The scan cycle is the SLC's, each phase a separate function, in this order:
+//
+//   input_scan()     every module's input image -> I file, then input forces
+//   program_scan()   file 2 from rung 0 (subroutines by JSR) — Run and Test modes only
+//   output_scan()    O file + output forces -> every module (zeros unless in Run)
+//   housekeeping()   status words (S:1/15, S:3, S:4, S:22, S:23, S:35), statistics
+//
+// after which the virtual clock advances by the scan's predicted duration (ScanTimeModel) and
+// the event queue runs every module event due by then. In Program and Faulted mode a scan is
+// only the I/O and housekeeping phases, so time still passes and modules still run. Test mode
+// is the SLC's "test single scan": each scan() call executes the program once with outputs
+// disabled; run_for/run_until in Test mode only idle.
+//
+// A major fault (from the program scan, or the watchdog at the end of a scan) stops the program
+// scan at once, sets S:1/13 and S:6, records file/rung/message (fault()), and puts the runtime in
+// Faulted mode with its outputs de-energised. clear_fault() returns to Program mode.
+//
+// Determinism: the runtime reads no wall clock and iterates only ordered containers; the same
+// program, inputs and calls give byte-identical data tables, times and fault records.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "parser/program.h"
+#include "vm/bytecode.h"
+#include "vm/compiler.h"
+#include "vm/data_table.h"
+#include "vm/event_queue.h"
+#include "vm/faults.h"
+#include "vm/interpreter.h"
+#include "vm/module.h"
+#include "vm/scan_time_model.h"
+#include "vm/virtual_time.h"
+
+namespace softslc {
+
+// Creates the module for a slot; returning nullptr means "generic discrete I/O".
+using ModuleFactory = std::function<std::unique_ptr<Module>(const SlotConfig&)>;
+
+struct RuntimeOptions {
+  std::optional<ProcessorModel> processor;         // overrides the program's START line
+  std::shared_ptr<const ScanTimeModel> time_model;  // default: DefaultScanTimeModel
+  ModuleFactory module_factory;
+  ModuleInstructionHook module_instruction;
+};
+
+// Success, or a message saying why a request was refused.
+struct RuntimeStatus {
+  bool ok = true;
+  std::string message;
+  explicit operator bool() const { return ok; }
+  static RuntimeStatus failure(std::string m) { return {false, std::move(m)}; }
+};
+
+struct ScanStats {
+  std::uint64_t scans = 0;        // program scans executed since the runtime was created
+  Nanoseconds last = 0;           // duration of the last program scan (whole scan cycle)
+  Nanoseconds max = 0;
+  Nanoseconds total = 0;
+  std::uint64_t instructions = 0;  // instructions executed, all scans
+  Nanoseconds avg() const { return scans ? total / static_cast<Nanoseconds>(scans) : 0; }
+  std::int64_t last_us() const { return last / kNsPerUs; }
+  std::int64_t max_us() const { return max / kNsPerUs; }
+  std::int64_t avg_us() const { return avg() / kNsPerUs; }
+};
+
+class Runtime;
+
+struct RuntimeResult {
+  std::unique_ptr<Runtime> runtime;
+  std::vector<CompileError> errors;
+  bool ok() const { return runtime != nullptr; }
+  std::string render_errors() const;
+};
+
+class Runtime final : private ModuleHost, private ChassisAccess {
+ public:
+  static RuntimeResult create(const Program& program, RuntimeOptions options = {});
+  ~Runtime() override;
+  Runtime(const Runtime&) = delete;
+  Runtime& operator=(const Runtime&) = delete;
+
+  // ---- Modes and faults ----
+  Mode mode() const override { return mode_; }
+  // Program, Run or Test. Entering Run/Test sets up a first pass (S:1/15) and zeroes S:4;
+  // refused while a fault is active (clear_fault() first) and for Mode::Faulted.
+  RuntimeStatus set_mode(Mode m);
+  // Clears an active major fault: S:1/13 off, the fault record cleared, Program mode. S:6 keeps
+  // its code (PT1 27-17: the processor does not clear it).
+  void clear_fault();
+  const std::optional<FaultInfo>& fault() const { return fault_; }
+
+  // ---- Running ----
+  // Runs n scan cycles (in Test mode: n single scans). Stops early when a scan faults. Returns
+  // the number of scans run.
+  int scan(int n = 1);
+  // Runs whole scans until at least `duration` of virtual time has passed. Returns scans run.
+  int run_for(Nanoseconds duration);
+  // Runs whole scans until `pred` holds (checked before the first scan and after each) or
+  // `limit` of virtual time has passed. Returns whether `pred` held.
+  bool run_until(const std::function<bool(const Runtime&)>& pred, Nanoseconds limit);
+  VirtualTime now() const override { return clock_.now(); }
+  const ScanStats& stats() const { return stats_; }
+
+  // ---- Data ----
+  // Writes a value. An I: address sets the simulated field input of the slot's module (seen
+  // from the next input scan, as on the real processor); M0/M1 go to the module's accessor;
+  // anything else writes the data table now (floats into integers round half to even).
+  RuntimeStatus set(std::string_view address, Value v);
+  RuntimeStatus set(const Address& address, Value v);
+  // Reads a value: bits as Bit, integer words as Integer, F as Float.
+  std::optional<Value> get(std::string_view address, std::string* error = nullptr) const;
+  std::optional<Value> get(const Address& address, std::string* error = nullptr) const;
+  // get() that throws std::invalid_argument for a bad address (tests, quick tools).
+  Value value(std::string_view address) const;
+  // The printable value: bits 0/1, integers signed decimal, floats %g.
+  std::string format(std::string_view address) const;
+
+  // ---- Forces (I and O bits) ----
+  RuntimeStatus force(std::string_view address, bool on);
+  RuntimeStatus unforce(std::string_view address);
+  void clear_forces();
+  void enable_forces(bool enabled);
+  bool forces_enabled() const { return forces_enabled_; }
+
+  // ---- Access for tools and tests ----
+  Module* module(int slot) const;
+  EventQueue& events() { return events_; }
+  const CompiledProgram& compiled() const { return *program_; }
+  DataTable& data() { return data_; }
+  const DataTable& data() const { return data_; }
+  const ScanTimeModel& time_model() const { return *model_; }
+
+ private:
+  Runtime(std::unique_ptr<CompiledProgram> program, RuntimeOptions options);
+
+  // The scan cycle.
+  void scan_once(bool single_scan_step);
+  Nanoseconds input_scan();
+  ProgramScanResult program_scan(VirtualTime scan_start, Nanoseconds elapsed);
+  Nanoseconds output_scan();
+  Nanoseconds housekeeping(Nanoseconds scan_time, bool executed);
+  void enter_fault(const FaultInfo& f);
+  void apply_input_forces(std::uint32_t first, std::uint32_t count);
+  std::uint16_t forced_output(std::uint32_t i) const;
+  void write_mode_bits();
+  void notify_modes(Mode from, Mode to);
+
+  // Address helpers for the tool API.
+  std::optional<Location> resolve_tool_address(const Address& a, std::string& error) const;
+
+  // ModuleHost.
+  EventQueue::EventId schedule_at(VirtualTime at, EventQueue::Callback cb) override;
+  bool cancel_event(EventQueue::EventId id) override;
+  // ChassisAccess.
+  MAccess read_m(int slot, MFile f, int word, std::uint16_t& value) override;
+  MAccess write_m(int slot, MFile f, int word, std::uint16_t value) override;
+  void immediate_input(int slot, int first, int count, std::uint16_t mask) override;
+  void immediate_output(int slot, int first, int count, std::uint16_t mask) override;
+
+  std::unique_ptr<CompiledProgram> program_;
+  std::shared_ptr<const ScanTimeModel> model_;
+  DataTable data_;
+  VirtualClock clock_;
+  EventQueue events_{clock_};
+  std::vector<std::unique_ptr<Module>> owned_modules_;
+  std::array<Module*, kMaxSlots> modules_{};
+  std::unique_ptr<Interpreter> interp_;
+
+  Mode mode_ = Mode::Program;
+  bool first_pass_ = false;
+  bool single_scan_pending_ = false;
+  std::optional<FaultInfo> fault_;
+  ScanStats stats_;
+  std::int64_t s4_tick_ = 0;  // tick count when S:4 was last advanced
+
+  // Forces, per word of the I and O images: which bits are forced and to what.
+  std::vector<std::uint16_t> in_force_mask_, in_force_value_;
+  std::vector<std::uint16_t> out_force_mask_, out_force_value_;
+  bool forces_enabled_ = true;
+  // What the output scan last delivered to each module (IOM merges into it).
+  std::vector<std::uint16_t> out_sent_;
+  std::vector<std::uint16_t> io_scratch_;
+};
+
+}  // namespace softslc

@@ -31,12 +31,13 @@ softslc="$build/tools/softslc/softslc"
 case "$mode" in
   demo)
     example="$root/examples/ladder/seal_in/seal_in.slc"
-    echo "== softslc check $example"
+    echo "== softslc check examples/ladder/seal_in/seal_in.slc"
     "$softslc" check "$example"
-    echo "== softslc fmt $example"
-    "$softslc" fmt "$example"
-    echo "== softslc throughput examples/throughput/rio_example1.json"
-    "$softslc" throughput "$root/examples/throughput/rio_example1.json"
+    echo "== softslc run: press START for 3 scans, then hold the overload contact for 1.5 s of virtual time"
+    "$softslc" run "$example" --set START_PB=1 --scans 3 --print MOTOR --print C5:0.ACC
+    "$softslc" run "$example" --set OL_CONTACT=1 --for 1.5s --print OL_TRIPPED --print TRIP_LAMP --print T4:0.ACC
+    echo "== softslc scantime on an SLC 5/03 and an SLC 5/05"
+    "$softslc" scantime "$example" --processor 1747-L532 --processor 1747-L552
     ;;
   test)
     cd "$build"

@@ -1,5 +1,6 @@
 #include "vm/runtime.h"
 
+#include "vm/profile_scan_time_model.h"
 
 #include <algorithm>
 #include <stdexcept>
@@ -51,7 +52,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
 
 Runtime::Runtime(std::unique_ptr<CompiledProgram> program, RuntimeOptions options)
     : program_(std::move(program)),
-      model_(options.time_model ? options.time_model : std::make_shared<DefaultScanTimeModel>()),
+      model_(options.time_model ? options.time_model : make_scan_time_model(program_->processor)),
       data_(program_->layout, program_->initial_words) {
   const DataTableLayout& L = *program_->layout;
   // Modules: a specialty module from the factory, else generic discrete I/O, for every slot.

@@ -118,4 +118,90 @@ TEST(Cli, ThroughputBadInput) {
   EXPECT_NE(b.out.find("y.json: error: baud"), std::string::npos) << b.out;
 }
 
+TEST(Cli, RunPrintsValuesInOrder) {
+  auto r = run("run " + kExample + " --set START_PB=1 --scans 2 --print MOTOR --print O:2/0 --print C5:0.ACC");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  // START seals the motor in (rung 0); the counter does not count on the first scan because CU is
+  // set on entry to Run (RM 2-14), and START stays held, so no second transition either.
+  EXPECT_EQ(r.out, "MOTOR = 1\nO:2/0 = 1\nC5:0.ACC = 0\n");
+}
+
+TEST(Cli, RunForAVirtualDurationTripsTheOverload) {
+  // The overload timer T4:0 has time base 0.01 and preset 100: it trips after 1.00 s.
+  auto early = run("run " + kExample + " --set OL_CONTACT=1 --for 900ms --print OL_TRIPPED");
+  EXPECT_EQ(early.out, "OL_TRIPPED = 0\n");
+  auto late = run("run " + kExample + " --set OL_CONTACT=1 --for 1.1s --print OL_TRIPPED --print TRIP_LAMP");
+  EXPECT_EQ(late.out, "OL_TRIPPED = 1\nTRIP_LAMP = 1\n");
+}
+
+TEST(Cli, RunJsonHasTheContractFields) {
+  auto r = run("run " + kExample + " --scans 3 --json --print T4:0.PRE --print MOTOR");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  for (const char* field : {"\"scans\": 3", "\"virtual_time_ms\":", "\"values\": {", "\"T4:0.PRE\": 100",
+                            "\"MOTOR\": 0", "\"fault\": null", "\"scan_time_us\": {", "\"last\":", "\"max\":", "\"avg\":"})
+    EXPECT_NE(r.out.find(field), std::string::npos) << field << "\n" << r.out;
+  // Values keep the order given.
+  EXPECT_LT(r.out.find("T4:0.PRE"), r.out.find("MOTOR"));
+}
+
+TEST(Cli, RunIsDeterministic) {
+  auto a = run("run " + kExample + " --set OL_CONTACT=1 --for 2s --json --print T4:0.ACC --print S:4");
+  auto b = run("run " + kExample + " --set OL_CONTACT=1 --for 2s --json --print T4:0.ACC --print S:4");
+  EXPECT_EQ(a.out, b.out);
+}
+
+TEST(Cli, RunFaultExitsThree) {
+  auto f = temp_file("div0.slc", "START 1747-L532\nLADDER 2\nSOR DIV 5 0 N7:0 EOR\n");
+  auto r = run("run " + f.string() + " --print N7:0");
+  EXPECT_EQ(r.exit_code, 3) << r.out;
+  // RM 4-10: divide by zero places 32767 in the destination and sets the overflow trap, which
+  // becomes major fault 0020h at the end of the scan: it is detected at END, which RSLogix shows
+  // as the file's last rung (rung 1 of a one-rung file).
+  EXPECT_EQ(r.out, "N7:0 = 32767\nfault: 0020h file 2 rung 1: math overflow trap S:5/0 still set at the end of the "
+                   "program scan\n");
+  auto j = run("run " + f.string() + " --json");
+  EXPECT_EQ(j.exit_code, 3);
+  EXPECT_NE(j.out.find("\"code\": \"0020h\""), std::string::npos) << j.out;
+}
+
+TEST(Cli, RunUsageErrors) {
+  EXPECT_EQ(run("run " + kExample + " --set NOPE=1").exit_code, 2);
+  EXPECT_EQ(run("run " + kExample + " --set I:1/0").exit_code, 2);
+  EXPECT_EQ(run("run " + kExample + " --set I:1/0=abc").exit_code, 2);
+  EXPECT_EQ(run("run " + kExample + " --for 1.5parsecs").exit_code, 2);
+  EXPECT_EQ(run("run " + kExample + " --for 1s --scans 3").exit_code, 2);
+  EXPECT_EQ(run("run " + kExample + " --print N7:").exit_code, 2);
+  EXPECT_EQ(run("run " + kExample + " --processor 1747-L999").exit_code, 2);
+}
+
+TEST(Cli, DisasmShowsRungStructure) {
+  auto r = run("disasm " + kExample);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("rung 0\n"), std::string::npos);
+  EXPECT_NE(r.out.find("BST"), std::string::npos);
+  EXPECT_NE(r.out.find("TON"), std::string::npos);
+}
+
+TEST(Cli, ScantimeJsonAndComparison) {
+  auto f = temp_file("m.slc", "START 1747-L532\nSLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32\nLADDER 2\n"
+                              "SOR COP #B3:0 #M0:1.0 34 EOR\n");
+  auto j = run("scantime " + f.string() + " --json");
+  ASSERT_EQ(j.exit_code, 0) << j.out;
+  for (const char* field : {"\"processor\": \"1747-L532\"", "\"rungs\": [", "\"worst_us\":", "\"best_us\":",
+                            "\"mfile_us\": 1554.0", "\"files\": [", "\"overhead_us\":", "\"total_worst_us\":",
+                            "\"total_best_us\":"})
+    EXPECT_NE(j.out.find(field), std::string::npos) << field << "\n" << j.out;
+  auto c = run("scantime " + f.string() + " --processor 1747-L524:B --processor 1747-L524:C --processor 1747-L542");
+  ASSERT_EQ(c.exit_code, 0) << c.out;
+  // 1747-SN appendix B: 24360 us (5/02 B), 14550 us (5/02 C), 1517 us (5/04).
+  EXPECT_NE(c.out.find("/ 24360.0"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("/ 14550.0"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("/ 1517.0"), std::string::npos) << c.out;
+  EXPECT_EQ(run("scantime " + f.string() + " --processor 1747-L524:b").exit_code, 2);
+  auto bad = temp_file("bad-profile.json", R"({"schema": "softslc-timing-profile-1", "processor": "5/03", "x": 1})");
+  auto b = run("scantime " + f.string() + " --timing " + bad.string());
+  EXPECT_EQ(b.exit_code, 1);
+  EXPECT_NE(b.out.find("unknown key \"x\""), std::string::npos) << b.out;
+}
+
 }  // namespace

@@ -1,6 +1,9 @@
 #include "commands.h"
 
 #include <fstream>
+#include <chrono>
+#include <cstdio>
+#include <thread>
 #include <iostream>
 #include <sstream>
 
@@ -11,6 +14,11 @@
 #include "modules/throughput/throughput_json.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
+#include "vm/disassembler.h"
+#include "vm/duration.h"
+#include "vm/profile_scan_time_model.h"
+#include "vm/runtime.h"
+#include "vm/scantime.h"
 
 namespace softslc::cli {
 
@@ -47,6 +55,339 @@ int run_fmt(const FmtOptions& o) {
     std::cerr << "softslc fmt: " << err << "\n";
     return kInputError;
   }
+  return kOk;
+}
+
+namespace {
+
+double to_us(Nanoseconds ns) { return static_cast<double>(ns) / 1000.0; }
+
+std::string us_text(Nanoseconds ns) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", to_us(ns));
+  return buf;
+}
+
+std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s : std::string(w - s.size(), ' ') + s; }
+
+// "1747-L524:B" → catalog and series.
+std::optional<ProcessorModel> parse_processor_option(const std::string& text, std::string& error) {
+  auto colon = text.find(':');
+  std::string catalog = text.substr(0, colon);
+  std::optional<char> series;
+  if (colon != std::string::npos) {
+    if (text.size() != colon + 2 || !std::isupper(static_cast<unsigned char>(text[colon + 1]))) {
+      error = "--processor " + text + ": write CATALOG or CATALOG:SERIES, for example 1747-L524:B";
+      return std::nullopt;
+    }
+    series = text[colon + 1];
+  }
+  auto m = resolve_processor(catalog, series);
+  if (!m) error = "--processor " + text + ": unknown catalog; known: " + std::string(known_processor_catalogs());
+  return m;
+}
+
+nlohmann::json prediction_json(const ScanTimePrediction& t) {
+  nlohmann::json j;
+  j["processor"] = t.catalog;
+  j["timing_key"] = t.processor;
+  j["profile"] = t.profile_name;
+  j["uses_estimates"] = t.uses_estimates;
+  j["rungs"] = nlohmann::json::array();
+  for (const auto& r : t.rungs)
+    j["rungs"].push_back({{"file", r.file}, {"rung", r.rung}, {"worst_us", to_us(r.worst)}, {"best_us", to_us(r.best)},
+                          {"mfile_us", to_us(r.mfile)}, {"mfile_accesses", r.mfile_accesses}});
+  j["files"] = nlohmann::json::array();
+  for (const auto& f : t.files)
+    j["files"].push_back({{"file", f.file}, {"worst_us", to_us(f.worst)}, {"best_us", to_us(f.best)}, {"mfile_us", to_us(f.mfile)}});
+  j["housekeeping_us"] = to_us(t.housekeeping);
+  j["io_scan_us"] = to_us(t.io_scan);
+  j["overhead_us"] = to_us(t.overhead);
+  j["total_worst_us"] = to_us(t.total_worst);
+  j["total_best_us"] = to_us(t.total_best);
+  j["total_mfile_us"] = to_us(t.total_mfile);
+  j["hot_spots"] = nlohmann::json::array();
+  for (const auto& h : t.hot_spots)
+    j["hot_spots"].push_back({{"file", h.file}, {"rung", h.rung}, {"mfile_us", to_us(h.mfile)}, {"remedies", h.remedies}});
+  j["notes"] = t.notes;
+  return j;
+}
+
+void print_prediction(const ScanTimePrediction& t, std::ostream& out) {
+  out << "Predicted scan time on " << t.catalog << " (timing profile \"" << t.profile_name << "\")\n\n";
+  out << "file  rung    worst us     best us   M-file us\n";
+  for (const auto& r : t.rungs)
+    out << pad(std::to_string(r.file), 4) << pad(std::to_string(r.rung), 6) << pad(us_text(r.worst), 12)
+        << pad(us_text(r.best), 12) << pad(us_text(r.mfile), 12) << "\n";
+  out << "\nfile           worst us     best us   M-file us\n";
+  for (const auto& f : t.files)
+    out << pad(std::to_string(f.file), 4) << "      " << pad(us_text(f.worst), 12) << pad(us_text(f.best), 12)
+        << pad(us_text(f.mfile), 12) << "\n";
+  out << "\noverhead: housekeeping " << us_text(t.housekeeping) << " us + I/O scan " << us_text(t.io_scan)
+      << " us = " << us_text(t.overhead) << " us\n";
+  out << "whole scan: worst " << us_text(t.total_worst) << " us (every JSR taken), best " << us_text(t.total_best)
+      << " us; M-file accesses " << us_text(t.total_mfile) << " us of the worst case\n";
+  if (!t.hot_spots.empty()) {
+    out << "\nHot spots (M0/M1 access time, most expensive first):\n";
+    for (const auto& h : t.hot_spots) {
+      out << "  file " << h.file << " rung " << h.rung << ": " << us_text(h.mfile) << " us\n";
+      for (const auto& r : h.remedies) out << "    - " << r << "\n";
+    }
+  }
+  for (const auto& n : t.notes) out << "\nnote: " << n << "\n";
+}
+
+void print_comparison(const std::vector<ScanTimePrediction>& ts, std::ostream& out) {
+  out << "Predicted scan time, worst case / M-file part in us\n\n" << "file  rung";
+  for (const auto& t : ts) out << pad(t.catalog + (t.processor.size() > 4 ? " " + t.processor.substr(4) : ""), 24);
+  out << "\n";
+  for (std::size_t i = 0; i < ts.front().rungs.size(); ++i) {
+    out << pad(std::to_string(ts.front().rungs[i].file), 4) << pad(std::to_string(ts.front().rungs[i].rung), 6);
+    for (const auto& t : ts) out << pad(us_text(t.rungs[i].worst) + " / " + us_text(t.rungs[i].mfile), 24);
+    out << "\n";
+  }
+  out << "\noverhead  ";
+  for (const auto& t : ts) out << pad(us_text(t.overhead), 24);
+  out << "\nscan worst";
+  for (const auto& t : ts) out << pad(us_text(t.total_worst) + " / " + us_text(t.total_mfile), 24);
+  out << "\nscan best ";
+  for (const auto& t : ts) out << pad(us_text(t.total_best), 24);
+  out << "\n";
+  for (const auto& t : ts)
+    for (const auto& n : t.notes) out << "\nnote (" << t.catalog << "): " << n << "\n";
+}
+
+}  // namespace
+
+int run_scantime(const ScantimeOptions& o) {
+  auto r = load_program_file(o.file);
+  report(r);
+  if (!r.ok()) return kInputError;
+  std::vector<ProcessorModel> processors;
+  for (const auto& text : o.processors) {
+    std::string error;
+    auto m = parse_processor_option(text, error);
+    if (!m) {
+      std::cerr << "softslc scantime: " << error << "\n";
+      return kUsage;
+    }
+    processors.push_back(*m);
+  }
+  if (processors.empty()) processors.push_back(r.program->processor);
+  std::optional<TimingProfile> user;
+  if (!o.timing.empty()) {
+    try {
+      user = load_timing_profile_file(o.timing);
+    } catch (const TimingProfileError& e) {
+      std::cerr << "softslc scantime: " << e.what() << "\n";
+      return kInputError;
+    }
+  }
+  std::vector<ScanTimePrediction> results;
+  for (const auto& p : processors) {
+    std::optional<TimingProfile> profile;
+    if (user && user->processor == p.timing_key()) profile = user;
+    else profile = builtin_timing_profile(p.timing_key());
+    if (!profile) {
+      std::cerr << "softslc scantime: no timing profile for " << p.display_name << " (" << p.catalog
+                << "); profiles exist for the SLC 5/02 Series B and C, 5/03, 5/04 and 5/05\n";
+      return kInputError;
+    }
+    results.push_back(predict_scan_time(*r.program, p, *profile));
+  }
+  if (o.json) {
+    if (results.size() == 1) {
+      std::cout << prediction_json(results[0]).dump(2) << "\n";
+    } else {
+      auto arr = nlohmann::json::array();
+      for (const auto& t : results) arr.push_back(prediction_json(t));
+      std::cout << arr.dump(2) << "\n";
+    }
+  } else if (results.size() == 1) {
+    print_prediction(results[0], std::cout);
+  } else {
+    print_comparison(results, std::cout);
+  }
+  return kOk;
+}
+
+namespace {
+
+// An address written on the command line: an address, or a symbol of the program.
+std::optional<Address> resolve_cli_address(const Program& p, const std::string& text, std::string& error) {
+  if (const Symbol* s = p.find_symbol(text)) return s->address;
+  auto a = parse_address(text, &error);
+  if (!a) error = "'" + text + "' is neither an address nor a symbol of the program (" + error + ")";
+  return a;
+}
+
+std::string fault_code_text(std::uint16_t code) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%04Xh", code);
+  return buf;
+}
+
+}  // namespace
+
+int run_run(const RunOptions& o) {
+  auto r = load_program_file(o.file);
+  report(r);
+  if (!r.ok()) return kInputError;
+  const Program& program = *r.program;
+
+  RuntimeOptions options;
+  ProcessorModel processor = program.processor;
+  if (!o.processor.empty()) {
+    std::string error;
+    auto m = parse_processor_option(o.processor, error);
+    if (!m) {
+      std::cerr << "softslc run: " << error << "\n";
+      return kUsage;
+    }
+    processor = *m;
+    options.processor = *m;
+  }
+  if (!o.timing.empty()) {
+    try {
+      auto user = load_timing_profile_file(o.timing);
+      if (user.processor != processor.timing_key()) {
+        std::cerr << "softslc run: " << o.timing << " is a profile for " << user.processor << ", but the processor is "
+                  << processor.display_name << " (" << processor.timing_key() << ")\n";
+        return kInputError;
+      }
+      options.time_model = make_scan_time_model(processor, &user);
+    } catch (const TimingProfileError& e) {
+      std::cerr << "softslc run: " << e.what() << "\n";
+      return kInputError;
+    }
+  }
+
+  // Parse every --set and --print before running anything, so a typo costs no simulation.
+  struct Assignment {
+    Address address;
+    Value value;
+  };
+  std::vector<Assignment> assignments;
+  for (const auto& text : o.sets) {
+    auto eq = text.find('=');
+    if (eq == std::string::npos) {
+      std::cerr << "softslc run: --set " << text << ": write ADDR=VALUE, for example --set I:1/0=1\n";
+      return kUsage;
+    }
+    std::string error;
+    auto a = resolve_cli_address(program, text.substr(0, eq), error);
+    NumberValue v;
+    if (!a) {
+      std::cerr << "softslc run: --set " << text << ": " << error << "\n";
+      return kUsage;
+    }
+    if (!parse_number_text(text.substr(eq + 1), v)) {
+      std::cerr << "softslc run: --set " << text << ": '" << text.substr(eq + 1)
+                << "' is not a value (decimal, negative, 0x.., or float)\n";
+      return kUsage;
+    }
+    assignments.push_back({*a, v.is_float ? Value::of_float(v.real) : Value::of_int(v.integer)});
+  }
+  std::vector<std::pair<std::string, Address>> prints;
+  for (const auto& text : o.prints) {
+    std::string error;
+    auto a = resolve_cli_address(program, text, error);
+    if (!a) {
+      std::cerr << "softslc run: --print " << text << ": " << error << "\n";
+      return kUsage;
+    }
+    prints.emplace_back(text, *a);
+  }
+  Nanoseconds duration = 0;
+  if (!o.for_duration.empty()) {
+    std::string error;
+    auto d = parse_duration(o.for_duration, &error);
+    if (!d) {
+      std::cerr << "softslc run: --for " << o.for_duration << ": " << error << "\n";
+      return kUsage;
+    }
+    duration = *d;
+  }
+
+  auto created = Runtime::create(program, std::move(options));
+  if (!created.ok()) {
+    std::cerr << r.source_name << ": error: the program cannot run:\n" << created.render_errors();
+    return kInputError;
+  }
+  Runtime& rt = *created.runtime;
+  for (const auto& a : assignments)
+    if (auto st = rt.set(a.address, a.value); !st) {
+      std::cerr << "softslc run: --set " << to_string(a.address) << ": " << st.message << "\n";
+      return kUsage;
+    }
+  if (auto st = rt.set_mode(Mode::Run); !st) {
+    std::cerr << "softslc run: " << st.message << "\n";
+    return kInputError;
+  }
+
+  // Virtual time is the simulation's only clock; --realtime merely waits for the wall clock to
+  // catch up after each scan, for interactive use.
+  const auto wall_start = std::chrono::steady_clock::now();
+  const VirtualTime virtual_start = rt.now();
+  auto pace = [&] {
+    if (o.realtime)
+      std::this_thread::sleep_until(wall_start + std::chrono::nanoseconds(rt.now() - virtual_start));
+  };
+  if (duration > 0) {
+    const VirtualTime end = rt.now() + duration;
+    while (rt.now() < end && !rt.fault()) {
+      rt.scan(1);
+      pace();
+    }
+  } else {
+    const int n = o.scans > 0 ? o.scans : 1;
+    for (int i = 0; i < n && !rt.fault(); ++i) {
+      rt.scan(1);
+      pace();
+    }
+  }
+
+  const auto& fault = rt.fault();
+  if (o.json) {
+    nlohmann::ordered_json j;
+    j["scans"] = rt.stats().scans;
+    j["virtual_time_ms"] = static_cast<double>(rt.now()) / static_cast<double>(kNsPerMs);
+    j["values"] = nlohmann::ordered_json::object();
+    for (const auto& [text, a] : prints) {
+      auto v = rt.get(a);
+      if (!v) j["values"][text] = nullptr;
+      else if (v->kind == Value::Kind::Float) j["values"][text] = v->real;
+      else j["values"][text] = v->integer;
+    }
+    if (fault)
+      j["fault"] = {{"code", fault_code_text(fault->code)}, {"file", fault->file}, {"rung", fault->rung},
+                    {"message", fault->message}};
+    else
+      j["fault"] = nullptr;
+    j["scan_time_us"] = {{"last", to_us(rt.stats().last)}, {"max", to_us(rt.stats().max)}, {"avg", to_us(rt.stats().avg())}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    for (const auto& [text, a] : prints) {
+      auto v = rt.get(a);
+      std::cout << text << " = " << (v ? v->to_string() : std::string("?")) << "\n";
+    }
+    if (fault)
+      std::cout << "fault: " << fault_code_text(fault->code) << " file " << fault->file << " rung " << fault->rung << ": "
+                << fault->message << "\n";
+  }
+  return fault ? kProgramFault : kOk;
+}
+
+int run_disasm(const DisasmOptions& o) {
+  auto r = load_program_file(o.file);
+  report(r);
+  if (!r.ok()) return kInputError;
+  auto c = compile(*r.program);
+  if (!c.ok()) {
+    std::cerr << r.source_name << ": error: the program cannot be compiled:\n" << c.render();
+    return kInputError;
+  }
+  std::cout << disassemble(*c.program);
   return kOk;
 }
 

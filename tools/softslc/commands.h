@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace softslc::cli {
 
@@ -29,5 +30,31 @@ int run_throughput(const ThroughputOptions& o);
 
 // Prints the instruction table: mnemonic, role, operands in text order with kinds and ranges.
 int run_instructions();
+
+struct ScantimeOptions {
+  std::string file;
+  std::vector<std::string> processors;  // CATALOG or CATALOG:SERIES; empty = the program's own
+  std::string timing;                   // user timing profile (JSON)
+  bool json = false;
+};
+int run_scantime(const ScantimeOptions& o);
+
+struct RunOptions {
+  std::string file;
+  int scans = 0;                         // 0 = not given
+  std::string for_duration;              // "" = not given
+  std::vector<std::string> sets;         // ADDR=VALUE, applied before the first scan
+  std::vector<std::string> prints;       // ADDR or symbol, printed in order
+  bool json = false;
+  std::string processor;                 // CATALOG[:SERIES] overriding START
+  std::string timing;                    // user timing profile
+  bool realtime = false;                 // pace scans to the wall clock
+};
+int run_run(const RunOptions& o);
+
+struct DisasmOptions {
+  std::string file;
+};
+int run_disasm(const DisasmOptions& o);
 
 }  // namespace softslc::cli

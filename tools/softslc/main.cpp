@@ -28,6 +28,31 @@ int main(int argc, char** argv) {
   throughput_cmd->add_option("CONFIG", throughput.config, "network description (JSON, see docs/throughput.md)")->required();
   throughput_cmd->add_flag("--json", throughput.json, "print the result as JSON");
 
+  RunOptions run;
+  auto* run_cmd = app.add_subcommand("run", "Run a program in virtual time and print values");
+  run_cmd->add_option("FILE", run.file, "program file")->required();
+  auto* scans_opt = run_cmd->add_option("--scans", run.scans, "number of scans to run (default 1)")->check(CLI::PositiveNumber);
+  run_cmd->add_option("--for", run.for_duration, "virtual time to run: 250ms, 1.5s, 2m")->excludes(scans_opt);
+  run_cmd->add_option("--set", run.sets, "ADDR=VALUE before the first scan (I: addresses set field inputs)");
+  run_cmd->add_option("--print", run.prints, "address or symbol to print after the run, in order");
+  run_cmd->add_flag("--json", run.json, "print one JSON object");
+  run_cmd->add_option("--processor", run.processor, "processor catalog (CATALOG or CATALOG:SERIES) overriding START");
+  run_cmd->add_option("--timing", run.timing, "timing profile JSON overriding the built-in figures");
+  run_cmd->add_flag("--realtime", run.realtime, "pace scans to the wall clock (interactive use)");
+
+  DisasmOptions disasm;
+  auto* disasm_cmd = app.add_subcommand("disasm", "Print the compiled bytecode with file/rung/branch structure");
+  disasm_cmd->add_option("FILE", disasm.file, "program file")->required();
+
+  ScantimeOptions scantime;
+  auto* scantime_cmd = app.add_subcommand(
+      "scantime", "Predict scan time per rung, per file and per scan, with the manuals' M0/M1 access times");
+  scantime_cmd->add_option("FILE", scantime.file, "program file")->required();
+  scantime_cmd->add_option("--processor", scantime.processors,
+                           "processor catalog, optionally :SERIES (1747-L524:B); repeat to compare side by side");
+  scantime_cmd->add_option("--timing", scantime.timing, "timing profile JSON overriding the built-in figures");
+  scantime_cmd->add_flag("--json", scantime.json, "print JSON (one object, or an array when comparing)");
+
   auto* instructions_cmd =
       app.add_subcommand("instructions", "List the instruction table: operands in text order, kinds, ranges");
 
@@ -41,5 +66,8 @@ int main(int argc, char** argv) {
   if (*fmt_cmd) return run_fmt(fmt);
   if (*throughput_cmd) return run_throughput(throughput);
   if (*instructions_cmd) return run_instructions();
+  if (*scantime_cmd) return run_scantime(scantime);
+  if (*run_cmd) return run_run(run);
+  if (*disasm_cmd) return run_disasm(disasm);
   return kUsage;
 }

@@ -1,0 +1,196 @@
+#include "vm/timing_profile.h"
+
+#include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+namespace softslc {
+
+namespace detail {
+struct BuiltinProfileText {
+  const char* name;
+  const char* json;
+};
+extern const BuiltinProfileText kBuiltinProfiles[];
+extern const std::size_t kBuiltinProfileCount;
+}  // namespace detail
+
+namespace {
+
+using nlohmann::json;
+
+constexpr std::string_view kSchema = "softslc-timing-profile-1";
+
+[[noreturn]] void fail(const std::string& path, const std::string& message) {
+  throw TimingProfileError(path + ": " + message);
+}
+
+// Microseconds as written (may have decimals) to integer nanoseconds, rounded to nearest.
+Nanoseconds us_to_ns(const json& v, const std::string& path) {
+  if (!v.is_number()) fail(path, "expected a number of microseconds");
+  double us = v.get<double>();
+  if (!std::isfinite(us) || us < 0 || us > 1e9) fail(path, "must be between 0 and 1e9 microseconds");
+  return static_cast<Nanoseconds>(std::llround(us * 1000.0));
+}
+
+const json& member(const json& obj, const char* key, const std::string& path) {
+  auto it = obj.find(key);
+  if (it == obj.end()) fail(path, std::string("missing \"") + key + "\"");
+  return *it;
+}
+
+std::string source_of(const json& obj, const std::string& path, const TimingProfile& p) {
+  auto s = member(obj, "source", path);
+  if (!s.is_string()) fail(path + ".source", "expected a source name");
+  auto name = s.get<std::string>();
+  if (!p.sources.count(name)) fail(path + ".source", "unknown source \"" + name + "\" (not in \"sources\")");
+  return name;
+}
+
+TimedFigure figure(const json& obj, const std::string& path, const TimingProfile& p) {
+  if (!obj.is_object()) fail(path, "expected {\"value\": microseconds, \"source\": name}");
+  return {us_to_ns(member(obj, "value", path), path + ".value"), source_of(obj, path, p)};
+}
+
+void check_keys(const json& obj, const std::string& path, std::initializer_list<std::string_view> allowed) {
+  for (auto it = obj.begin(); it != obj.end(); ++it) {
+    bool ok = false;
+    for (auto a : allowed) ok |= it.key() == a;
+    if (!ok) fail(path, "unknown key \"" + it.key() + "\"");
+  }
+}
+
+// Applies `j` onto `p`. A built-in profile is applied onto an empty one; a user profile onto
+// the built-in one of its processor, so it may give any subset of figures.
+void apply_profile_json(const json& j, TimingProfile& p) {
+  if (!j.is_object()) fail("(top)", "a timing profile is a JSON object");
+  check_keys(j, "(top)", {"schema", "processor", "name", "sources", "housekeeping_us", "io_scan", "instructions"});
+  if (member(j, "schema", "(top)") != kSchema) fail("schema", "expected \"" + std::string(kSchema) + "\"");
+  if (auto it = j.find("name"); it != j.end()) p.name = it->get<std::string>();
+  if (auto it = j.find("sources"); it != j.end()) {
+    if (!it->is_object()) fail("sources", "expected an object of named sources");
+    for (auto s = it->begin(); s != it->end(); ++s) {
+      std::string path = "sources." + s.key();
+      check_keys(*s, path, {"estimate", "citation"});
+      auto est = member(*s, "estimate", path);
+      if (!est.is_boolean()) fail(path + ".estimate", "expected true or false");
+      auto cit = member(*s, "citation", path);
+      if (!cit.is_string()) fail(path + ".citation", "expected a citation text");
+      p.sources[s.key()] = {est.get<bool>(), cit.get<std::string>()};
+    }
+  }
+  if (auto it = j.find("housekeeping_us"); it != j.end()) p.housekeeping = figure(*it, "housekeeping_us", p);
+  if (auto it = j.find("io_scan"); it != j.end()) {
+    check_keys(*it, "io_scan", {"input_scan_base_us", "modules", "default_per_image_word_us", "default_module_us"});
+    if (auto f = it->find("input_scan_base_us"); f != it->end())
+      p.input_scan_base = figure(*f, "io_scan.input_scan_base_us", p);
+    if (auto f = it->find("default_per_image_word_us"); f != it->end())
+      p.default_per_image_word = figure(*f, "io_scan.default_per_image_word_us", p);
+    if (auto f = it->find("default_module_us"); f != it->end())
+      p.default_module = figure(*f, "io_scan.default_module_us", p);
+    if (auto m = it->find("modules"); m != it->end()) {
+      for (auto e = m->begin(); e != m->end(); ++e) {
+        std::string path = "io_scan.modules." + e.key();
+        check_keys(*e, path, {"input_us", "output_us"});
+        p.modules[e.key()] = {figure(member(*e, "input_us", path), path + ".input_us", p),
+                              figure(member(*e, "output_us", path), path + ".output_us", p)};
+      }
+    }
+  }
+  if (auto it = j.find("instructions"); it != j.end()) {
+    if (!it->is_object()) fail("instructions", "expected an object keyed by mnemonic");
+    for (auto e = it->begin(); e != it->end(); ++e) {
+      std::string path = "instructions." + e.key();
+      const InstructionSpec* spec = find_instruction(e.key());
+      if (!spec) fail(path, "unknown instruction mnemonic");
+      check_keys(*e, path, {"true_us", "false_us", "per_word_us", "source"});
+      auto& t = p.instructions[static_cast<std::size_t>(spec->opcode)];
+      t.true_ns = us_to_ns(member(*e, "true_us", path), path + ".true_us");
+      t.false_ns = us_to_ns(member(*e, "false_us", path), path + ".false_us");
+      t.per_word_ns = e->contains("per_word_us") ? us_to_ns((*e)["per_word_us"], path + ".per_word_us") : 0;
+      t.source = source_of(*e, path, p);
+    }
+  }
+}
+
+TimingProfile parse_builtin(const detail::BuiltinProfileText& text) {
+  TimingProfile p;
+  json j = json::parse(text.json);
+  p.processor = j.at("processor").get<std::string>();
+  apply_profile_json(j, p);
+  // A built-in profile must be complete: every instruction of the table has a figure.
+  for (std::size_t i = 0; i < kInstructionCount; ++i)
+    if (p.instructions[i].source.empty())
+      throw TimingProfileError(std::string("built-in profile ") + text.name + " has no figure for " +
+                               std::string(kInstructionTable[i].mnemonic));
+  return p;
+}
+
+}  // namespace
+
+bool TimingProfile::is_estimate(const std::string& source) const {
+  auto it = sources.find(source);
+  return it == sources.end() || it->second.estimate;
+}
+
+Nanoseconds TimingProfile::input_scan(const std::string& catalog, int words) const {
+  if (words <= 0) return 0;
+  if (auto it = modules.find(catalog); it != modules.end()) return it->second.input.ns;
+  return default_module.ns + default_per_image_word.ns * words;
+}
+
+Nanoseconds TimingProfile::output_scan(const std::string& catalog, int words) const {
+  if (words <= 0) return 0;
+  if (auto it = modules.find(catalog); it != modules.end()) return it->second.output.ns;
+  return default_module.ns + default_per_image_word.ns * words;
+}
+
+std::optional<TimingProfile> builtin_timing_profile(std::string_view timing_key) {
+  for (std::size_t i = 0; i < detail::kBuiltinProfileCount; ++i) {
+    json j = json::parse(detail::kBuiltinProfiles[i].json);
+    if (j.at("processor").get<std::string>() == timing_key) return parse_builtin(detail::kBuiltinProfiles[i]);
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> builtin_timing_profile_keys() {
+  std::vector<std::string> keys;
+  for (std::size_t i = 0; i < detail::kBuiltinProfileCount; ++i)
+    keys.push_back(json::parse(detail::kBuiltinProfiles[i].json).at("processor").get<std::string>());
+  return keys;
+}
+
+TimingProfile load_timing_profile(const json& user) {
+  if (!user.is_object()) fail("(top)", "a timing profile is a JSON object");
+  const auto& proc = member(user, "processor", "(top)");
+  if (!proc.is_string()) fail("processor", "expected a processor key such as \"5/03\"");
+  auto base = builtin_timing_profile(proc.get<std::string>());
+  if (!base) {
+    std::string known;
+    for (const auto& k : builtin_timing_profile_keys()) known += (known.empty() ? "" : ", ") + k;
+    fail("processor", "no built-in profile for \"" + proc.get<std::string>() + "\" (known: " + known + ")");
+  }
+  apply_profile_json(user, *base);
+  return *base;
+}
+
+TimingProfile load_timing_profile_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw TimingProfileError(path + ": cannot open file");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::parse_error& e) {
+    throw TimingProfileError(path + ": not valid JSON: " + e.what());
+  }
+  try {
+    return load_timing_profile(j);
+  } catch (const TimingProfileError& e) {
+    throw TimingProfileError(path + ": " + e.what());
+  } catch (const json::exception& e) {
+    throw TimingProfileError(path + ": " + e.what());
+  }
+}
+
+}  // namespace softslc

@@ -1,7 +1,9 @@
 #include "commands.h"
 
 #include <fstream>
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <thread>
 #include <iostream>
@@ -9,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "file_output.h"
+#include "vm/atomic_file.h"
 #include "instructions/instruction_table.h"
 #include "modules/throughput/throughput_json.h"
 #include "parser/formatter.h"
@@ -19,6 +21,7 @@
 #include "vm/profile_scan_time_model.h"
 #include "vm/runtime.h"
 #include "vm/scantime.h"
+#include "vm/state_file.h"
 
 namespace softslc::cli {
 
@@ -221,6 +224,10 @@ std::optional<Address> resolve_cli_address(const Program& p, const std::string& 
   return a;
 }
 
+// Set by SIGINT/SIGTERM; the run loop stops at the end of the current scan and saves its state.
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_interrupt(int sig) { g_interrupted = sig; }
+
 std::string fault_code_text(std::uint16_t code) {
   char buf[16];
   std::snprintf(buf, sizeof buf, "%04Xh", code);
@@ -298,6 +305,17 @@ int run_run(const RunOptions& o) {
     }
     prints.emplace_back(text, *a);
   }
+  Nanoseconds checkpoint = 0;
+  if (!o.checkpoint.empty()) {
+    std::string error;
+    auto d = parse_duration(o.checkpoint, &error);
+    if (!d || *d <= 0 || o.state.empty()) {
+      std::cerr << "softslc run: --checkpoint " << o.checkpoint << ": "
+                << (o.state.empty() ? "needs --state FILE" : d ? "must be positive" : error) << "\n";
+      return kUsage;
+    }
+    checkpoint = *d;
+  }
   Nanoseconds duration = 0;
   if (!o.for_duration.empty()) {
     std::string error;
@@ -315,6 +333,26 @@ int run_run(const RunOptions& o) {
     return kInputError;
   }
   Runtime& rt = *created.runtime;
+  // Retentive state: the data table as a power cycle leaves it. A bad state file stops the run
+  // before anything executes, so the file is never overwritten.
+  const std::uint64_t fingerprint = o.state.empty() ? 0 : program_fingerprint(program);
+  if (!o.state.empty()) {
+    bool missing = false;
+    auto loaded = load_state_file(o.state, fingerprint, rt.data(), o.force_state, &missing);
+    if (!loaded.ok) {
+      std::cerr << "softslc run: " << loaded.error << "\n";
+      return kInputError;
+    }
+    for (const auto& w : loaded.warnings) std::cerr << "softslc run: " << o.state << ": warning: " << w << "\n";
+  }
+  auto save_state = [&]() -> bool {
+    if (o.state.empty()) return true;
+    if (auto err = save_state_file(o.state, rt.data(), fingerprint); !err.empty()) {
+      std::cerr << "softslc run: cannot save state: " << err << "\n";
+      return false;
+    }
+    return true;
+  };
   for (const auto& a : assignments)
     if (auto st = rt.set(a.address, a.value); !st) {
       std::cerr << "softslc run: --set " << to_string(a.address) << ": " << st.message << "\n";
@@ -333,19 +371,29 @@ int run_run(const RunOptions& o) {
     if (o.realtime)
       std::this_thread::sleep_until(wall_start + std::chrono::nanoseconds(rt.now() - virtual_start));
   };
+  g_interrupted = 0;
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
+  VirtualTime next_checkpoint = rt.now() + checkpoint;
+  bool saved_ok = true;
+  auto one_scan = [&] {
+    rt.scan(1);
+    pace();
+    if (checkpoint > 0 && rt.now() >= next_checkpoint) {
+      saved_ok &= save_state();
+      next_checkpoint = rt.now() + checkpoint;
+    }
+  };
   if (duration > 0) {
     const VirtualTime end = rt.now() + duration;
-    while (rt.now() < end && !rt.fault()) {
-      rt.scan(1);
-      pace();
-    }
+    while (rt.now() < end && !rt.fault() && !g_interrupted) one_scan();
   } else {
     const int n = o.scans > 0 ? o.scans : 1;
-    for (int i = 0; i < n && !rt.fault(); ++i) {
-      rt.scan(1);
-      pace();
-    }
+    for (int i = 0; i < n && !rt.fault() && !g_interrupted; ++i) one_scan();
   }
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  saved_ok &= save_state();
 
   const auto& fault = rt.fault();
   if (o.json) {
@@ -375,6 +423,8 @@ int run_run(const RunOptions& o) {
       std::cout << "fault: " << fault_code_text(fault->code) << " file " << fault->file << " rung " << fault->rung << ": "
                 << fault->message << "\n";
   }
+  if (g_interrupted) return 128 + g_interrupted;
+  if (!saved_ok) return kInputError;
   return fault ? kProgramFault : kOk;
 }
 

@@ -49,6 +49,9 @@ struct RunOptions {
   std::string processor;                 // CATALOG[:SERIES] overriding START
   std::string timing;                    // user timing profile
   bool realtime = false;                 // pace scans to the wall clock
+  std::string state;                     // retentive state file: loaded at start, saved at the end
+  bool force_state = false;              // accept a state file saved by another program
+  std::string checkpoint;                // also save every this much virtual time
 };
 int run_run(const RunOptions& o);
 

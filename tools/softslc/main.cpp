@@ -39,6 +39,11 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--processor", run.processor, "processor catalog (CATALOG or CATALOG:SERIES) overriding START");
   run_cmd->add_option("--timing", run.timing, "timing profile JSON overriding the built-in figures");
   run_cmd->add_flag("--realtime", run.realtime, "pace scans to the wall clock (interactive use)");
+  run_cmd->add_option("--state", run.state,
+                      "retentive state file: loaded at start if it exists, saved atomically at the end and on "
+                      "SIGINT/SIGTERM");
+  run_cmd->add_flag("--force-state", run.force_state, "restore a state file saved by a different program");
+  run_cmd->add_option("--checkpoint", run.checkpoint, "with --state: also save every DURATION of virtual time");
 
   DisasmOptions disasm;
   auto* disasm_cmd = app.add_subcommand("disasm", "Print the compiled bytecode with file/rung/branch structure");

@@ -1,4 +1,4 @@
-#include "file_output.h"
+#include "vm/atomic_file.h"
 
 #include <cerrno>
 #include <cstring>

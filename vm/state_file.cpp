@@ -1,0 +1,239 @@
+#include "vm/state_file.h"
+
+#include <array>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "parser/formatter.h"
+#include "vm/atomic_file.h"
+
+namespace softslc {
+
+namespace {
+
+constexpr char kMagic[16] = {'S', 'O', 'F', 'T', 'S', 'L', 'C', '-', 'S', 'T', 'A', 'T', 'E', '\n', 0, 0};
+
+constexpr std::array<std::uint32_t, 256> make_crc_table() {
+  std::array<std::uint32_t, 256> t{};
+  for (std::uint32_t i = 0; i < 256; ++i) {
+    std::uint32_t c = i;
+    for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    t[i] = c;
+  }
+  return t;
+}
+constexpr auto kCrcTable = make_crc_table();
+
+void put_u8(std::string& out, std::uint8_t v) { out.push_back(static_cast<char>(v)); }
+void put_u16(std::string& out, std::uint16_t v) {
+  put_u8(out, static_cast<std::uint8_t>(v));
+  put_u8(out, static_cast<std::uint8_t>(v >> 8));
+}
+void put_u32(std::string& out, std::uint32_t v) {
+  put_u16(out, static_cast<std::uint16_t>(v));
+  put_u16(out, static_cast<std::uint16_t>(v >> 16));
+}
+void put_u64(std::string& out, std::uint64_t v) {
+  put_u32(out, static_cast<std::uint32_t>(v));
+  put_u32(out, static_cast<std::uint32_t>(v >> 32));
+}
+
+// Reads fixed-size little-endian fields, failing (not throwing) past the end.
+class Reader {
+ public:
+  Reader(const std::string& bytes, std::size_t end) : bytes_(bytes), end_(end) {}
+  bool u8(std::uint8_t& v) {
+    if (pos_ + 1 > end_) return false;
+    v = static_cast<std::uint8_t>(bytes_[pos_++]);
+    return true;
+  }
+  bool u16(std::uint16_t& v) {
+    std::uint8_t lo, hi;
+    if (!u8(lo) || !u8(hi)) return false;
+    v = static_cast<std::uint16_t>(lo | (hi << 8));
+    return true;
+  }
+  bool u32(std::uint32_t& v) {
+    std::uint16_t lo, hi;
+    if (!u16(lo) || !u16(hi)) return false;
+    v = lo | (static_cast<std::uint32_t>(hi) << 16);
+    return true;
+  }
+  bool u64(std::uint64_t& v) {
+    std::uint32_t lo, hi;
+    if (!u32(lo) || !u32(hi)) return false;
+    v = lo | (static_cast<std::uint64_t>(hi) << 32);
+    return true;
+  }
+  std::size_t pos() const { return pos_; }
+  std::size_t remaining() const { return end_ - pos_; }
+
+ private:
+  const std::string& bytes_;
+  std::size_t end_;
+  std::size_t pos_ = 0;
+};
+
+std::string hex64(std::uint64_t v) {
+  char buf[20];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
+
+struct FileRecord {
+  int number = 0;
+  FileType type = FileType::Integer;
+  std::uint8_t words_per_element = 1;
+  std::uint32_t elements = 0;
+  std::size_t first_byte = 0;  // offset of the words in the byte string
+};
+
+}  // namespace
+
+std::uint32_t crc32(const void* data, std::size_t size) {
+  const auto* p = static_cast<const std::uint8_t*>(data);
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < size; ++i) c = kCrcTable[(c ^ p[i]) & 0xFF] ^ (c >> 8);
+  return c ^ 0xFFFFFFFFu;
+}
+
+std::uint64_t program_fingerprint(const Program& program) {
+  // FNV-1a 64 over the canonical text: independent of spelling, comments and layout of the
+  // source file, changed by any change to configuration, rungs, data or symbols.
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  for (unsigned char c : format_program(program)) {
+    h ^= c;
+    h *= 0x100000001b3ull;
+  }
+  return h;
+}
+
+std::string encode_state(const DataTable& table, std::uint64_t fingerprint) {
+  const auto& layout = table.layout();
+  std::string out(kMagic, sizeof kMagic);
+  put_u32(out, kStateFormatVersion);
+  put_u64(out, fingerprint);
+  std::uint32_t count = 0;
+  for (const auto& f : layout.files) count += f.present ? 1 : 0;
+  put_u32(out, count);
+  for (std::size_t n = 0; n < layout.files.size(); ++n) {
+    const auto& f = layout.files[n];
+    if (!f.present) continue;
+    put_u8(out, static_cast<std::uint8_t>(n));
+    put_u8(out, static_cast<std::uint8_t>(f.type));
+    put_u8(out, f.words_per_element);
+    put_u8(out, 0);
+    put_u32(out, f.elements);
+    for (std::uint32_t w = f.base; w < f.end(); ++w) put_u16(out, table.word(w));
+  }
+  put_u32(out, crc32(out.data(), out.size()));
+  return out;
+}
+
+StateLoadResult decode_state(const std::string& bytes, std::uint64_t fingerprint, DataTable& table, bool force) {
+  StateLoadResult r;
+  auto refuse = [&](std::string why) {
+    r.ok = false;
+    r.error = std::move(why);
+    return r;
+  };
+  const std::size_t header = sizeof kMagic + 4 + 8 + 4;
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    return refuse("not a softslc state file (bad magic)");
+  if (bytes.size() < header + 4) return refuse("truncated state file (" + std::to_string(bytes.size()) + " bytes)");
+  // The checksum covers everything else; check it before trusting any length in the file.
+  const std::size_t body = bytes.size() - 4;
+  std::uint32_t stored = static_cast<std::uint8_t>(bytes[body]) | (static_cast<std::uint8_t>(bytes[body + 1]) << 8) |
+                         (static_cast<std::uint8_t>(bytes[body + 2]) << 16) |
+                         (static_cast<std::uint32_t>(static_cast<std::uint8_t>(bytes[body + 3])) << 24);
+  std::uint32_t version = 0;
+  Reader in(bytes, body);
+  for (std::size_t i = 0; i < sizeof kMagic; ++i) {
+    std::uint8_t skip;
+    in.u8(skip);
+  }
+  in.u32(version);
+  if (version != kStateFormatVersion)
+    return refuse("state file format version " + std::to_string(version) + " is not supported (this softslc reads " +
+                  std::to_string(kStateFormatVersion) + ")");
+  if (crc32(bytes.data(), body) != stored)
+    return refuse("state file is corrupt or truncated (checksum mismatch)");
+  std::uint64_t saved_fingerprint = 0;
+  std::uint32_t count = 0;
+  in.u64(saved_fingerprint);
+  in.u32(count);
+  // Parse every record before touching the table, so a bad file restores nothing.
+  std::vector<FileRecord> records;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    FileRecord rec;
+    std::uint8_t number, type, wpe, reserved;
+    if (!in.u8(number) || !in.u8(type) || !in.u8(wpe) || !in.u8(reserved) || !in.u32(rec.elements))
+      return refuse("state file is truncated in file record " + std::to_string(i));
+    if (type > static_cast<std::uint8_t>(FileType::M1) || wpe == 0 || reserved != 0 || rec.elements > kMaxElements * 64)
+      return refuse("state file has an invalid record for file " + std::to_string(number));
+    rec.number = number;
+    rec.type = static_cast<FileType>(type);
+    rec.words_per_element = wpe;
+    rec.first_byte = in.pos();
+    std::size_t need = static_cast<std::size_t>(rec.elements) * wpe * 2;
+    if (in.remaining() < need) return refuse("state file is truncated in file " + std::to_string(number));
+    for (std::size_t k = 0; k < need; ++k) {
+      std::uint8_t skip;
+      in.u8(skip);
+    }
+    records.push_back(rec);
+  }
+  if (in.remaining() != 0) return refuse("state file has trailing bytes after its last record");
+  if (saved_fingerprint != fingerprint && !force)
+    return refuse("state file was saved by a different program (fingerprint " + hex64(saved_fingerprint) +
+                  ", this program " + hex64(fingerprint) + "); use --force-state to restore it anyway");
+
+  const auto& layout = table.layout();
+  for (const auto& rec : records) {
+    const auto& f = layout.files[static_cast<std::size_t>(rec.number)];
+    std::string name = std::string(file_letter(rec.type)) + std::to_string(rec.number);
+    if (!f.present || f.type != rec.type || f.words_per_element != rec.words_per_element) {
+      r.warnings.push_back("file " + name + " from the state file does not exist in this program; not restored");
+      continue;
+    }
+    std::uint32_t elements = std::min(f.elements, rec.elements);
+    if (elements != rec.elements || elements != f.elements)
+      r.warnings.push_back("file " + name + " has " + std::to_string(f.elements) + " elements here and " +
+                           std::to_string(rec.elements) + " in the state file; restored the first " +
+                           std::to_string(elements));
+    for (std::uint32_t w = 0; w < elements * f.words_per_element; ++w) {
+      std::size_t at = rec.first_byte + 2 * w;
+      auto v = static_cast<std::uint16_t>(static_cast<std::uint8_t>(bytes[at]) |
+                                          (static_cast<std::uint8_t>(bytes[at + 1]) << 8));
+      table.set_word(f.base + w, v);
+    }
+  }
+  r.ok = true;
+  return r;
+}
+
+std::string save_state_file(const std::string& path, const DataTable& table, std::uint64_t fingerprint) {
+  return write_file_atomically(path, encode_state(table, fingerprint));
+}
+
+StateLoadResult load_state_file(const std::string& path, std::uint64_t fingerprint, DataTable& table, bool force,
+                                bool* missing) {
+  *missing = false;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    if (errno == ENOENT) {
+      *missing = true;
+      return {true, {}, {}};
+    }
+    return {false, "cannot open " + path + ": " + std::strerror(errno), {}};
+  }
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  auto r = decode_state(ss.str(), fingerprint, table, force);
+  if (!r.ok) r.error = path + ": " + r.error;
+  return r;
+}
+
+}  // namespace softslc

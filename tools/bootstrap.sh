@@ -40,6 +40,9 @@ case "$mode" in
     "$softslc" scantime "$example" --processor 1747-L532 --processor 1747-L552
     ;;
   test)
+    echo "== softslc test examples (every example program's ladder tests)"
+    "$softslc" test "$root/examples" -j "$(nproc)" --junit "$build/examples-junit.xml"
+    echo "== ctest (the whole suite)"
     cd "$build"
     ctest --output-on-failure -j "$(nproc)"
     ;;

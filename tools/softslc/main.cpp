@@ -4,7 +4,10 @@
 // CLI11 and calls one function in commands.cpp. Usage errors exit 2, as documented in commands.h.
 #include <CLI/CLI.hpp>
 
+#include <iostream>
+
 #include "commands.h"
+#include "tools/testrunner/test_command.h"
 
 int main(int argc, char** argv) {
   using namespace softslc::cli;
@@ -58,6 +61,20 @@ int main(int argc, char** argv) {
   scantime_cmd->add_option("--timing", scantime.timing, "timing profile JSON overriding the built-in figures");
   scantime_cmd->add_flag("--json", scantime.json, "print JSON (one object, or an array when comparing)");
 
+  softslc::testing::TestCommandOptions test;
+  auto* test_cmd = app.add_subcommand(
+      "test", "Run ladder unit tests (*.test files, see docs/testing.md); exit 0 all passed, 1 a test failed, "
+              "2 usage or test-file errors");
+  test_cmd->add_option("PATH", test.paths, "test files, or directories searched recursively for *.test")
+      ->required();
+  test_cmd->add_option("--filter", test.filter, "run only the tests whose name matches this glob (* and ?)")
+      ->type_name("GLOB");
+  // No CLI11 range check: the runner's own message for a bad value is clearer.
+  test_cmd->add_option("-j,--jobs", test.jobs, "tests run in parallel (default 0: one per hardware thread)");
+  test_cmd->add_flag("--list", test.list, "list the selected tests (FILE: NAME), run nothing");
+  test_cmd->add_option("--junit", test.junit, "also write a JUnit XML report to FILE (atomically)")
+      ->type_name("FILE");
+
   auto* instructions_cmd =
       app.add_subcommand("instructions", "List the instruction table: operands in text order, kinds, ranges");
 
@@ -71,6 +88,7 @@ int main(int argc, char** argv) {
   if (*fmt_cmd) return run_fmt(fmt);
   if (*throughput_cmd) return run_throughput(throughput);
   if (*instructions_cmd) return run_instructions();
+  if (*test_cmd) return softslc::testing::run_test_command(test, std::cout, std::cerr);
   if (*scantime_cmd) return run_scantime(scantime);
   if (*run_cmd) return run_run(run);
   if (*disasm_cmd) return run_disasm(disasm);

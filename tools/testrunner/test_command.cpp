@@ -1,0 +1,17 @@
+#include "tools/testrunner/test_command.h"
+
+#include "tools/testrunner/runner.h"
+
+namespace softslc::testing {
+
+int run_test_command(const TestCommandOptions& options, std::ostream& out, std::ostream& err) {
+  RunOptions run;
+  run.paths = options.paths;
+  run.filter = options.filter;
+  run.junit = options.junit;
+  run.list = options.list;
+  run.jobs = options.jobs;
+  return run_tests(run, out, err);
+}
+
+}  // namespace softslc::testing

@@ -1,0 +1,29 @@
+// Entry point of `softslc test`: the options the command line parses, and the command itself.
+//
+// The CLI (tools/softslc/main.cpp) fills a TestCommandOptions with CLI11 and calls
+// run_test_command(); everything else (discovery, parallel run, output, JUnit) lives in the
+// runner library (runner.h), so the test suite exercises exactly what users run. Output goes to
+// the given streams, never to std::cout directly, so tests can capture it.
+//
+// Exit codes (also in docs/testing.md): 0 all selected tests passed, 1 some test failed, 2 usage
+// or input error (bad path, no test files, errors in a test file or its program, nothing matches
+// --filter, the JUnit report could not be written).
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace softslc::testing {
+
+struct TestCommandOptions {
+  std::vector<std::string> paths;  // test files and directories (searched recursively for *.test)
+  std::string filter;              // glob on test names; empty = all
+  std::string junit;               // write a JUnit XML report here; empty = none
+  bool list = false;               // list the selected tests, run nothing
+  int jobs = 0;                    // parallel tests; 0 = one per hardware thread
+};
+
+int run_test_command(const TestCommandOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace softslc::testing

@@ -1,0 +1,394 @@
+#include "tools/testrunner/test_loader.h"
+
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include "parser/loader.h"
+#include "tools/testrunner/test_parser.h"
+
+namespace softslc::testing {
+
+namespace {
+
+std::optional<std::string> read_file(const std::filesystem::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return std::nullopt;
+  std::ostringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+std::string cache_key(const std::filesystem::path& path) {
+  std::error_code ec;
+  auto canonical = std::filesystem::weakly_canonical(path, ec);
+  return ec ? path.lexically_normal().string() : canonical.string();
+}
+
+// The value a literal writes into an operand of `width` (validated by the caller).
+Value value_for(const Literal& l, int width) {
+  if (width == 1) return Value::bit(l.integer != 0);
+  if (width == 0) return Value::of_float(l.kind == Literal::Kind::Float ? l.real : static_cast<double>(l.integer));
+  return Value::of_int(integer_for_width(l, width, nullptr).value_or(0));
+}
+
+bool is_word_file(FileType t) {
+  return t == FileType::Integer || t == FileType::Bit || t == FileType::Float || t == FileType::Long ||
+         t == FileType::Status || t == FileType::Ascii;
+}
+
+// Checks one test file's tests against their programs and resolves its snapshots.
+class Checker {
+ public:
+  Checker(TestFileLoad& out, const std::filesystem::path& dir, ProgramCache& cache)
+      : out_(out), dir_(dir), cache_(cache) {
+    display_dir_ = std::filesystem::path(out.file.name).parent_path();
+  }
+
+  void run() {
+    for (auto& tc : out_.file.tests) check_test(tc);
+    out_.diagnostics.sort_by_position();
+  }
+
+ private:
+  void error(Location at, std::string message) {
+    if (seen_.insert({at.line, at.column, message}).second) out_.diagnostics.error(at.line, at.column, std::move(message));
+  }
+
+  ProgramCache::Entry* program_for(const TestCase& tc) {
+    const std::filesystem::path written(tc.program_path);
+    const auto actual = written.is_absolute() ? written : dir_ / written;
+    const auto display = written.is_absolute() ? written.generic_string()
+                                                : (display_dir_ / written).lexically_normal().generic_string();
+    auto& entry = cache_.load(actual, display);
+    if (!entry.program) {
+      if (!entry.errors.empty() && reported_.insert(display).second) out_.program_diagnostics += entry.errors;
+      error(tc.program_loc, "program '" + tc.program_path + "' did not load" +
+                                (entry.errors.empty() ? "" : " (its errors are listed above)"));
+      return nullptr;
+    }
+    return &entry;
+  }
+
+  void check_test(TestCase& tc) {
+    ProgramCache::Entry* entry = program_for(tc);
+    if (!entry) {
+      for (const auto& s : tc.steps)
+        if (s.kind == Step::Kind::Snapshot) unavailable_.insert(s.name);
+      return;
+    }
+    tc.program = entry->program;
+    // The steps that lead from a fresh Runtime to the current point, for snapshots.
+    std::shared_ptr<const LoadedProgram> program = entry->program;
+    Runtime* probe = entry->probe.get();
+    Mode initial = tc.initial_mode;
+    std::vector<Step> history;
+    // After a restore that failed, the steps are still checked against the current program (an
+    // independent error is worth reporting), but a snapshot taken there is not defined, so that
+    // restoring it later does not report a second, dependent error.
+    bool broken = false;
+    for (auto& step : tc.steps) {
+      if (step.kind == Step::Kind::Restore) {
+        auto it = snapshots_.find(step.name);
+        if (it == snapshots_.end()) {
+          if (!unavailable_.count(step.name))
+            error(step.loc, "no snapshot '" + step.name + "' is defined above this line (a 'snapshot " + step.name +
+                                "' step of an earlier test in this file)");
+          broken = true;
+          continue;
+        }
+        step.snapshot = it->second;
+        program = it->second->program;
+        probe = cache_.probe_for(program.get());
+        initial = it->second->initial_mode;
+        history = it->second->steps;
+        broken = false;
+        continue;
+      }
+      if (step.kind == Step::Kind::Snapshot) {
+        if (auto it = snapshots_.find(step.name); it != snapshots_.end()) {
+          error(step.loc, "snapshot '" + step.name + "' is already defined at line " + std::to_string(it->second->loc.line));
+          continue;
+        }
+        if (broken) {
+          unavailable_.insert(step.name);
+          continue;
+        }
+        auto snap = std::make_shared<Snapshot>();
+        snap->name = step.name;
+        snap->loc = step.loc;
+        snap->program = program;
+        snap->initial_mode = initial;
+        snap->steps = history;
+        snapshots_[step.name] = std::move(snap);
+        continue;
+      }
+      check_step(step, *program, *probe);
+      history.push_back(step);
+    }
+  }
+
+  // ---- Operands ----
+
+  bool resolve(DataRef& r, const LoadedProgram& p) {
+    if (r.symbol.empty()) return true;
+    const Symbol* s = p.program.find_symbol(r.symbol);
+    if (!s || s->name.empty()) {
+      error(r.loc, "unknown symbol '" + r.symbol + "': not a SYMBOL of " + p.path);
+      return false;
+    }
+    r.address = s->address;
+    return true;
+  }
+
+  bool probe_read(const DataRef& r, const Address& a, Runtime& probe) {
+    if (a.is_indirect() || a.indexed) return true;  // depends on run-time values
+    std::string err;
+    if (probe.get(a, &err)) return true;
+    error(r.loc, err);
+    return false;
+  }
+
+  bool check_range(DataRef& r, Runtime& probe) {
+    const Address& a = r.address;
+    if (!is_word_file(a.type)) {
+      error(r.loc, "a range names whole words of an N, B, F, L, S or A file; name T, C and R sub-elements and I/O "
+                   "words one by one");
+      return false;
+    }
+    if (a.has_bit() || a.word >= 0 || a.indexed || a.is_indirect()) {
+      error(r.loc, "a range names whole elements: write FILE:FIRST..LAST (for example N11:0..13)");
+      return false;
+    }
+    Address last = a;
+    last.element = r.range_last;
+    return probe_read(r, a, probe) && probe_read(r, last, probe);
+  }
+
+  // A data operand that is read: resolved and present in the data table.
+  bool check_readable(DataRef& r, const LoadedProgram& p, Runtime& probe) {
+    if (!resolve(r, p)) return false;
+    if (r.is_range()) return check_range(r, probe);
+    return probe_read(r, r.address, probe);
+  }
+
+  bool check_single(DataRef& r, const LoadedProgram& p, Runtime& probe) {
+    if (!check_readable(r, p, probe)) return false;
+    if (r.is_range()) {
+      error(r.loc, "a range can only be compared with '==' and one value per element (expect N11:0..2 == 1 2 3)");
+      return false;
+    }
+    return true;
+  }
+
+  // A literal compared with (or written into) an operand of `width` bits.
+  bool check_literal(const Literal& l, int width, const std::string& what, bool comparison, CompareOp op) {
+    if (l.kind == Literal::Kind::Pattern) {
+      if (!comparison || (op != CompareOp::Eq && op != CompareOp::Ne)) {
+        error(l.loc, "a bit pattern with x digits can only be compared with == or !=");
+        return false;
+      }
+      if (width == 0) {
+        error(l.loc, what + " holds a float; a bit pattern applies to integer words");
+        return false;
+      }
+      if (l.digits > width) {
+        error(l.loc, "the pattern has " + std::to_string(l.digits) + " digits but " + what + " has " +
+                         std::to_string(width) + " bit(s)");
+        return false;
+      }
+      return true;
+    }
+    if (width == 0) return true;  // any number compares with, or converts to, a float
+    std::string err;
+    if (!integer_for_width(l, width, &err)) {
+      error(l.loc, err);
+      return false;
+    }
+    return true;
+  }
+
+  // ---- Steps ----
+
+  void check_step(Step& s, const LoadedProgram& p, Runtime& probe) {
+    switch (s.kind) {
+      case Step::Kind::Set: check_set(s, p, probe); return;
+      case Step::Kind::Force:
+      case Step::Kind::Unforce: check_force(s, p, probe); return;
+      case Step::Kind::ExpectWords: check_words(s, p, probe); return;
+      case Step::Kind::RunUntil:
+      case Step::Kind::Expect: check_condition(s.condition, p, probe); return;
+      default: return;
+    }
+  }
+
+  void check_set(Step& s, const LoadedProgram& p, Runtime& probe) {
+    DataRef& t = s.target;
+    if (!resolve(t, p)) return;
+    if (t.is_range() && !check_range(t, probe)) return;
+    const std::size_t n = static_cast<std::size_t>(t.range_size());
+    if (s.values.size() != n) {
+      const Location at = s.values.size() > n ? s.values[n].loc : t.loc;
+      error(at, t.is_range() ? t.spelling + " has " + std::to_string(n) + " element(s) but " +
+                                   std::to_string(s.values.size()) + " value(s) follow"
+                             : "set writes one value to one address; a range (set N7:0..3 = 1 2 3 4) takes one "
+                               "value per element");
+      return;
+    }
+    const int width = width_of(t.address);
+    bool ok = true;
+    for (const auto& v : s.values) ok = check_literal(v, width, t.describe(), false, CompareOp::Eq) && ok;
+    if (!ok || t.is_range() || t.address.is_indirect() || t.address.indexed) return;
+    // Writing on the probe applies the runtime's own rules: an I: address needs a module with
+    // that input in its slot, an M0/M1 address a module that accepts the access.
+    if (auto st = probe.set(t.address, value_for(s.values[0], width)); !st) error(t.loc, st.message);
+  }
+
+  void check_force(Step& s, const LoadedProgram& p, Runtime& probe) {
+    if (!resolve(s.target, p)) return;
+    const Address& a = s.target.address;
+    if (s.target.is_range() || !is_io(a.type) || a.bit < 0 || a.indexed || a.is_indirect()) {
+      error(s.target.loc, "only I: and O: bits can be forced, as on the SLC ('" + s.target.describe() + "' is not one)");
+      return;
+    }
+    const std::string addr = to_string(a);
+    if (s.kind == Step::Kind::Force) {
+      if (!check_literal(s.values.at(0), 1, s.target.describe(), false, CompareOp::Eq)) return;
+      if (auto st = probe.force(addr, s.values[0].integer != 0); !st) {
+        error(s.target.loc, st.message);
+        return;
+      }
+    }
+    if (auto st = probe.unforce(addr); !st) error(s.target.loc, st.message);
+  }
+
+  void check_words(Step& s, const LoadedProgram& p, Runtime& probe) {
+    if (!check_readable(s.target, p, probe)) return;
+    const int n = s.target.range_size();
+    if (static_cast<int>(s.values.size()) != n) {
+      const Location at = static_cast<int>(s.values.size()) > n ? s.values[static_cast<std::size_t>(n)].loc : s.target.loc;
+      error(at, s.target.spelling + " has " + std::to_string(n) + " element(s) but " + std::to_string(s.values.size()) +
+                    " value(s) follow");
+      return;
+    }
+    const int width = width_of(s.target.address);
+    for (const auto& v : s.values) check_literal(v, width, s.target.spelling, true, CompareOp::Eq);
+  }
+
+  void check_condition(Condition& c, const LoadedProgram& p, Runtime& probe) {
+    switch (c.kind) {
+      case Condition::Kind::And:
+      case Condition::Kind::Or:
+        for (auto& t : c.terms) check_condition(t, p, probe);
+        return;
+      case Condition::Kind::Compare: break;
+      default: return;
+    }
+    Comparison& k = c.compare;
+    if (k.lhs.kind == Operand::Kind::Elapsed || k.lhs.kind == Operand::Kind::Scans) {
+      if (k.op == CompareOp::In) {
+        const bool empty = k.lhs.kind == Operand::Kind::Elapsed ? k.rhs.duration > k.high.duration
+                                                                : k.rhs.count > k.high.count;
+        if (empty) error(k.rhs.loc, "empty range: " + k.rhs.spelling + ".." + k.high.spelling);
+      }
+      return;
+    }
+    if (!check_single(k.lhs.data, p, probe)) return;
+    const int width = width_of(k.lhs.data.address);
+    const std::string what = k.lhs.data.describe();
+    if (k.rhs.kind == Operand::Kind::Data) {
+      check_single(k.rhs.data, p, probe);
+      return;
+    }
+    const bool low_ok = check_literal(k.rhs.literal, width, what, true, k.op);
+    if (k.op != CompareOp::In) return;
+    const bool high_ok = check_literal(k.high.literal, width, what, true, CompareOp::In);
+    if (!low_ok || !high_ok) return;
+    const auto number = [&](const Literal& l) {
+      return width == 0 || l.kind == Literal::Kind::Float
+                 ? (l.kind == Literal::Kind::Float ? l.real : static_cast<double>(l.integer))
+                 : static_cast<double>(*integer_for_width(l, width, nullptr));
+    };
+    if (number(k.rhs.literal) > number(k.high.literal))
+      error(k.rhs.loc, "empty range: " + k.rhs.spelling + ".." + k.high.spelling);
+  }
+
+  TestFileLoad& out_;
+  std::filesystem::path dir_;
+  std::filesystem::path display_dir_;
+  ProgramCache& cache_;
+  std::set<std::tuple<std::uint32_t, std::uint32_t, std::string>> seen_;
+  std::set<std::string> reported_;
+  std::map<std::string, std::shared_ptr<const Snapshot>> snapshots_;
+  std::set<std::string> unavailable_;  // snapshots whose test could not be checked
+};
+
+}  // namespace
+
+int width_of(const Address& a) {
+  if (a.has_bit()) return 1;
+  if (a.type == FileType::Float) return 0;
+  if (a.type == FileType::Long) return 32;
+  return 16;
+}
+
+ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const std::string& display) {
+  const std::string key = cache_key(path);
+  if (auto it = entries_.find(key); it != entries_.end()) return it->second;
+  Entry& e = entries_[key];
+  auto text = read_file(path);
+  if (!text) {
+    e.errors = display + ": error: cannot open the program file\n";
+    return e;
+  }
+  softslc::LoadResult lr = load_program(std::move(*text), display);
+  if (!lr.ok()) {
+    e.errors = lr.render_diagnostics();
+    return e;
+  }
+  RuntimeResult rr = Runtime::create(*lr.program);
+  if (!rr.ok()) {
+    for (const auto& err : rr.errors) e.errors += display + ": error: " + err.to_string() + "\n";
+    return e;
+  }
+  auto loaded = std::make_shared<LoadedProgram>();
+  loaded->path = display;
+  loaded->program = std::move(*lr.program);
+  e.program = std::move(loaded);
+  e.probe = std::move(rr.runtime);
+  return e;
+}
+
+Runtime* ProgramCache::probe_for(const LoadedProgram* program) {
+  for (auto& [key, e] : entries_)
+    if (e.program.get() == program) return e.probe.get();
+  return nullptr;
+}
+
+std::string TestFileLoad::render() const {
+  return program_diagnostics + render_all(diagnostics, file.name, file.source);
+}
+
+TestFileLoad load_test_text(std::string text, const std::string& display, const std::filesystem::path& dir,
+                            ProgramCache& cache) {
+  TestFileLoad out;
+  ParseResult pr = parse_test_text(std::move(text), display);
+  out.file = std::move(pr.file);
+  out.diagnostics = std::move(pr.diagnostics);
+  Checker(out, dir, cache).run();
+  return out;
+}
+
+TestFileLoad load_test_file(const std::filesystem::path& path, const std::string& display, ProgramCache& cache) {
+  auto text = read_file(path);
+  if (!text) {
+    TestFileLoad out;
+    out.file.name = display;
+    out.diagnostics.error(0, 0, "cannot open the test file");
+    return out;
+  }
+  return load_test_text(std::move(*text), display, path.parent_path(), cache);
+}
+
+}  // namespace softslc::testing

@@ -1,0 +1,68 @@
+// Loading a test file: parse it, load the programs it names, and check every step against them.
+//
+// After parsing (test_parser.h) the loader
+//   1. loads each program a test names (paths are relative to the test file), once per path for
+//      the whole run, through ProgramCache; a program that does not load or compile is reported
+//      with its own diagnostics and marks the `program` line of the test file;
+//   2. resolves symbols to addresses (a name that is not a SYMBOL of the program is an error);
+//   3. checks every operand and literal: an address the program's data table does not have, a
+//      value that does not fit its word, a force on something other than an I/O bit, a range
+//      over a structured file. Addresses are checked by reading (or writing) them on a probe
+//      Runtime of the program, so the rules are exactly the runtime's;
+//   4. resolves snapshots: `snapshot NAME` records the steps that lead to it (flattened through
+//      earlier restores) and `restore NAME` must name a snapshot defined above it in the file.
+// A test file that loads without errors can then only fail by the ladder's behaviour.
+//
+// ProgramCache is an explicit object owned by the caller (one per run), not a global: it keeps
+// the loaded programs, their probe runtimes and which program errors were already printed.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "parser/diagnostics.h"
+#include "tools/testrunner/test_file.h"
+#include "vm/runtime.h"
+
+namespace softslc::testing {
+
+class ProgramCache {
+ public:
+  struct Entry {
+    std::shared_ptr<const LoadedProgram> program;  // null when the program did not load
+    std::unique_ptr<Runtime> probe;                // for checking operands at load time
+    std::string errors;                            // rendered diagnostics of the program
+  };
+  // Loads `path` (shown as `display`) once. Not thread-safe: loading happens before the run.
+  Entry& load(const std::filesystem::path& path, const std::string& display);
+  // The probe runtime of a loaded program.
+  Runtime* probe_for(const LoadedProgram* program);
+
+ private:
+  std::map<std::string, Entry> entries_;  // by canonical path
+};
+
+struct TestFileLoad {
+  TestFile file;
+  DiagnosticList diagnostics;       // of the test file, sorted by position
+  std::string program_diagnostics;  // rendered diagnostics of programs that failed to load
+
+  bool ok() const { return !diagnostics.has_errors() && program_diagnostics.empty(); }
+  // Program diagnostics first (they explain the test file's "cannot load" errors), then the test
+  // file's, gcc style.
+  std::string render() const;
+};
+
+// Parses and loads test-file text; `dir` is where program paths are relative to, and `display`
+// the file name used in messages.
+TestFileLoad load_test_text(std::string text, const std::string& display, const std::filesystem::path& dir,
+                            ProgramCache& cache);
+// Reads a test file; an unreadable file is a diagnostic.
+TestFileLoad load_test_file(const std::filesystem::path& path, const std::string& display, ProgramCache& cache);
+
+// The width of what an address designates: 1 for a bit, 16 or 32 for integer words, 0 for a float.
+int width_of(const Address& a);
+
+}  // namespace softslc::testing

@@ -8,6 +8,7 @@
 
 #include "parser/formatter.h"
 #include "parser/loader.h"
+#include "tools/testrunner/test_parser.h"
 
 namespace softslc::fuzz {
 
@@ -34,6 +35,18 @@ inline std::string check_address_property(std::string_view bytes) {
   auto again = parse_address(canonical, &error);
   if (!again) return "canonical spelling '" + canonical + "' does not parse: " + error;
   if (!(*again == *a)) return "canonical spelling '" + canonical + "' parses to a different address";
+  return {};
+}
+
+// A test file parses to tests or to positioned diagnostics, whatever its bytes; every
+// diagnostic points inside the file.
+inline std::string check_testfile_property(std::string_view bytes) {
+  auto r = testing::parse_test_text(std::string(bytes), "fuzz.test");
+  std::size_t lines = 1;
+  for (char c : bytes) lines += c == '\n';
+  for (const auto& d : r.diagnostics.items())
+    if (d.line > lines) return "diagnostic at line " + std::to_string(d.line) + " beyond the file's " + std::to_string(lines);
+  (void)render_all(r.diagnostics, "fuzz.test", bytes);
   return {};
 }
 

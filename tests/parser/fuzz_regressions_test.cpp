@@ -33,6 +33,10 @@ TEST(FuzzRegressions, Addresses) {
   for (const auto& f : files) EXPECT_EQ(fuzz::check_address_property(read(f)), "") << f;
 }
 
+TEST(FuzzRegressions, TestFiles) {
+  for (const auto& f : inputs("testfile")) EXPECT_EQ(fuzz::check_testfile_property(read(f)), "") << f;
+}
+
 TEST(FuzzRegressions, Programs) {
   for (const auto& f : inputs("program")) EXPECT_EQ(fuzz::check_program_property(read(f)), "") << f;
 }

@@ -710,6 +710,23 @@ std::string first_word(std::string_view text) {
 
 // ---- The driver -----------------------------------------------------------------------------------------
 
+// A line of a test body: parsed, or kept as text until its row values are known. It and
+// PendingTest (a test being collected) live outside Driver so that clang sees them complete
+// where std::optional needs them.
+struct BodyLine {
+  std::uint32_t number = 0;
+  std::string raw;
+  std::vector<Reference> refs;
+  std::optional<ParsedLine> parsed;  // empty for deferred lines and for lines with errors
+};
+struct PendingTest {
+  ParsedLine header;
+  bool table = false;
+  bool rows_broken = false;  // a row was refused: do not also report "no rows"
+  std::vector<BodyLine> body;
+  std::vector<ParsedLine> rows;
+};
+
 class Driver {
  public:
   Driver(const std::string& text, const std::string& name, DiagnosticList& diags)
@@ -732,21 +749,6 @@ class Driver {
   }
 
  private:
-  // A line of a test body: parsed, or kept as text until its row values are known.
-  struct BodyLine {
-    std::uint32_t number = 0;
-    std::string raw;
-    std::vector<Reference> refs;
-    std::optional<ParsedLine> parsed;  // empty for deferred lines and for lines with errors
-  };
-  struct PendingTest {
-    ParsedLine header;
-    bool table = false;
-    bool rows_broken = false;  // a row was refused: do not also report "no rows"
-    std::vector<BodyLine> body;
-    std::vector<ParsedLine> rows;
-  };
-
   void error(Location at, std::string message) {
     if (seen_.insert({at.line, at.column, message}).second) diags_.error(at.line, at.column, std::move(message));
   }

@@ -1,6 +1,9 @@
 // The softslc command line as scripts use it: exit codes, output streams, fmt's file output.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -202,6 +205,39 @@ TEST(Cli, ScantimeJsonAndComparison) {
   auto b = run("scantime " + f.string() + " --timing " + bad.string());
   EXPECT_EQ(b.exit_code, 1);
   EXPECT_NE(b.out.find("unknown key \"x\""), std::string::npos) << b.out;
+}
+
+// Issue contract: scantime on every shipped example prints a table, and its JSON has the schema
+// {"processor", "rungs": [{"file", "rung", "worst_us", "best_us", "mfile_us"}], "files": [...],
+//  "overhead_us", "total_worst_us", "total_best_us"}.
+TEST(Cli, ScantimeOnEveryExampleFollowsTheSchema) {
+  std::vector<std::filesystem::path> programs;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder"))
+    if (e.path().extension() == ".slc") programs.push_back(e.path());
+  std::sort(programs.begin(), programs.end());
+  ASSERT_FALSE(programs.empty());
+  for (const auto& p : programs) {
+    SCOPED_TRACE(p.string());
+    auto table = run("scantime " + p.string());
+    EXPECT_EQ(table.exit_code, 0) << table.out;
+    EXPECT_NE(table.out.find("whole scan: worst"), std::string::npos) << table.out;
+    auto r = run("scantime --json " + p.string() + " 2>/dev/null");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    auto j = nlohmann::json::parse(r.out.substr(r.out.find('{')));
+    ASSERT_TRUE(j["processor"].is_string());
+    ASSERT_TRUE(j["rungs"].is_array());
+    ASSERT_FALSE(j["rungs"].empty());
+    for (const auto& rung : j["rungs"]) {
+      for (const char* k : {"file", "rung"}) EXPECT_TRUE(rung[k].is_number_integer()) << k;
+      for (const char* k : {"worst_us", "best_us", "mfile_us"}) EXPECT_TRUE(rung[k].is_number()) << k;
+      EXPECT_GE(rung["worst_us"].get<double>(), rung["best_us"].get<double>() - rung["mfile_us"].get<double>());
+    }
+    ASSERT_TRUE(j["files"].is_array());
+    for (const auto& f : j["files"])
+      for (const char* k : {"file", "worst_us", "best_us", "mfile_us"}) EXPECT_TRUE(f[k].is_number()) << k;
+    for (const char* k : {"overhead_us", "total_worst_us", "total_best_us"}) EXPECT_TRUE(j[k].is_number()) << k;
+    EXPECT_GE(j["total_worst_us"].get<double>(), j["total_best_us"].get<double>());
+  }
 }
 
 }  // namespace

@@ -157,6 +157,17 @@ TEST(Program, DataBlocksOfEveryKind) {
   EXPECT_TRUE(p.data[10].words.empty());
 }
 
+TEST(Program, LongAndAsciiDataBlocks) {
+  auto p = load_ok("START Bul.1766\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n"
+                   "DATA L41:0\n% L41:0  %       14400     -70000 \n"
+                   "DATA A9:0\n% A9:0 % 16706 17220\n");
+  ASSERT_EQ(p.data.size(), 2u);
+  EXPECT_EQ(p.data[0].type, FileType::Long);
+  EXPECT_EQ(p.data[0].words, (std::vector<std::int64_t>{14400, -70000}));
+  EXPECT_EQ(p.data[1].type, FileType::Ascii);
+  EXPECT_EQ(p.data[1].words, (std::vector<std::int64_t>{16706, 17220}));
+}
+
 TEST(Program, FunctionFilesAreKeptOpaqueWithAWarning) {
   auto r = load_program("START Bul.1766\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n"
                         "DATA HSC0:0 \n% HSC0:0  %\n     0      0 0X0002\n\nDATA PTOX0:0\n% PTOX0:0 %\n    -1 0X0000\n",

@@ -43,3 +43,219 @@ std::optional<ModuleCatalogEntry> find_module_catalog(std::string_view catalog) 
 }
 
 }  // namespace softslc
+
+// ---- 1747-SN RIO scanner configuration --------------------------------------------------------------
+
+namespace softslc {
+
+namespace {
+
+// "logical rack 9 group 2" for a quarter-rack bit of word 1 (primary) or word 3 (complementary).
+std::string rio_location(int bit, bool complementary) {
+  return "logical rack " + std::to_string(bit / 4 + (complementary ? 8 : 0)) + " group " + std::to_string((bit % 4) * 2);
+}
+
+std::string device_text(const RioGDevice& d) {
+  static const char* sizes[] = {"", "1/4", "1/2", "3/4", "full"};
+  const int quarters = d.groups / 2;
+  std::string size = quarters <= 4 ? std::string(sizes[quarters]) + " logical rack"
+                                   : std::to_string(d.groups) + "-group";
+  return std::string(d.complementary ? "complementary" : "primary") + " " + size + " device at " +
+         rio_location(d.bit, d.complementary);
+}
+
+// Decodes one address/size word pair into devices. A device runs from its start bit over the
+// following size bits up to the next start bit or the first clear size bit.
+void decode_pair(std::uint16_t start, std::uint16_t size, bool complementary, int start_word,
+                 std::vector<RioGDevice>& out, std::vector<ModuleConfigFinding>& findings) {
+  const std::string ws = "word " + std::to_string(start_word), wz = "word " + std::to_string(start_word + 1);
+  std::uint16_t covered = 0;
+  for (int b = 0; b < 16; ++b) {
+    if (!(start & (1u << b))) continue;
+    if (!(size & (1u << b))) {
+      findings.push_back({true, "G file " + ws + " bit " + std::to_string(b) + " configures a device at " +
+                                    rio_location(b, complementary) + " but " + wz +
+                                    " allocates it no image (1747-SN manual ch. 4, \"Rules for Configuring the "
+                                    "Scanner\": \"If a device is configured in word " +
+                                    std::to_string(start_word) + ", there must be image allocated to it in word " +
+                                    std::to_string(start_word + 1) + ".\")"});
+      continue;
+    }
+    RioGDevice d;
+    d.bit = b;
+    d.rack = b / 4;
+    d.group = (b % 4) * 2;
+    d.complementary = complementary;
+    int e = b + 1;
+    while (e < 16 && (size & (1u << e)) && !(start & (1u << e))) ++e;
+    d.groups = (e - b) * 2;
+    for (int k = b; k < e; ++k) covered = static_cast<std::uint16_t>(covered | (1u << k));
+    out.push_back(d);
+  }
+  const std::uint16_t orphan = static_cast<std::uint16_t>(size & ~covered);
+  for (int b = 0; b < 16; ++b)
+    if (orphan & (1u << b))
+      findings.push_back({true, "G file " + wz + " bit " + std::to_string(b) + " allocates image at " +
+                                    rio_location(b, complementary) + " to no device: no device starting at or before it in " +
+                                    ws + " reaches it (1747-SN manual ch. 4, \"RIO Configuration Using G Files\": \"To "
+                                    "specify image size, you place a 1 at each group a device occupies.\")"});
+}
+
+}  // namespace
+
+bool is_rio_scanner(std::string_view catalog, std::optional<int> id_code) {
+  if (catalog == "1747-SN" || catalog == "1747-BSN") return true;
+  return !find_module_catalog(catalog) && id_code && *id_code == kRioScannerIdCode;
+}
+
+RioGFile decode_rio_g_file(std::span<const std::uint16_t> g, std::vector<ModuleConfigFinding>& findings) {
+  RioGFile out;
+  for (std::size_t i = 0; i < g.size() && i < out.words.size(); ++i) out.words[i] = g[i];
+  if (g.size() != 3 && g.size() != 5) {
+    findings.push_back({true, "the 1747-SN G file has " + std::to_string(g.size()) +
+                                  " words; it must have 3, or 5 with complementary I/O (1747-SN manual ch. 4, "
+                                  "\"SLC/Scanner Configuration\": \"Set the G file size to 3 (5 if using "
+                                  "complementary I/O)\")"});
+    if (g.size() < 3) return out;
+  }
+  const std::uint16_t w1 = out.words[1], w2 = out.words[2];
+  const std::uint16_t w3 = g.size() >= 5 ? out.words[3] : 0, w4 = g.size() >= 5 ? out.words[4] : 0;
+  if (g.size() < 5) out.words[3] = out.words[4] = 0;
+  out.complementary_mode = w3 != 0;
+  // "if word 3 = 1 and word 4 = 0, the complementary mode is selected even though no
+  // complementary devices are configured."
+  const bool mode_marker_only = w3 == 1 && w4 == 0;
+  decode_pair(w1, w2, false, 1, out.devices, findings);
+  if (!mode_marker_only) decode_pair(w3, w4, true, 3, out.devices, findings);
+
+  std::vector<const RioGDevice*> primary, complementary;
+  for (const auto& d : out.devices) (d.complementary ? complementary : primary).push_back(&d);
+  if (primary.empty() && complementary.empty()) {
+    findings.push_back({true, std::string("the G file configures no device: ") +
+                                  (out.complementary_mode
+                                       ? "\"G file words 1 and 2 can both be zero (no primary devices). However, in "
+                                         "this case there must be at least one complementary device configured in G "
+                                         "file words 3 and 4.\""
+                                       : "words 1 and 2 are both zero and complementary I/O is not selected; \"G file "
+                                         "words 1 and 2 can both be zero (no primary devices). However, in this case "
+                                         "there must be at least one complementary device configured in G file words "
+                                         "3 and 4.\"") +
+                                  " (1747-SN manual ch. 4, \"Concerning Complementary I/O\")"});
+  }
+  // A complementary device may share image space with a primary device only when both start at
+  // the same location; otherwise neither may reach into the other's image.
+  for (const RioGDevice* c : complementary) {
+    for (const RioGDevice* p : primary) {
+      const bool overlap = c->first_quarter() < p->end_quarter() && p->first_quarter() < c->end_quarter();
+      if (!overlap || c->bit == p->bit) continue;
+      std::string rule;
+      if (p->covers_quarter(c->bit))
+        rule = "\"A complementary device cannot be configured at locations where primary devices are configured "
+               "unless they both start at the same location.\"";
+      else if (c->covers_quarter(p->bit))
+        rule = "\"The starting group of the primary and complementary chassis should be the same if they share the "
+               "same image space. If the starting group is not the same, the image of the complementary device must "
+               "not 'cross over' into the space of a primary device.\" (the manual's illegal example: a primary device "
+               "at Logical Rack 1, Logical Group 2 \"would be illegal since this image space is already being used by "
+               "a complementary device\")";
+      findings.push_back({true, "the " + device_text(*c) + " shares image space with the " + device_text(*p) +
+                                    " but they start at different groups: " + rule +
+                                    " (1747-SN manual ch. 4, \"Concerning Complementary I/O\")"});
+    }
+  }
+  return out;
+}
+
+std::optional<RioBaudSetting> rio_baud_setting(const std::map<std::string, std::string>& options, std::string* error) {
+  RioBaudSetting s;  // 57.6K: both switches on
+  auto baud = options.find("baud");
+  auto dip = options.find("dip");
+  if (baud != options.end() && dip != options.end()) {
+    if (error) *error = "give the baud rate either as OPTION baud=... or as OPTION dip=..., not both";
+    return std::nullopt;
+  }
+  if (baud != options.end()) {
+    const std::string& v = baud->second;
+    if (v == "57.6K" || v == "57.6k" || v == "57600") s = {0, 3};
+    else if (v == "115.2K" || v == "115.2k" || v == "115200") s = {1, 1};
+    else if (v == "230.4K" || v == "230.4k" || v == "230400") s = {2, 2};
+    else {
+      if (error) *error = "OPTION baud=" + v + ": the 1747-SN runs at 57.6K, 115.2K or 230.4K (Table A.2)";
+      return std::nullopt;
+    }
+  }
+  if (dip != options.end()) {
+    const std::string& v = dip->second;
+    // Table A.2: SW1 SW2 on-on 57.6K, on-off 115.2K, off-on and off-off 230.4K.
+    if (v == "on-on") s = {0, 3};
+    else if (v == "on-off") s = {1, 1};
+    else if (v == "off-on") s = {2, 2};
+    else if (v == "off-off") s = {2, 0};
+    else {
+      if (error) *error = "OPTION dip=" + v + ": give switches 1 and 2 as on-on, on-off, off-on or off-off (Table A.2)";
+      return std::nullopt;
+    }
+  }
+  return s;
+}
+
+std::vector<ModuleConfigFinding> check_rio_scanner_slot(const RioScannerSlot& s) {
+  std::vector<ModuleConfigFinding> f;
+  auto err = [&](std::string m) { f.push_back({true, std::move(m)}); };
+  auto warn = [&](std::string m) { f.push_back({false, std::move(m)}); };
+  if (s.slot == 0)
+    err("the 1747-SN cannot be in slot 0 (1747-SN manual ch. 1: \"The scanner can reside in any slot of the local SLC "
+        "chassis except for slot 0.\")");
+  if (!s.processor_ok)
+    err("the 1747-SN needs an SLC 5/02 or later processor; this program's processor is " + s.processor_name +
+        " (1747-SN manual ch. 1: \"It enables communication between an SLC processor (SLC 5/02 or later) and remotely "
+        "located ... 1746 I/O chassis\")");
+  for (auto [name, words] : {std::pair<const char*, int>{"SCAN_IN", s.scan_in}, {"SCAN_OUT", s.scan_out}}) {
+    if (words == 0)
+      err(std::string(name) + " is 0 (1747-SN manual ch. 4, \"SLC/Scanner Configuration\": \"Do not set either of these "
+                              "values to 0. If you do, the scanner will not work correctly.\")");
+    else if (words > 32)
+      err(std::string(name) + " " + std::to_string(words) +
+          " is more than the scanner's 32 words (1747-SN manual ch. 4: \"The SLC system allows you to assign up to 32 "
+          "words of input and output image data to a scanner.\")");
+  }
+  if (s.id_code && *s.id_code != kRioScannerIdCode)
+    err("ID_CODE " + std::to_string(*s.id_code) +
+        " is not the 1747-SN's; \"enter the scanner input module ID code (13608)\" (1747-SN manual ch. 2)");
+  std::string baud_error;
+  if (!rio_baud_setting(s.options, &baud_error)) err(baud_error);
+  for (const auto& [key, value] : s.options)
+    if (key != "baud" && key != "dip")
+      err("OPTION " + key + "=" + value + ": the 1747-SN knows OPTION baud=... and OPTION dip=... (its only switches)");
+
+  std::vector<ModuleConfigFinding> g;
+  RioGFile cfg;
+  if (!s.has_g_file) {
+    warn("the 1747-SN has no G file; the processor faults with 62H when it enters Run (1747-SN manual ch. 6: \"G file "
+         "is missing.\" 62H)");
+  } else {
+    cfg = decode_rio_g_file(s.g_file, g);
+    for (auto& x : g) f.push_back(std::move(x));
+  }
+  const int min_m = cfg.complementary_mode ? 48 : 32;
+  for (auto [name, size] : {std::pair<const char*, std::optional<int>>{"M0_SIZE", s.m0_size}, {"M1_SIZE", s.m1_size}})
+    if (size && *size < min_m)
+      warn(std::string(name) + " " + std::to_string(*size) + " is below the scanner's minimum of " +
+          std::to_string(min_m) +
+          " words (1747-SN manual ch. 4: \"set the M1 and M0 file sizes to 32 words (48 words if using complementary "
+          "I/O). 32 words is the minimum required for operation.\")");
+  if (s.has_g_file && g.empty()) {
+    // Devices whose image lies beyond SCAN_IN/SCAN_OUT are scanned but never seen by the processor.
+    for (const auto& d : cfg.devices) {
+      const int last_word = d.rack * 8 + d.group + d.groups;  // one past the device's last image word
+      if (last_word > s.scan_in || last_word > s.scan_out)
+        warn(std::string(d.complementary ? "complementary" : "primary") + " device at " +
+             rio_location(d.bit, d.complementary) + " reaches image word " + std::to_string(last_word - 1) +
+             " but the processor transfers only " + std::to_string(std::min(s.scan_in, s.scan_out)) +
+             " words (SCAN_IN/SCAN_OUT); the rest of its image is not seen by the program");
+    }
+  }
+  return f;
+}
+
+}  // namespace softslc

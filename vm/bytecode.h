@@ -10,13 +10,14 @@
 //   +------------+---------+---------+----------------------------------+
 //     op     Op: an instruction-table Opcode (same number) or a structural op (SOR..EOF)
 //     n      number of operand words that follow (0-15)
-//     flags  bit 0 DYN    an operand is resolved at run time (indexed, indirect, M0/M1):
-//                         the interpreter checks for a fault after this instruction
+//     flags  bit 0 DYN    an operand is resolved at run time (indexed, indirect, M0/M1), or a
+//                         module instruction: the interpreter checks for a fault after it
 //            bit 1 FLOAT  math/compare/move in single-precision float (an operand is F)
 //            bit 2 A      op-specific: TON/TOF/RTO 1.0 s time base; SOR rung holds an MCR;
 //                         MCR unconditional (closes the zone)
 //            bit 3 B      reserved
-//     aux    SOR: rung number in its file; RES: FileType of the element; else 0
+//     aux    SOR: rung number in its file; RES: FileType of the element; BTR/BTW/DEM: the
+//            chassis slot of the module that executes it; else 0
 //
 //   operand word
 //    31    28 27      24 23                                              0
@@ -85,7 +86,8 @@
 //   TND                       if rung then end the program scan
 //   MCR                       A: close the zone; else open a zone whose state is rung
 //   IIM IOM slot mask n       if rung then immediate input / output of n slot words under mask
-//   BTR BTW DEM               module instructions: rejected at compile time for now
+//   BTR BTW DEM ...           module instructions: operands resolved, then executed by the
+//                             module in slot aux (Module::execute); DYN is always set
 #pragma once
 
 #include <array>

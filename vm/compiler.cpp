@@ -26,8 +26,19 @@ std::string CompileResult::render() const {
 
 std::string module_instruction_unsupported(Opcode op) {
   return std::string(spec(op).mnemonic) +
-         " is not supported until the 1747-SN/1747-SDN module lands (specialty-module instructions need their "
-         "module's implementation; the program cannot run without it)";
+         " is not supported until the 1747-SN/1747-SDN module lands in this runtime (specialty-module instructions need "
+         "their module's implementation: build the RuntimeOptions with the module registry, modules/module_setup.h)";
+}
+
+std::optional<int> module_instruction_slot(const Instruction& in) {
+  for (const auto& op : in.operands)
+    if (op.is_address() && is_mfile(op.address.type)) return op.address.element;
+  const InstructionSpec& sp = spec(in.opcode);
+  for (std::size_t i = 0; i < in.operands.size() && i < sp.operand_count; ++i)
+    if (sp.operands[i].kind == OperandKind::Literal && sp.operands[i].label == "slot" &&
+        in.operands[i].kind == Operand::Kind::Integer)
+      return static_cast<int>(in.operands[i].integer);
+  return std::nullopt;
 }
 
 namespace {
@@ -182,6 +193,14 @@ class Compiler {
       case Opcode::LFL: return i == 1 ? len(3) : 1;
       case Opcode::FFU:
       case Opcode::LFU: return i == 0 ? len(3) : 1;
+      // Block transfers: the 3-word control block, and the data file's requested length (0
+      // reserves 64 words, 1747-SN manual p. 5-7). DEM: the 70-word control block.
+      case Opcode::BTR:
+      case Opcode::BTW:
+        if (i == 0) return 3;
+        if (i == 2) return len(6) == 0 ? 64 : len(6);
+        return 1;
+      case Opcode::DEM: return i == 1 ? 70 : 1;
       default: return 1;
     }
   }
@@ -567,11 +586,17 @@ class Compiler {
 
   void emit_instruction(const Instruction& in, bool mcr_unconditional) {
     const InstructionSpec& sp = spec(in.opcode);
+    std::optional<int> module_slot;
     if (is_module_instruction(in.opcode)) {
       std::optional<std::string> refusal =
           opts_.module_instruction ? opts_.module_instruction(in) : module_instruction_unsupported(in.opcode);
       if (refusal) {
         error(in.pos, *refusal);
+        return;
+      }
+      module_slot = module_instruction_slot(in);
+      if (!module_slot || *module_slot < 0 || *module_slot >= kMaxSlots) {
+        error(in.pos, std::string(sp.mnemonic) + " does not name a chassis slot (0-30) for its module");
         return;
       }
     }
@@ -695,6 +720,12 @@ class Compiler {
     if (any_float) flags |= bc::kFlagFloat;
     if (in.opcode == Opcode::RES) aux = static_cast<std::uint32_t>(element_type);
     if (in.opcode == Opcode::MCR && mcr_unconditional) flags |= bc::kFlagA;
+    // A module instruction carries its module's slot in aux, and DYN so its M-file time is
+    // folded into the scan and a fault it raises stops the scan.
+    if (module_slot) {
+      aux = static_cast<std::uint32_t>(*module_slot);
+      flags |= bc::kFlagDyn;
+    }
 
     // Literals that initialise their element (unless DATA did).
     switch (in.opcode) {
@@ -723,6 +754,16 @@ class Compiler {
       case Opcode::LFU:
         init_literal(ops[2], 1, literal(in, 3));
         init_literal(ops[2], 2, literal(in, 4));
+        break;
+      case Opcode::BTR:
+      case Opcode::BTW:
+        // "A BTR or BTW instruction writes information into its control structure address ... when
+        // the instruction is entered" (1747-SN p. 5-6): Table 5.1 word 0 holds RW (bit 7, 1 = BTR),
+        // the rack (bits 6-4), group (bits 3-1) and slot (bit 0); word 1 the requested word count.
+        init_literal(ops[0], 0,
+                     (in.opcode == Opcode::BTR ? 0x0080 : 0) | ((literal(in, 3) & 7) << 4) |
+                         ((literal(in, 4) & 7) << 1) | (literal(in, 5) & 1));
+        init_literal(ops[0], 1, literal(in, 6));
         break;
       default: break;
     }

@@ -62,4 +62,10 @@ CompileResult compile(const Program& program, const CompileOptions& options = {}
 // The message the default hook gives for a module instruction.
 std::string module_instruction_unsupported(Opcode op);
 
+// The chassis slot a specialty-module instruction addresses: the slot of its first M0/M1 operand
+// (BTR/BTW buffer M1:e.x00 / M0:e.x00), else its literal operand labelled "slot" in the
+// instruction table (DEM). The compiler stores it in the instruction header's aux field and the
+// interpreter hands the instruction to that slot's module. nullopt when neither is written.
+std::optional<int> module_instruction_slot(const Instruction& in);
+
 }  // namespace softslc

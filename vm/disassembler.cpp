@@ -107,6 +107,8 @@ void list_range(const CompiledProgram& p, std::uint32_t begin, std::uint32_t end
       }
       if (flags & bc::kFlagFloat) notes += std::string(notes.empty() ? "" : ", ") + "float";
       if (op == Op::MCR) notes += (flags & bc::kFlagA) ? "closes the zone" : "opens a zone";
+      if (op == Op::BTR || op == Op::BTW || op == Op::DEM)
+        notes += std::string(notes.empty() ? "" : ", ") + "module in slot " + std::to_string(bc::aux_of(h));
     } else if (op == Op::SOR && (flags & bc::kFlagA)) {
       notes = "MCR rung: not forced false in a zone";
     }

@@ -29,8 +29,8 @@ inline constexpr std::uint16_t kSubroutineNesting = 0x0030;
 inline constexpr std::uint16_t kNegativeTimerValue = 0x0034;
 // A module refused an M0/M1 access: xx55 with the slot in the high byte [U, softslc's choice].
 constexpr std::uint16_t module_access(int slot) { return static_cast<std::uint16_t>((slot << 8) | 0x55); }
-// An instruction softslc cannot execute yet reached at run time (never expected: the compiler
-// rejects them) [softslc].
+// A specialty instruction reached a module that does not execute it (or an empty slot); the
+// module setup's compile hook normally refuses such programs first [softslc].
 inline constexpr std::uint16_t kUnsupportedInstruction = 0x001F;
 }  // namespace fault
 

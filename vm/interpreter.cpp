@@ -508,6 +508,111 @@ void Interpreter::span_set(const Span& s, std::uint32_t i, std::uint16_t v) {
                                             ": module refused (" + std::string(to_string(a)) + ")");
 }
 
+// ---- Specialty-module instructions ------------------------------------------------------------------
+
+void ChassisAccess::module_instruction(int slot, ModuleInstructionContext& ctx) {
+  ctx.fault(fault::kUnsupportedInstruction, std::string(spec(ctx.opcode()).mnemonic) + ": there is no module in slot " +
+                                               std::to_string(slot) + " to execute it");
+}
+
+// The interpreter's side of a module instruction: checked data-table and M-file access, charged
+// to the scan through the timing model, faults through raise().
+class ModuleCall final : public ModuleInstructionContext {
+ public:
+  ModuleCall(Interpreter& in, Opcode op, bool rung, VirtualTime now, std::span<const ModuleOperand> ops)
+      : in_(in), op_(op), rung_(rung), now_(now), ops_(ops) {}
+
+  Opcode opcode() const override { return op_; }
+  bool rung_in() const override { return rung_; }
+  bool first_pass() const override { return in_.first_pass_; }
+  VirtualTime now() const override { return now_; }
+  std::span<const ModuleOperand> operands() const override { return ops_; }
+
+  bool read(std::size_t i, std::uint32_t k, std::uint16_t& value) override {
+    if (!check(i, k)) return false;
+    value = in_.w_[ops_[i].word + k];
+    return true;
+  }
+  bool write(std::size_t i, std::uint32_t k, std::uint16_t value) override {
+    if (!check(i, k)) return false;
+    in_.w_[ops_[i].word + k] = value;
+    return true;
+  }
+  bool read_m(int slot, MFile f, int word, std::uint16_t& value) override {
+    const MAccess a = in_.chassis_.read_m(slot, f, word, value);
+    if (a == MAccess::Ok) return true;
+    in_.raise(fault::module_access(slot), std::string(spec(op_).mnemonic) + " reading M" + std::to_string(static_cast<int>(f)) +
+                                              ":" + std::to_string(slot) + "." + std::to_string(word) +
+                                              ": module refused (" + std::string(to_string(a)) + ")");
+    return false;
+  }
+  bool write_m(int slot, MFile f, int word, std::uint16_t value) override {
+    const MAccess a = in_.chassis_.write_m(slot, f, word, value);
+    if (a == MAccess::Ok) return true;
+    in_.raise(fault::module_access(slot), std::string(spec(op_).mnemonic) + " writing M" + std::to_string(static_cast<int>(f)) +
+                                              ":" + std::to_string(slot) + "." + std::to_string(word) +
+                                              ": module refused (" + std::string(to_string(a)) + ")");
+    return false;
+  }
+  void charge(MFileAccess row, int words) override { in_.charge_m(row, words); }
+  void fault(std::uint16_t code, std::string message) override { in_.raise(code, std::move(message)); }
+
+ private:
+  bool check(std::size_t i, std::uint32_t k) {
+    if (i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table && k < ops_[i].limit) return true;
+    in_.raise(fault::kIndexOutOfRange, std::string(spec(op_).mnemonic) + " " +
+                                          (i < spec(op_).operand_count ? std::string(spec(op_).operands[i].label)
+                                                                       : std::string("operand")) +
+                                          ": word " + std::to_string(k) + " runs past the end of its data file");
+    return false;
+  }
+
+  Interpreter& in_;
+  Opcode op_;
+  bool rung_;
+  VirtualTime now_;
+  std::span<const ModuleOperand> ops_;
+};
+
+void Interpreter::module_instruction(Op op, const std::uint32_t* o, std::uint32_t h, bool rung, Nanoseconds now_in_scan) {
+  const DataTableLayout& L = *prog_.layout;
+  std::array<ModuleOperand, 15> ops{};
+  const std::uint32_t n = std::min<std::uint32_t>(bc::count_of(h), static_cast<std::uint32_t>(ops.size()));
+  auto table = [&](ModuleOperand& m, std::uint32_t word) {
+    m.kind = ModuleOperand::Kind::Table;
+    m.word = word;
+    const int file = L.file_containing(word);
+    m.limit = file < 0 ? 1 : L.files[static_cast<std::size_t>(file)].end() - word;
+  };
+  for (std::uint32_t i = 0; i < n; ++i) {
+    const std::uint32_t w = o[i];
+    ModuleOperand& m = ops[i];
+    switch (bc::mode_of(w)) {
+      case bc::kWord:
+      case bc::kLong:
+      case bc::kFloat: table(m, bc::payload_of(w)); break;
+      case bc::kDyn: {
+        Ref r;
+        if (!resolve(prog_.dyn[bc::payload_of(w)], r)) return;
+        if (r.mfile) {
+          m.kind = ModuleOperand::Kind::MFile;
+          m.slot = r.slot;
+          m.file = r.which;
+          m.word = r.word;
+        } else {
+          table(m, r.word);
+        }
+        break;
+      }
+      case bc::kImm: m.value = bc::imm_of(w); break;
+      case bc::kKInt: m.value = prog_.int_constants[bc::payload_of(w)]; break;
+      default: break;
+    }
+  }
+  ModuleCall call(*this, to_opcode(op), rung, scan_start_ + now_in_scan, std::span<const ModuleOperand>(ops.data(), n));
+  chassis_.module_instruction(static_cast<int>(bc::aux_of(h)), call);
+}
+
 // ---- Timers, counters, reset ----------------------------------------------------------------------------------
 
 bool Interpreter::timer(Op op, const std::uint32_t* o, std::uint32_t h, bool rung, Nanoseconds now_in_scan) {
@@ -1323,9 +1428,10 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
       case Op::BTR:
       case Op::BTW:
       case Op::DEM:
-        // The compiler refuses these until their modules exist; reaching one is a fault, never a no-op.
-        raise(fault::kUnsupportedInstruction, module_instruction_unsupported(to_opcode(op)));
-        goto fault;
+        // The module in the slot does the work; the compiler set DYN so its M-file access time
+        // is folded in and a fault it raises stops the scan below.
+        module_instruction(op, o, h, rung, elapsed);
+        break;
     }
     if (bc::flags_of(h) & bc::kFlagDyn) [[unlikely]] {
       if (faulted_) goto fault;

@@ -56,6 +56,9 @@ class ChassisAccess {
   virtual void immediate_input(int slot, int first, int count, std::uint16_t mask) = 0;
   // IOM: send `count` O-file words of `slot` from word `first` to the module under `mask`.
   virtual void immediate_output(int slot, int first, int count, std::uint16_t mask) = 0;
+  // A specialty-module instruction (BTR, BTW, DEM) addressed to the module in `slot`. The default
+  // faults: there is no module to execute it.
+  virtual void module_instruction(int slot, ModuleInstructionContext& ctx);
 };
 
 struct ProgramScanResult {
@@ -69,6 +72,8 @@ struct ProgramScanResult {
 
 // Maximum call depth the interpreter's call stack holds (the processor's limit is at most 8).
 inline constexpr int kMaxCallDepth = 16;
+
+class ModuleCall;
 
 class Interpreter {
  public:
@@ -151,6 +156,11 @@ class Interpreter {
   SOFTSLC_HANDLER void bit_shift(Op op, const std::uint32_t* o, bool rung);
   SOFTSLC_HANDLER void sequencer(Op op, const std::uint32_t* o, bool rung);
   SOFTSLC_HANDLER void stack(Op op, const std::uint32_t* o, bool rung);
+  // BTR, BTW, DEM: resolves the operands and hands the instruction to the module in the slot the
+  // compiler recorded in the header's aux field (ChassisAccess::module_instruction).
+  SOFTSLC_HANDLER void module_instruction(Op op, const std::uint32_t* o, std::uint32_t h, bool rung,
+                                          Nanoseconds now_in_scan);
+  friend class ModuleCall;
 
   // Virtual time spent on the slow paths (M0/M1 accesses, file-instruction words); folded into
   // the scan time after the instruction.

@@ -1,5 +1,7 @@
 #include "vm/module.h"
 
+#include "vm/faults.h"
+
 namespace softslc {
 
 std::string_view to_string(Mode m) {
@@ -19,6 +21,11 @@ std::string_view to_string(MAccess a) {
     case MAccess::Forbidden: return "forbidden";
   }
   return "?";
+}
+
+void Module::execute(ModuleInstructionContext& ctx) {
+  ctx.fault(fault::kUnsupportedInstruction, std::string(spec(ctx.opcode()).mnemonic) + ": the module in slot " +
+                                               std::to_string(slot_) + " (" + catalog_ + ") has no such instruction");
 }
 
 }  // namespace softslc

@@ -18,6 +18,19 @@
 //
 // Field-side access (set_field_input, field_output) is for tools and tests: it is how
 // `Runtime::set("I:1/0", 1)` reaches the simulated field device.
+//
+// Specialty instructions (BTR, BTW, DEM) are executed by the module in the slot they name:
+// the interpreter resolves the instruction's operands to data-table locations, M-file words and
+// literals (ModuleOperand) and calls Module::execute with a ModuleInstructionContext through
+// which the module reads and writes the data table (bounds-checked), makes immediate M0/M1
+// accesses and charges them to the scan time (ScanTimeModel::mfile_access_cost), or raises a
+// major fault. The VM knows no instruction's semantics beyond that call.
+//
+// Simulated field devices (the "bench") have names. Tools and tests reach them through the
+// family-neutral inject()/observe() entry points: a fault or change is a word ("offline",
+// "cable removed", "data size", ...) with string arguments, and a module answers only for the
+// devices it owns (DeviceStatus::Kind::NotMine otherwise), so the runtime can ask every module
+// in slot order without knowing any module type.
 #pragma once
 
 #include <cstdint>
@@ -25,7 +38,9 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "instructions/instruction_table.h"
 #include "vm/event_queue.h"
 #include "vm/virtual_time.h"
 
@@ -58,6 +73,71 @@ class ModuleHost {
   // Schedules work on the runtime's event queue (time >= now()).
   virtual EventQueue::EventId schedule_at(VirtualTime at, EventQueue::Callback cb) = 0;
   virtual bool cancel_event(EventQueue::EventId id) = 0;
+  // Puts the processor in a major fault (S:6 = code, S:1/13), as a module error does on the SLC
+  // (for example a scanner refusing its G file at Run entry). Raised during a mode change it
+  // takes effect once every module has seen the change; raised from an event it takes effect at
+  // once. The first fault wins. The default ignores the request (hosts without faults).
+  virtual void raise_major_fault(std::uint16_t /*code*/, std::string /*message*/) {}
+};
+
+// ---- Specialty-module instructions ------------------------------------------------------------
+
+// One operand of a specialty-module instruction, resolved by the interpreter for this execution.
+struct ModuleOperand {
+  enum class Kind : std::uint8_t { Table, MFile, Literal };
+  Kind kind = Kind::Literal;
+  std::uint32_t word = 0;   // Table: data-table word index; MFile: word in the module's M file
+  std::uint32_t limit = 0;  // Table: words from `word` to the end of its data file
+  int slot = 0;             // MFile: the module's slot
+  MFile file = MFile::M0;   // MFile
+  std::int64_t value = 0;   // Literal
+};
+
+// What a module may do while the processor executes one of its instructions. Every access is
+// checked: a data-table access outside the operand's file raises fault 002Ah, a refused M-file
+// access fault xx55h (both then return false); nothing reaches outside the data table.
+// M-file accesses are not charged by themselves: the module charges the access-time rows the
+// real processor pays (charge()), so a multi-word copy is charged as one multi-word access.
+class ModuleInstructionContext {
+ public:
+  virtual ~ModuleInstructionContext() = default;
+  virtual Opcode opcode() const = 0;
+  virtual bool rung_in() const = 0;
+  // The first program scan after entering Run or Test.
+  virtual bool first_pass() const = 0;
+  // Virtual time of this execution (scan start plus the scan time so far).
+  virtual VirtualTime now() const = 0;
+  virtual std::span<const ModuleOperand> operands() const = 0;
+  // Word k of Table operand i.
+  virtual bool read(std::size_t i, std::uint32_t k, std::uint16_t& value) = 0;
+  virtual bool write(std::size_t i, std::uint32_t k, std::uint16_t value) = 0;
+  // Immediate M0/M1 access to the module in `slot` (normally the executing module).
+  virtual bool read_m(int slot, MFile f, int word, std::uint16_t& value) = 0;
+  virtual bool write_m(int slot, MFile f, int word, std::uint16_t value) = 0;
+  // Adds the access time of one access under `row` (`words` words for the multi-word rows).
+  virtual void charge(MFileAccess row, int words) = 0;
+  // Raises a major fault; the program scan stops after this instruction.
+  virtual void fault(std::uint16_t code, std::string message) = 0;
+};
+
+// ---- Field devices -------------------------------------------------------------------------------
+
+// A change injected into a simulated field device: `fault` is a word or phrase ("offline",
+// "online", "cable removed", "cable restored", "data size", "noisy", "message timeout",
+// "bt error", "bt data", "input", "normal", ...) and `args` its arguments. Each module family
+// documents the words it accepts (docs/modules.md).
+struct DeviceFault {
+  std::string device;
+  std::string fault;
+  std::vector<std::string> args;
+};
+
+struct DeviceStatus {
+  enum class Kind : std::uint8_t { NotMine, Done, Refused };
+  Kind kind = Kind::NotMine;
+  std::string message;  // why it was refused
+  static DeviceStatus done() { return {Kind::Done, {}}; }
+  static DeviceStatus refused(std::string m) { return {Kind::Refused, std::move(m)}; }
 };
 
 class Module {
@@ -88,6 +168,19 @@ class Module {
   virtual MAccess write_m(MFile, int /*word*/, std::uint16_t /*value*/) { return MAccess::NoSuchWord; }
 
   virtual void on_mode_change(Mode /*from*/, Mode /*to*/) {}
+
+  // Executes a specialty instruction addressed to this module (BTR/BTW to a scanner, DEM to a
+  // DeviceNet scanner). The default refuses with fault 001Fh: the module has no such instruction.
+  virtual void execute(ModuleInstructionContext& ctx);
+
+  // Field devices this module simulates: their names, injected changes and observable values
+  // (what = "outputs", "inputs", "btw data", ... as the family documents). NotMine / nullopt for
+  // devices the module does not own.
+  virtual std::vector<std::string> device_names() const { return {}; }
+  virtual DeviceStatus inject(const DeviceFault& /*fault*/) { return {}; }
+  virtual std::optional<std::vector<std::int64_t>> observe(std::string_view /*device*/, std::string_view /*what*/) const {
+    return std::nullopt;
+  }
 
   // Field side, for tools and tests. set_field_input changes the bits of input word `word`
   // selected by `mask`; it returns false when the module has no such simulated input.

@@ -115,8 +115,30 @@ void Runtime::write_mode_bits() {
 }
 
 void Runtime::notify_modes(Mode from, Mode to) {
+  const bool outer = !notifying_;
+  notifying_ = true;
   for (Module* m : modules_)
     if (m) m->on_mode_change(from, to);
+  if (!outer) return;
+  notifying_ = false;
+  // A module that refused the change (a scanner without a valid G file) faults the processor
+  // once every module has seen it.
+  if (pending_module_fault_) {
+    FaultInfo f = std::move(*pending_module_fault_);
+    pending_module_fault_.reset();
+    if (!fault_) enter_fault(f);
+  }
+}
+
+void Runtime::raise_major_fault(std::uint16_t code, std::string message) {
+  FaultInfo f;
+  f.code = code;
+  f.message = std::move(message);
+  if (notifying_) {
+    if (!pending_module_fault_) pending_module_fault_ = std::move(f);
+    return;
+  }
+  if (!fault_) enter_fault(f);
 }
 
 RuntimeStatus Runtime::set_mode(Mode m) {
@@ -505,6 +527,43 @@ void Runtime::immediate_input(int slot, int first, int count, std::uint16_t mask
   for (int k = first; k < first + count && k < static_cast<int>(si.words); ++k)
     w[k] = static_cast<std::uint16_t>((w[k] & ~mask) | (tmp[static_cast<std::size_t>(k)] & mask));
   apply_input_forces(si.first + static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(count));
+}
+
+void Runtime::module_instruction(int slot, ModuleInstructionContext& ctx) {
+  if (Module* m = module(slot)) {
+    m->execute(ctx);
+    return;
+  }
+  ChassisAccess::module_instruction(slot, ctx);
+}
+
+// ---- Field devices ------------------------------------------------------------------------------------------
+
+RuntimeStatus Runtime::inject(std::string_view device, std::string_view fault, std::vector<std::string> args) {
+  DeviceFault f{std::string(device), std::string(fault), std::move(args)};
+  for (Module* m : modules_) {
+    if (!m) continue;
+    DeviceStatus st = m->inject(f);
+    if (st.kind == DeviceStatus::Kind::Done) return {};
+    if (st.kind == DeviceStatus::Kind::Refused)
+      return RuntimeStatus::failure("device " + f.device + ": " + st.message);
+  }
+  return RuntimeStatus::failure("no simulated field device is named '" + f.device + "'");
+}
+
+std::optional<std::vector<std::int64_t>> Runtime::observe(std::string_view device, std::string_view what) const {
+  for (const Module* m : modules_)
+    if (m)
+      if (auto v = m->observe(device, what)) return v;
+  return std::nullopt;
+}
+
+std::vector<std::string> Runtime::devices() const {
+  std::vector<std::string> out;
+  for (const Module* m : modules_)
+    if (m)
+      for (auto& n : m->device_names()) out.push_back(std::move(n));
+  return out;
 }
 
 void Runtime::immediate_output(int slot, int first, int count, std::uint16_t mask) {

@@ -136,6 +136,17 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void enable_forces(bool enabled);
   bool forces_enabled() const { return forces_enabled_; }
 
+  // ---- Simulated field devices (the bench) ----
+  // Injects a change into the named field device of whichever module owns it (see
+  // DeviceFault: "offline", "cable removed", "data size", ...). Refused for an unknown device
+  // or a change the device does not accept. Takes effect at the current virtual time.
+  RuntimeStatus inject(std::string_view device, std::string_view fault, std::vector<std::string> args = {});
+  // An observable value of a named field device ("outputs", "btw data", ...); nullopt when no
+  // module owns the device or it has no such value.
+  std::optional<std::vector<std::int64_t>> observe(std::string_view device, std::string_view what) const;
+  // Every named field device, in slot order.
+  std::vector<std::string> devices() const;
+
   // ---- Access for tools and tests ----
   Module* module(int slot) const;
   EventQueue& events() { return events_; }
@@ -165,11 +176,13 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // ModuleHost.
   EventQueue::EventId schedule_at(VirtualTime at, EventQueue::Callback cb) override;
   bool cancel_event(EventQueue::EventId id) override;
+  void raise_major_fault(std::uint16_t code, std::string message) override;
   // ChassisAccess.
   MAccess read_m(int slot, MFile f, int word, std::uint16_t& value) override;
   MAccess write_m(int slot, MFile f, int word, std::uint16_t value) override;
   void immediate_input(int slot, int first, int count, std::uint16_t mask) override;
   void immediate_output(int slot, int first, int count, std::uint16_t mask) override;
+  void module_instruction(int slot, ModuleInstructionContext& ctx) override;
 
   std::unique_ptr<CompiledProgram> program_;
   std::shared_ptr<const ScanTimeModel> model_;
@@ -186,6 +199,10 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::optional<FaultInfo> fault_;
   ScanStats stats_;
   std::int64_t s4_tick_ = 0;  // tick count when S:4 was last advanced
+  // A module fault raised while modules are being told of a mode change waits here until every
+  // module has seen the change.
+  bool notifying_ = false;
+  std::optional<FaultInfo> pending_module_fault_;
 
   // Forces, per word of the I and O images: which bits are forced and to what.
   std::vector<std::uint16_t> in_force_mask_, in_force_value_;

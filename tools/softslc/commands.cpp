@@ -16,6 +16,7 @@
 #include "modules/throughput/throughput_json.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
+#include "modules/module_setup.h"
 #include "vm/disassembler.h"
 #include "vm/duration.h"
 #include "vm/profile_scan_time_model.h"
@@ -42,7 +43,13 @@ void report(const LoadResult& r) {
 int run_check(const CheckOptions& o) {
   auto r = load_program_file(o.file);
   report(r);
-  return r.ok() ? kOk : kInputError;
+  if (!r.ok()) return kInputError;
+  // The specialty modules' own configuration rules (G files, M-file sizes, ID codes), each
+  // diagnostic quoting the manual's rule.
+  DiagnosticList modules;
+  check_module_configuration(*r.program, modules);
+  std::cerr << render_all(modules, r.source_name, r.source);
+  return modules.has_errors() ? kInputError : kOk;
 }
 
 int run_fmt(const FmtOptions& o) {
@@ -327,6 +334,15 @@ int run_run(const RunOptions& o) {
     duration = *d;
   }
 
+  // Modules for every slot (and the bench's simulated field devices, when given). Always set up,
+  // so block-transfer programs compile and discrete cards get their real point counts.
+  ModuleSetup modules = load_module_setup(
+      program, o.bench.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.bench));
+  std::cerr << modules.render(r.source_name, r.source);
+  if (!modules.ok()) return kInputError;
+  options.module_factory = modules.options.module_factory;
+  options.module_instruction = modules.options.module_instruction;
+
   auto created = Runtime::create(program, std::move(options));
   if (!created.ok()) {
     std::cerr << r.source_name << ": error: the program cannot run:\n" << created.render_errors();
@@ -432,7 +448,9 @@ int run_disasm(const DisasmOptions& o) {
   auto r = load_program_file(o.file);
   report(r);
   if (!r.ok()) return kInputError;
-  auto c = compile(*r.program);
+  CompileOptions copts;
+  copts.module_instruction = load_module_setup(*r.program, std::nullopt).options.module_instruction;
+  auto c = compile(*r.program, copts);
   if (!c.ok()) {
     std::cerr << r.source_name << ": error: the program cannot be compiled:\n" << c.render();
     return kInputError;

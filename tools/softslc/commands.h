@@ -52,6 +52,7 @@ struct RunOptions {
   std::string state;                     // retentive state file: loaded at start, saved at the end
   bool force_state = false;              // accept a state file saved by another program
   std::string checkpoint;                // also save every this much virtual time
+  std::string bench;                     // simulated field devices (docs/bench-format.md)
 };
 int run_run(const RunOptions& o);
 

@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--state", run.state,
                       "retentive state file: loaded at start if it exists, saved atomically at the end and on "
                       "SIGINT/SIGTERM");
+  run_cmd->add_option("--bench", run.bench, "bench file of simulated field devices (docs/bench-format.md)");
   run_cmd->add_flag("--force-state", run.force_state, "restore a state file saved by a different program");
   run_cmd->add_option("--checkpoint", run.checkpoint, "with --state: also save every DURATION of virtual time");
 

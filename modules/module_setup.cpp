@@ -1,0 +1,173 @@
+#include "modules/module_setup.h"
+
+#include <algorithm>
+#include <map>
+
+#include "parser/loader.h"
+#include "vm/compiler.h"
+
+namespace softslc {
+
+std::string ModuleSetup::render(std::string_view program_name, std::string_view program_source) const {
+  return render_all(program_diagnostics, program_name, program_source) +
+         render_all(bench_diagnostics, bench_name, bench_source);
+}
+
+namespace {
+
+// Which slot each top-level bench node is wired to, with the checks that do not need a family.
+std::map<int, const BenchNode*> bind_bench_nodes(const Program& program, const BenchFile& bench,
+                                                 const ModuleRegistry& registry, DiagnosticList& diags) {
+  std::map<int, const BenchNode*> out;
+  for (const auto& n : bench.nodes) {
+    const BenchAttribute* a = n.find("slot");
+    if (!a) {
+      diags.error(n.pos.line, n.pos.column,
+                  n.label() + ": a top-level bench node names the chassis slot it is wired to with slot=N");
+      continue;
+    }
+    NumberValue v;
+    if (!parse_number_text(a->value, v) || v.is_float || v.integer < 0 || v.integer > 30) {
+      diags.error(a->value_pos.line, a->value_pos.column, n.label() + ": slot=" + a->value + ": expected a slot 0-30");
+      continue;
+    }
+    const int slot = static_cast<int>(v.integer);
+    const SlotConfig* sc = program.find_slot(slot);
+    if (!sc) {
+      diags.error(a->value_pos.line, a->value_pos.column,
+                  n.label() + ": the program has no module in slot " + std::to_string(slot) + " (no SLOT " +
+                      std::to_string(slot) + " line)");
+      continue;
+    }
+    const ModuleFamily* fam = registry.find(*sc);
+    if (!fam || fam->bench_kinds.empty()) {
+      diags.error(n.pos.line, n.pos.column,
+                  n.label() + ": slot " + std::to_string(slot) + " holds a " + sc->catalog +
+                      ", which has no simulated field devices in softslc");
+      continue;
+    }
+    if (std::find(fam->bench_kinds.begin(), fam->bench_kinds.end(), n.kind) == fam->bench_kinds.end()) {
+      std::string kinds;
+      for (const auto& k : fam->bench_kinds) kinds += (kinds.empty() ? "" : " or ") + k;
+      diags.error(n.pos.line, n.pos.column,
+                  "'" + n.kind + "' does not describe the " + sc->catalog + " in slot " + std::to_string(slot) +
+                      " (" + fam->name + "); write " + kinds);
+      continue;
+    }
+    auto [it, inserted] = out.emplace(slot, &n);
+    if (!inserted)
+      diags.error(n.pos.line, n.pos.column,
+                  n.label() + ": slot " + std::to_string(slot) + " is already described at line " +
+                      std::to_string(it->second->pos.line));
+  }
+  // Device names are how tests reach devices: they must be unique in the whole bench.
+  std::map<std::string, SourcePos> names;
+  std::vector<const BenchNode*> stack;
+  for (const auto& n : bench.nodes) stack.push_back(&n);
+  std::vector<const BenchNode*> ordered;
+  while (!stack.empty()) {
+    const BenchNode* n = stack.back();
+    stack.pop_back();
+    ordered.push_back(n);
+    for (auto it = n->children.rbegin(); it != n->children.rend(); ++it) stack.push_back(&*it);
+  }
+  for (const BenchNode* n : ordered) {
+    if (n->name.empty()) continue;
+    auto [it, inserted] = names.emplace(n->name, n->name_pos);
+    if (!inserted)
+      diags.error(n->name_pos.line, n->name_pos.column,
+                  "device name '" + n->name + "' is already used at line " + std::to_string(it->second.line));
+  }
+  return out;
+}
+
+}  // namespace
+
+ModuleSetup setup_modules(const Program& program, const BenchFile* bench, const ModuleRegistry& registry) {
+  ModuleSetup s;
+  std::map<int, const BenchNode*> nodes;
+  if (bench) {
+    s.bench_name = bench->source_name;
+    s.bench_source = bench->source;
+    nodes = bind_bench_nodes(program, *bench, registry, s.bench_diagnostics);
+  }
+  std::map<int, SlotModuleBuilder> builders;
+  struct SlotInfo {
+    std::string catalog;
+    std::vector<Opcode> instructions;
+  };
+  std::map<int, SlotInfo> info;
+  for (const auto& slot : program.slots) {
+    const ModuleFamily* family = registry.find(slot);
+    info[slot.slot] = SlotInfo{slot.catalog, family ? family->instructions : std::vector<Opcode>{}};
+    if (!family) continue;
+    auto it = nodes.find(slot.slot);
+    ModulePrepareContext ctx{program, slot, it == nodes.end() ? nullptr : it->second, s.program_diagnostics,
+                             s.bench_diagnostics};
+    if (SlotModuleBuilder b = family->prepare(ctx)) builders.emplace(slot.slot, std::move(b));
+  }
+  s.program_diagnostics.sort_by_position();
+  s.bench_diagnostics.sort_by_position();
+
+  auto shared = std::make_shared<const std::map<int, SlotModuleBuilder>>(std::move(builders));
+  s.options.module_factory = [shared](const SlotConfig& sc) -> std::unique_ptr<Module> {
+    auto it = shared->find(sc.slot);
+    return it == shared->end() ? nullptr : it->second(sc);
+  };
+  // Which catalogs execute each module instruction, for the refusal message.
+  std::map<Opcode, std::string> executors;
+  for (const auto& f : registry.families())
+    for (Opcode op : f.instructions)
+      for (const auto& c : f.catalogs) executors[op] += (executors[op].empty() ? "" : " or ") + c;
+  s.options.module_instruction = [info = std::move(info),
+                                  executors = std::move(executors)](const Instruction& in) -> std::optional<std::string> {
+    const std::string m(spec(in.opcode).mnemonic);
+    auto slot = module_instruction_slot(in);
+    if (!slot) return m + " does not name the slot of its module";
+    auto it = info.find(*slot);
+    auto ex = executors.find(in.opcode);
+    const std::string needs = ex == executors.end() ? std::string("a module that executes it") : "a " + ex->second;
+    if (it == info.end()) return m + " needs " + needs + " in slot " + std::to_string(*slot) + ", which is empty";
+    if (std::find(it->second.instructions.begin(), it->second.instructions.end(), in.opcode) ==
+        it->second.instructions.end())
+      return m + " needs " + needs + " in slot " + std::to_string(*slot) + "; slot " + std::to_string(*slot) +
+             " holds a " + it->second.catalog;
+    return std::nullopt;
+  };
+  return s;
+}
+
+ModuleSetup load_module_setup(const Program& program, const std::optional<std::filesystem::path>& bench_path,
+                              const ModuleRegistry& registry) {
+  if (!bench_path) return setup_modules(program, nullptr, registry);
+  BenchParseResult br = parse_bench_file(*bench_path);
+  if (!br.ok()) {
+    ModuleSetup s = setup_modules(program, nullptr, registry);
+    s.bench_diagnostics = std::move(br.diagnostics);
+    s.bench_name = br.source_name;
+    s.bench_source = br.source;
+    return s;
+  }
+  return setup_modules(program, &*br.bench, registry);
+}
+
+ModuleSetup load_module_setup_text(const Program& program, std::string bench_text, std::string bench_name,
+                                   const ModuleRegistry& registry) {
+  BenchParseResult br = parse_bench(std::move(bench_text), std::move(bench_name));
+  if (!br.ok()) {
+    ModuleSetup s = setup_modules(program, nullptr, registry);
+    s.bench_diagnostics = std::move(br.diagnostics);
+    s.bench_name = br.source_name;
+    s.bench_source = br.source;
+    return s;
+  }
+  return setup_modules(program, &*br.bench, registry);
+}
+
+void check_module_configuration(const Program& program, DiagnosticList& diagnostics, const ModuleRegistry& registry) {
+  for (const auto& slot : program.slots)
+    if (const ModuleFamily* f = registry.find(slot); f && f->check) f->check(program, slot, diagnostics);
+  diagnostics.sort_by_position();
+}
+
+}  // namespace softslc

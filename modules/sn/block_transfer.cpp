@@ -1,0 +1,78 @@
+#include "modules/sn/block_transfer.h"
+
+#include <algorithm>
+
+namespace softslc::rio {
+
+void execute_block_transfer(ModuleInstructionContext& ctx) {
+  const bool btr = ctx.opcode() == Opcode::BTR;
+  const auto ops = ctx.operands();
+  if (ops.size() < 3 || ops[0].kind != ModuleOperand::Kind::Table || ops[1].kind != ModuleOperand::Kind::MFile ||
+      ops[2].kind != ModuleOperand::Kind::Table) {
+    ctx.fault(0x001F, std::string(btr ? "BTR" : "BTW") + ": malformed operands");
+    return;
+  }
+  const int slot = ops[1].slot;
+  const int base = static_cast<int>(ops[1].word);
+  std::uint16_t cb[3];
+  for (std::uint32_t k = 0; k < 3; ++k)
+    if (!ctx.read(0, k, cb[k])) return;
+
+  const bool rung = ctx.rung_in();
+  const bool was_enabled = (cb[0] & kEN) && !ctx.first_pass();
+  // The instruction type decides RW (Table 5.2: "This bit is controlled by the instruction type").
+  cb[0] = static_cast<std::uint16_t>(btr ? (cb[0] | kRW) : (cb[0] & ~kRW));
+  if (rung && !was_enabled) {
+    // "Before executing a block transfer, the BTR and BTW instructions clear all status bits and
+    // initialize word 2 to 0."
+    cb[0] = static_cast<std::uint16_t>(cb[0] & ~kStatusBits);
+    cb[2] = 0;
+    if (!btr) {
+      const auto requested = static_cast<std::int16_t>(cb[1]);
+      const int n = requested > 0 && requested <= kMaxWords ? requested : kMaxWords;
+      const int available = static_cast<int>(std::min<std::uint32_t>(ops[2].limit, static_cast<std::uint32_t>(n)));
+      ctx.charge(MFileAccess::CopToM, n);
+      for (int k = 0; k < n; ++k) {
+        std::uint16_t v = 0;
+        if (k < available && !ctx.read(2, static_cast<std::uint32_t>(k), v)) return;
+        if (!ctx.write_m(slot, MFile::M0, base + kDataOffset + k, v)) return;
+      }
+    }
+  }
+  cb[0] = static_cast<std::uint16_t>(rung ? (cb[0] | kEN) : (cb[0] & ~kEN));
+
+  // Tell the scanner: the control word (EN, TO, RW, address) and the requested count.
+  ctx.charge(MFileAccess::OtherM, 1);
+  if (!ctx.write_m(slot, MFile::M0, base + kRequestedCount, cb[1])) return;
+  ctx.charge(MFileAccess::OtherM, 1);
+  if (!ctx.write_m(slot, MFile::M0, base + kControlWord,
+                   static_cast<std::uint16_t>(cb[0] & (kEN | kTO | kRW | kAddressBits))))
+    return;
+
+  // Read its answer.
+  std::uint16_t st[4];
+  ctx.charge(MFileAccess::CopFromM, 4);
+  for (int k = 0; k < 4; ++k)
+    if (!ctx.read_m(slot, MFile::M1, base + k, st[k])) return;
+  const bool had_done = (cb[0] & kDN) != 0;
+  cb[0] = static_cast<std::uint16_t>((cb[0] & ~kStatusBits) | (st[0] & kStatusBits));
+  if (cb[0] & kDN) cb[2] = st[kTransmittedCount];
+  else if (cb[0] & kER) cb[2] = st[kErrorCode];
+  else cb[2] = 0;
+
+  if (btr && (cb[0] & kDN) && !had_done) {
+    // Step 2: "the DN bit is set ... the number of valid data words received ... is stored in
+    // the BTR data file."
+    const int n = std::clamp<int>(static_cast<std::int16_t>(st[kTransmittedCount]), 0, kMaxWords);
+    ctx.charge(MFileAccess::CopFromM, n);
+    for (int k = 0; k < n; ++k) {
+      std::uint16_t v = 0;
+      if (!ctx.read_m(slot, MFile::M1, base + kDataOffset + k, v)) return;
+      if (!ctx.write(2, static_cast<std::uint32_t>(k), v)) return;
+    }
+  }
+  for (std::uint32_t k = 0; k < 3; ++k)
+    if (k != 1 && !ctx.write(0, k, cb[k])) return;
+}
+
+}  // namespace softslc::rio

@@ -1,0 +1,163 @@
+// The VM's module-instruction path and mode/fault hooks (vm/module.h), with a test module: the
+// operands as the interpreter resolves them, charged M-file time, checked data-table access,
+// faults raised by the module, DEM addressed by its slot literal, and a module refusing a mode
+// change.
+#include <gtest/gtest.h>
+
+#include "modules_test_util.h"
+#include "vm/discrete_io.h"
+#include "vm/scan_time_model.h"
+
+namespace softslc::test {
+namespace {
+
+struct Recorder : MemoryModule {
+  Recorder(int slot) : MemoryModule(slot, "TEST", 1, 1, 400, 400) {}
+  std::vector<ModuleOperand> seen;
+  bool rung = false;
+  std::string action;  // what execute() does: "", "read-past-end", "fault", "charge"
+  void execute(ModuleInstructionContext& ctx) override {
+    seen.assign(ctx.operands().begin(), ctx.operands().end());
+    rung = ctx.rung_in();
+    std::uint16_t v = 0;
+    if (action == "read-past-end") ctx.read(0, seen[0].limit, v);
+    if (action == "fault") ctx.fault(0x0363, "refused");
+    if (action == "charge") ctx.charge(MFileAccess::CopFromM, 10);
+    if (action == "write") ctx.write(0, 2, 1234);
+  }
+  bool refuse_run = false;
+  void on_mode_change(Mode from, Mode to) override {
+    MemoryModule::on_mode_change(from, to);
+    if (refuse_run && to == Mode::Run) host()->raise_major_fault(0x0262, "no configuration");
+  }
+};
+
+// A time model that charges M-file accesses 1 us per word plus 100 us.
+struct MTime : DefaultScanTimeModel {
+  Nanoseconds mfile_access_cost(MFileAccess, int words) const override { return microseconds(100 + words); }
+};
+
+struct Fixture {
+  Recorder* rec = nullptr;
+  std::unique_ptr<Runtime> rt;
+  explicit Fixture(const std::string& rungs, std::function<void(Recorder&)> setup = {}) {
+    LoadResult lr = load_program("START 1747-L532\nSLOT 1 1747-SN SCAN_IN 8 SCAN_OUT 8 M0_SIZE 400 M1_SIZE 400\n"
+                                 "SLOT 3 1747-SDN SCAN_IN 8 SCAN_OUT 8\nLADDER 2\n" + rungs,
+                                 "t.slc");
+    if (!lr.ok()) throw std::runtime_error(lr.render_diagnostics());
+    RuntimeOptions o;
+    o.time_model = std::make_shared<MTime>();
+    o.module_factory = [&, setup](const SlotConfig& s) -> std::unique_ptr<Module> {
+      auto m = std::make_unique<Recorder>(s.slot);
+      if (s.slot == 1) {
+        rec = m.get();
+        if (setup) setup(*m);
+      }
+      return m;
+    };
+    o.module_instruction = [](const Instruction&) { return std::optional<std::string>{}; };
+    auto r = Runtime::create(*lr.program, o);
+    if (!r.ok()) throw std::runtime_error(r.render_errors());
+    rt = std::move(r.runtime);
+  }
+};
+
+TEST(VmModulePath, OperandsAreResolvedForTheModule) {
+  Fixture f("SOR XIC B3:0/0 BTR N10:0 M1:1.300 #N11:5 1 3 1 12 EOR\n");
+  ASSERT_TRUE(f.rt->set_mode(Mode::Run));
+  f.rt->scan(1);
+  ASSERT_EQ(f.rec->seen.size(), 7u);
+  EXPECT_FALSE(f.rec->rung);
+  const auto& s = f.rec->seen;
+  EXPECT_EQ(s[0].kind, ModuleOperand::Kind::Table);
+  EXPECT_EQ(s[1].kind, ModuleOperand::Kind::MFile);
+  EXPECT_EQ(s[1].slot, 1);
+  EXPECT_EQ(s[1].file, MFile::M1);
+  EXPECT_EQ(s[1].word, 300u);
+  EXPECT_EQ(s[2].kind, ModuleOperand::Kind::Table);
+  EXPECT_EQ(s[2].limit, 12u) << "N11 is sized to the requested length from element 5";
+  EXPECT_EQ(s[3].value, 1);
+  EXPECT_EQ(s[4].value, 3);
+  EXPECT_EQ(s[5].value, 1);
+  EXPECT_EQ(s[6].value, 12);
+  // The control block got rack 1, group 3, slot 1 and RW at download.
+  EXPECT_EQ(f.rt->value("N10:0").as_int(), 0x0080 | (1 << 4) | (3 << 1) | 1);
+  EXPECT_EQ(f.rt->value("N10:1").as_int(), 12);
+  f.rt->set("B3:0/0", Value::bit(true));
+  f.rt->scan(1);
+  EXPECT_TRUE(f.rec->rung);
+}
+
+TEST(VmModulePath, DataTableAccessIsCheckedAndFaultsStopTheScan) {
+  Fixture f("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\nSOR OTE B3:0/1 EOR\n",
+            [](Recorder& r) { r.action = "read-past-end"; });
+  ASSERT_TRUE(f.rt->set_mode(Mode::Run));
+  f.rt->scan(1);
+  ASSERT_TRUE(f.rt->fault().has_value());
+  EXPECT_EQ(f.rt->fault()->code, 0x002A);
+  EXPECT_EQ(f.rt->fault()->rung, 0);
+  EXPECT_FALSE(f.rt->value("B3:0/1").as_bool());
+  Fixture g("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [](Recorder& r) { r.action = "fault"; });
+  ASSERT_TRUE(g.rt->set_mode(Mode::Run));
+  g.rt->scan(1);
+  EXPECT_EQ(g.rt->fault()->code, 0x0363);
+  Fixture h("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [](Recorder& r) { r.action = "write"; });
+  ASSERT_TRUE(h.rt->set_mode(Mode::Run));
+  h.rt->scan(1);
+  EXPECT_EQ(h.rt->value("N10:2").as_int(), 1234);
+}
+
+TEST(VmModulePath, ChargedAccessTimeIsAddedToTheScan) {
+  Fixture a("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n");
+  Fixture b("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [](Recorder& r) { r.action = "charge"; });
+  ASSERT_TRUE(a.rt->set_mode(Mode::Run));
+  ASSERT_TRUE(b.rt->set_mode(Mode::Run));
+  a.rt->scan(1);
+  b.rt->scan(1);
+  EXPECT_EQ(b.rt->stats().last - a.rt->stats().last, microseconds(110));
+}
+
+TEST(VmModulePath, DemGoesToTheModuleInItsSlotLiteral) {
+  Fixture f("SOR DEM 3 N20:0 70 EOR\n");
+  ASSERT_TRUE(f.rt->set_mode(Mode::Run));
+  f.rt->scan(1);
+  auto* sdn = dynamic_cast<Recorder*>(f.rt->module(3));
+  ASSERT_NE(sdn, nullptr);
+  ASSERT_EQ(sdn->seen.size(), 3u);
+  EXPECT_EQ(sdn->seen[1].kind, ModuleOperand::Kind::Table);
+  EXPECT_EQ(sdn->seen[1].limit, 70u) << "the 70-word control block sizes N20";
+  EXPECT_TRUE(f.rec->seen.empty());
+}
+
+TEST(VmModulePath, AModuleWithoutTheInstructionFaults001F) {
+  LoadResult lr = load_program("START 1747-L532\nSLOT 1 1747-SN SCAN_IN 8 SCAN_OUT 8\nLADDER 2\n"
+                               "SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n",
+                               "t.slc");
+  ASSERT_TRUE(lr.ok());
+  RuntimeOptions o;
+  o.module_instruction = [](const Instruction&) { return std::optional<std::string>{}; };
+  o.module_factory = [](const SlotConfig& s) -> std::unique_ptr<Module> {
+    return std::make_unique<MemoryModule>(s.slot, s.catalog, 8, 8, 400, 400);
+  };
+  auto r = Runtime::create(*lr.program, o);
+  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(r.runtime->set_mode(Mode::Run));
+  r.runtime->scan(1);
+  ASSERT_TRUE(r.runtime->fault().has_value());
+  EXPECT_EQ(r.runtime->fault()->code, 0x001F);
+  EXPECT_NE(r.runtime->fault()->message.find("has no such instruction"), std::string::npos);
+}
+
+TEST(VmModulePath, AModuleCanRefuseAModeChange) {
+  Fixture f("SOR XIC B3:0/0 OTE B3:0/1 EOR\n", [](Recorder& r) { r.refuse_run = true; });
+  EXPECT_TRUE(f.rt->set_mode(Mode::Run));
+  EXPECT_EQ(f.rt->mode(), Mode::Faulted);
+  EXPECT_EQ(f.rt->fault()->code, 0x0262);
+  EXPECT_EQ(f.rt->value("S:6").as_int(), 0x0262);
+  EXPECT_TRUE(f.rt->value("S:1/13").as_bool());
+  // Every module saw Run, then Faulted.
+  EXPECT_EQ(f.rec->last_mode(), Mode::Faulted);
+}
+
+}  // namespace
+}  // namespace softslc::test

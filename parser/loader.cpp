@@ -787,6 +787,9 @@ template <> struct action<data_number> {
                                           in.string() + "'");
       return;
     }
+    // A 16-bit word is a bit pattern: 0XA200 and -24064 are the same word. Keep the signed form
+    // so a value written either way loads the same (fmt prints control words in hex).
+    if (s.data.type != FileType::Long && v.integer > 32767 && v.integer <= 65535) v.integer -= 65536;
     s.data.words.push_back(v.integer);
   }
 };

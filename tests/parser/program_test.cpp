@@ -148,7 +148,8 @@ TEST(Program, DataBlocksOfEveryKind) {
   EXPECT_EQ(p.data[0].start_element, 2);
   EXPECT_EQ(p.data[0].words, (std::vector<std::int64_t>{0xF0}));
   EXPECT_EQ(p.data[2].words, (std::vector<std::int64_t>{4, 5414, 0, 2560}));
-  EXPECT_EQ(p.data[4].words, (std::vector<std::int64_t>{0xA200, 60, 60, 0, 10, 0}));
+  // 16-bit words load in their signed form: 0XA200 is -24064.
+  EXPECT_EQ(p.data[4].words, (std::vector<std::int64_t>{static_cast<std::int16_t>(0xA200), 60, 60, 0, 10, 0}));
   EXPECT_EQ(p.data[5].words, (std::vector<std::int64_t>{0, 5, -2}));
   EXPECT_EQ(p.data[6].words, (std::vector<std::int64_t>{0, 16, 3}));
   EXPECT_EQ(p.data[7].words, (std::vector<std::int64_t>{60, -1, 32767, 7}));

@@ -6,7 +6,8 @@
 # Seed corpora come from examples/ and ../shared/fixtures/ (copied into a scratch corpus so the
 # tree is never written). A crash, a hang (> 1 s per input), a leak or a UB report fails the run;
 # libFuzzer leaves the input as crash-*/timeout-* in the build directory: fix the bug and add the
-# input as a regression test.
+# input as a regression test. The seed is fixed (-seed=1) so a run is repeatable: CI explores the
+# same inputs a developer's run of the same length did; run longer or with another seed to explore.
 set -euo pipefail
 seconds="${1:-60}"
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -35,7 +36,7 @@ done
 status=0
 for target in program address testfile; do
   echo "== fuzzing ${target}_fuzz for ${seconds}s"
-  (cd "$build" && ASAN_OPTIONS=detect_leaks=1 "./tests/fuzz/${target}_fuzz" -max_total_time="$seconds" -timeout=1 \
+  (cd "$build" && ASAN_OPTIONS=detect_leaks=1 "./tests/fuzz/${target}_fuzz" -max_total_time="$seconds" -timeout=1 -seed=1 \
     -rss_limit_mb=2048 -print_final_stats=1 "$corpus/$target" 2>&1 | tail -15) || status=1
 done
 exit $status

@@ -186,13 +186,15 @@ void Sm1Module::send_outputs(Channel& ch) {
   if (!ch.de || !connected(ch)) return;
   ch.drive->set_logic_command(ch.command);
   ch.drive->set_reference(ch.reference);
+  // The drive refuses a value it cannot take (read-only, out of range, running) and keeps the old
+  // one, as for a message; the first refusal of this transfer is observable as "datalink error".
+  scanport::ErrorCode refusal = scanport::ErrorCode::kNone;
   for (int i = 0; i < scanport::kDatalinkWords; ++i) {
     if (!datalink_valid(ch, i / 2) || ch.drive->description().data_in[static_cast<std::size_t>(i)] == 0) continue;
-    // The drive refuses a value it cannot take (read-only, out of range, running) and keeps the
-    // old one, as for a message; the code is observable as "datalink error".
     const auto e = ch.drive->write_datalink(i, ch.datalinks[static_cast<std::size_t>(i)]);
-    ch.last_datalink_error = static_cast<std::uint16_t>(e);
+    if (refusal == scanport::ErrorCode::kNone) refusal = e;
   }
+  ch.datalink_error = static_cast<std::uint16_t>(refusal);
 }
 
 // ---- Processor modes and the Fault/Program State DIP switches ---------------------------------------------------
@@ -398,7 +400,7 @@ std::optional<std::vector<std::int64_t>> Sm1Module::observe(std::string_view dev
   if (what == "feedback") return std::vector<std::int64_t>{d.feedback()};
   if (what == "running") return std::vector<std::int64_t>{d.running() ? 1 : 0};
   if (what == "faulted") return std::vector<std::int64_t>{d.faulted() ? 1 : 0};
-  if (what == "datalink error") return std::vector<std::int64_t>{ch->last_datalink_error};
+  if (what == "datalink error") return std::vector<std::int64_t>{ch->datalink_error};
   if (what == "parameters") {
     // Element n is parameter n (element 0: the parameter count).
     std::vector<std::int64_t> v{d.parameter_count()};

@@ -77,7 +77,7 @@ class Sm1Module final : public Module {
     std::uint64_t link_epoch = 0;     // counts connection losses
     std::uint64_t message_epoch = 0;  // link_epoch when the message went out
     std::uint64_t messages = 0;
-    std::uint16_t last_datalink_error = 0;
+    std::uint16_t datalink_error = 0;  // first refusal of the last datalink transfer
   };
 
   const Channel& channel_(int c) const { return channels_[static_cast<std::size_t>(c - 1)]; }

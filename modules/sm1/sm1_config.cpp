@@ -52,7 +52,8 @@ Sm1Config decode_sm1_slot(const Program& program, const SlotConfig& slot, std::v
   if (slot.scan_in != image || slot.scan_out != image)
     add(findings, true, mode_name + " mode has " + std::to_string(image) + " input and " + std::to_string(image) +
                             " output words (chapter 1), not SCAN_IN " + std::to_string(slot.scan_in) + " SCAN_OUT " +
-                            std::to_string(slot.scan_out));
+                            std::to_string(slot.scan_out) +
+                            (c.enhanced() && slot.scan_in == kSm1BasicImageWords ? " (ID_CODE 3516 selects basic mode)" : ""));
 
   if (c.enhanced()) {
     c.m0_words = m0_words(slot);

@@ -162,8 +162,8 @@ class Sm1FaultState : public ::testing::TestWithParam<FaultStateCase> {};
 
 TEST_P(Sm1FaultState, ProgramModeAndProcessorFaultApplyTheSwitch) {
   const auto& p = GetParam();
-  for (bool processor_fault : {false, true}) {
-    SCOPED_TRACE(processor_fault ? "processor fault" : "program mode");
+  for (Mode leave_run_for : {Mode::Program, Mode::Test, Mode::Faulted}) {
+    SCOPED_TRACE(std::string(to_string(leave_run_for)));
     // G file: safe state channel 1 command 0x0002 (start), reference 1000 (Figure 4.8 words 2, 3).
     const std::string slot = p.enhanced ? "SCAN_IN 32 SCAN_OUT 32 ID_CODE 13616 G_FILE 4\n 0 0 2 1000 OPTION ch1=" + p.option
                                         : kBasic + " OPTION ch1=" + p.option;
@@ -175,12 +175,13 @@ TEST_P(Sm1FaultState, ProgramModeAndProcessorFaultApplyTheSwitch) {
     b.set("O:1.3", 5000);
     b.rt->scan(3);
     ASSERT_EQ(observed(b, "DRIVE1", "running"), 1);
-    if (processor_fault) {
+    if (leave_run_for == Mode::Faulted) {
       b.set("B3:0/1", 1);
       b.rt->scan(1);
       ASSERT_TRUE(b.rt->fault().has_value());
     } else {
-      ASSERT_TRUE(b.rt->set_mode(Mode::Program).ok);
+      // Test mode de-energises outputs like Program mode: the switch applies too (decision).
+      ASSERT_TRUE(b.rt->set_mode(leave_run_for).ok);
     }
     b.rt->scan(2);
     EXPECT_EQ(observed(b, "DRIVE1", "faulted"), p.faults ? 1 : 0);
@@ -346,6 +347,24 @@ TEST(Sm1Messaging, ACablePulledDuringTheTransactionTimesOut) {
   std::uint16_t w = 0;
   sm1(b).read_m(MFile::M1, 105, w);
   EXPECT_EQ(w, 0x00FE);
+}
+
+TEST(Sm1Messaging, ADeviceThatPadsEveryReplyToSixBytes) {
+  // Figure B.2 footnote: "These products always return a length which is a multiple of six."
+  // Figure B.5's Read Parameter Value answers 2 bytes from the 1305 model, 6 with pad=6.
+  for (int pad : {1, 6}) {
+    Bench b(sm1_program(kEnhanced, copy_program(0)),
+            "scanport SM1 slot=1 {\n  drive DRIVE1 channel=1" + std::string(pad == 6 ? " pad=6" : "") + "\n}\n");
+    b.run();
+    load_request(b, {0x000e, 0x000f, 5, 1});
+    send(b, 1, 0);
+    ASSERT_TRUE(b.until([&] { return done(b, 1); }, ms(100)));
+    std::uint16_t len = 0, value = 0;
+    sm1(b).read_m(MFile::M1, 104, len);
+    sm1(b).read_m(MFile::M1, 105, value);
+    EXPECT_EQ(len, pad == 6 ? 6 : 2);
+    EXPECT_EQ(value, 7);
+  }
 }
 
 TEST(Sm1Messaging, ClearingMeWhileBusyEndsReady) {

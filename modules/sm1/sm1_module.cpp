@@ -142,7 +142,7 @@ void Sm1Module::command_bits(int c, std::span<const std::uint16_t> image, bool& 
 
 void Sm1Module::output_scan(std::span<const std::uint16_t> image) {
   advance_drives();
-  if (!outputs_live_) {
+  if (!outputs_live()) {
     // Program, Test or Faulted: the DIP switches decided the data at the mode change.
     for (auto& ch : channels_) send_outputs(ch);
     return;
@@ -199,10 +199,11 @@ void Sm1Module::send_outputs(Channel& ch) {
 
 // ---- Processor modes and the Fault/Program State DIP switches ---------------------------------------------------
 
+bool Sm1Module::outputs_live() const { return host() && host()->mode() == Mode::Run; }
+
 void Sm1Module::on_mode_change(Mode /*from*/, Mode to) {
   advance_drives();
-  outputs_live_ = to == Mode::Run;
-  if (!outputs_live_) apply_fault_state();
+  if (to != Mode::Run) apply_fault_state();
 }
 
 void Sm1Module::apply_fault_state() {
@@ -336,8 +337,9 @@ DeviceStatus Sm1Module::inject(const DeviceFault& f) {
   auto no_args = [&]() -> bool { return f.args.empty(); };
   if ((w == "offline" || w == "power off") && no_args()) {
     if (ch->powered) {
-      lose_connection(*ch);  // an unpowered device cannot fault; it simply stops answering
+      // An unpowered device does not fault; it stops answering, and powers up from storage.
       ch->powered = false;
+      lose_connection(*ch);
     }
   } else if ((w == "online" || w == "power on") && no_args()) {
     if (!ch->powered) {

@@ -82,6 +82,8 @@ class Sm1Module final : public Module {
 
   const Channel& channel_(int c) const { return channels_[static_cast<std::size_t>(c - 1)]; }
   Channel& channel_(int c) { return channels_[static_cast<std::size_t>(c - 1)]; }
+  // In Run the outputs follow the image; in every other mode the DIP switches rule.
+  bool outputs_live() const;
   bool connected(const Channel& ch) const { return ch.drive && ch.powered && ch.cable; }
   bool datalink_valid(const Channel& ch, int link) const;  // link 0-3 = A-D
   void advance_drives();
@@ -102,7 +104,6 @@ class Sm1Module final : public Module {
   std::vector<std::uint16_t> last_outputs_;
   bool m0_loaded_ = false;
   VirtualTime m0_ready_at_ = 0;
-  bool outputs_live_ = false;  // in Run: outputs follow the image; otherwise the DIP switches rule
 };
 
 }  // namespace softslc

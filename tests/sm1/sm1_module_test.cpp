@@ -148,6 +148,26 @@ TEST(Sm1Basic, AnUnpoweredDriveIsNotConnectedAndPowersUpFromStorage) {
   EXPECT_FALSE(b.rt->inject("SM1", "offline").ok);
 }
 
+TEST(Sm1Basic, PowerLossStopsTheDriveWithoutAFault) {
+  Bench b(sm1_program(kBasic), kOneDrive);
+  b.run();
+  b.set("O:1.0/0", 1);
+  b.set("O:1.2", 0x0002);  // start
+  b.set("O:1.3", 10000);
+  b.rt->scan(3);
+  ASSERT_EQ(observed(b, "DRIVE1", "running"), 1);
+  b.inject("DRIVE1", "power off");
+  b.rt->scan(1);
+  EXPECT_EQ(b.u("I:1.0") & 0x0F, 0x07);
+  b.inject("DRIVE1", "power on");
+  EXPECT_EQ(observed(b, "DRIVE1", "faulted"), 0);
+  EXPECT_EQ(observed(b, "DRIVE1", "running"), 0);  // powered up stopped, command memory 0
+  // The program still holds the start bit: to the powered-up drive that is a new start edge.
+  b.rt->scan(2);
+  EXPECT_EQ(observed(b, "DRIVE1", "reference"), 10000);
+  EXPECT_EQ(observed(b, "DRIVE1", "running"), 1);
+}
+
 // ---- Fault/Program state DIP switches (chapter 2) --------------------------------------------------------------------
 
 struct FaultStateCase {

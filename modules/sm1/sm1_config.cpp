@@ -1,6 +1,7 @@
 #include "modules/sm1/sm1_config.h"
 
 #include <charconv>
+#include <filesystem>
 
 #include "modules/scanport/drive_json.h"
 #include "parser/checker.h"
@@ -118,7 +119,7 @@ bool parse_parameter_settings(const std::string& text, std::vector<std::pair<lon
   return !out.empty();
 }
 
-std::optional<Sm1DriveSpec> read_drive(const BenchNode& node, DiagnosticList& diags) {
+std::optional<Sm1DriveSpec> read_drive(const BenchNode& node, const std::string& bench_name, DiagnosticList& diags) {
   BenchReader r(node, diags);
   if (node.kind != "drive") {
     r.error("a scanport module's children are 'drive' nodes (the SCANport devices on its channels)");
@@ -133,18 +134,30 @@ std::optional<Sm1DriveSpec> read_drive(const BenchNode& node, DiagnosticList& di
   if (auto v = r.integer("port", 1, 6)) d.port = static_cast<int>(*v);
   if (auto v = r.choice("power", {"on", "off"})) d.powered = *v == "on";
   if (auto v = r.choice("cable", {"connected", "removed"})) d.cable = *v == "connected";
-  const std::string model = r.text("model").value_or("1305");
+  const auto file = r.text("file");
+  const std::string model = r.text("model").value_or(file ? *file : "1305");
+  if (file && r.node().find("model")) r.error("give model= or file=, not both");
   auto pad = r.integer("pad", 1, 96);
   auto settings = r.text("parameters");
   r.finish();
   scanport::DriveDescription desc;
-  try {
-    desc = scanport::builtin_drive(model);
-  } catch (const scanport::DriveDescriptionError&) {
-    std::string known;
-    for (const auto& n : scanport::builtin_drive_names()) known += (known.empty() ? "" : ", ") + n;
-    r.error_at("model", "model=" + model + ": no such built-in drive (known: " + known + ")");
-    return std::nullopt;
+  if (file) {
+    const auto path = std::filesystem::path(bench_name).parent_path() / *file;
+    try {
+      desc = scanport::load_drive_description_file(path.string());
+    } catch (const scanport::DriveDescriptionError& e) {
+      r.error_at("file", e.what());
+      return std::nullopt;
+    }
+  } else {
+    try {
+      desc = scanport::builtin_drive(model);
+    } catch (const scanport::DriveDescriptionError&) {
+      std::string known;
+      for (const auto& n : scanport::builtin_drive_names()) known += (known.empty() ? "" : ", ") + n;
+      r.error_at("model", "model=" + model + ": no such built-in drive (known: " + known + ")");
+      return std::nullopt;
+    }
   }
   // pad=6: a device that pads every reply to a multiple of six bytes (Figure B.2 footnote,
   // "These products always return a length which is a multiple of six").
@@ -183,7 +196,8 @@ std::optional<Sm1DriveSpec> read_drive(const BenchNode& node, DiagnosticList& di
 
 }  // namespace
 
-std::shared_ptr<const Sm1Bench> interpret_sm1_bench(const BenchNode& node, DiagnosticList& diags) {
+std::shared_ptr<const Sm1Bench> interpret_sm1_bench(const BenchNode& node, const std::string& bench_name,
+                                                    DiagnosticList& diags) {
   auto bench = std::make_shared<Sm1Bench>();
   bench->name = node.name;
   {
@@ -193,7 +207,7 @@ std::shared_ptr<const Sm1Bench> interpret_sm1_bench(const BenchNode& node, Diagn
   }
   std::array<std::string, kSm1Channels> taken_by;  // drive name per channel
   for (const auto& dn : node.children) {
-    auto d = read_drive(dn, diags);
+    auto d = read_drive(dn, bench_name, diags);
     if (!d) continue;
     auto& owner = taken_by[static_cast<std::size_t>(d->channel - 1)];
     if (!owner.empty()) {

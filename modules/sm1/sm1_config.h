@@ -78,7 +78,9 @@ struct Sm1Bench {
   std::vector<Sm1DriveSpec> drives;  // at most one per channel
 };
 
-// Interprets `scanport NAME slot=N { drive NAME channel=C ... }` (docs/bench-format.md).
-std::shared_ptr<const Sm1Bench> interpret_sm1_bench(const BenchNode& node, DiagnosticList& diags);
+// Interprets `scanport NAME slot=N { drive NAME channel=C ... }` (docs/bench-format.md). A drive's
+// `file=PATH` (a JSON drive description) is read relative to the directory of `bench_name`.
+std::shared_ptr<const Sm1Bench> interpret_sm1_bench(const BenchNode& node, const std::string& bench_name,
+                                                    DiagnosticList& diags);
 
 }  // namespace softslc

@@ -32,7 +32,7 @@ ModuleFamily sm1_family(std::string name, int id_code, std::vector<std::string> 
     std::vector<Sm1Finding> findings;
     const Sm1Config config = decode_sm1_slot(ctx.program, ctx.slot, findings);
     std::shared_ptr<const Sm1Bench> bench;
-    if (ctx.bench) bench = interpret_sm1_bench(*ctx.bench, ctx.bench_diagnostics);
+    if (ctx.bench) bench = interpret_sm1_bench(*ctx.bench, ctx.bench_name, ctx.bench_diagnostics);
     return [config, bench](const SlotConfig& s) -> std::unique_ptr<Module> {
       return std::make_unique<Sm1Module>(s, config, bench);
     };

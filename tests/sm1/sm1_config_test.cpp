@@ -110,7 +110,26 @@ TEST(Sm1Bench, ErrorsArePositioned) {
   EXPECT_NE(bench_errors("scanport SM1 slot=1 {\n  drive D channel=1 parameters=999:1\n}\n").find("parameter 999 does not exist"),
             std::string::npos);
   EXPECT_NE(bench_errors("scanport SM1 slot=1 {\n  adapter A\n}\n").find("'drive' nodes"), std::string::npos);
+  EXPECT_NE(bench_errors("scanport SM1 slot=1 {\n  drive D channel=1 file=no_such_drive.json\n}\n").find("2:26: drive D: no_such_drive.json: cannot open the file"),
+            std::string::npos);
+  EXPECT_NE(bench_errors("scanport SM1 slot=1 {\n  drive D channel=1 file=x.json model=1305\n}\n").find("give model= or file=, not both"),
+            std::string::npos);
   EXPECT_NE(bench_errors("scanport SM1 slot=1 {\n  drive D channel=1 speed=3\n}\n").find("speed"), std::string::npos);
+}
+
+TEST(Sm1Bench, DriveDescriptionsFromJsonFilesBesideTheBench) {
+  // examples/ladder/1203-sm1/pad6.bench names pad6_drive.json in its own directory.
+  LoadResult lr = load_program(sm1_example("appb_messaging.slc"), "appb_messaging.slc");
+  ASSERT_TRUE(lr.ok());
+  ModuleSetup s = load_module_setup(*lr.program, std::filesystem::path(SOFTSLC_SOURCE_DIR) / "examples/ladder/1203-sm1/pad6.bench");
+  EXPECT_TRUE(s.ok()) << s.render("appb_messaging.slc", lr.source);
+  // A broken description is reported at the attribute, with the JSON loader's message.
+  LoadResult lr2 = load_program(sm1_program(kEnhanced), "t.slc");
+  ModuleSetup bad = load_module_setup_text(*lr2.program, "scanport S slot=1 {\n  drive D channel=1 file=" +
+                                                             std::string(SOFTSLC_SOURCE_DIR) + "/README.md\n}\n", "t.bench");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.bench_diagnostics.items().at(0).message.find("syntax error"), std::string::npos)
+      << bad.bench_diagnostics.items().at(0).message;
 }
 
 }  // namespace

@@ -170,15 +170,14 @@ void Sm1Module::output_scan(std::span<const std::uint16_t> image) {
   }
 }
 
-void Sm1Module::lose_connection(Channel& ch) {
-  ++ch.link_epoch;
+void Sm1Module::fault_if_enabled(Channel& ch) {
   // "When reset to low (0), the channel disconnects from the SCANport device. This usually causes
   // the connected SCANport device to fault" (chapter 3); likewise a cable removed while enabled.
   if (ch.de && connected(ch)) ch.drive->fault(kScanportLossFault);
 }
 
 void Sm1Module::set_enable(Channel& ch, bool de) {
-  if (ch.de && !de) lose_connection(ch);
+  if (ch.de && !de) fault_if_enabled(ch);
   ch.de = de;
 }
 
@@ -339,7 +338,7 @@ DeviceStatus Sm1Module::inject(const DeviceFault& f) {
     if (ch->powered) {
       // An unpowered device does not fault; it stops answering, and powers up from storage.
       ch->powered = false;
-      lose_connection(*ch);
+      ++ch->link_epoch;
     }
   } else if ((w == "online" || w == "power on") && no_args()) {
     if (!ch->powered) {
@@ -348,8 +347,9 @@ DeviceStatus Sm1Module::inject(const DeviceFault& f) {
     }
   } else if (w == "cable removed" && no_args()) {
     if (ch->cable) {
-      lose_connection(*ch);
+      fault_if_enabled(*ch);
       ch->cable = false;
+      ++ch->link_epoch;
     }
   } else if (w == "cable restored" && no_args()) {
     ch->cable = true;

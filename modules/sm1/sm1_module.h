@@ -74,7 +74,7 @@ class Sm1Module final : public Module {
     MessageState message = MessageState::Ready;
     std::vector<std::uint16_t> request;  // the M0 buffer as sent
     VirtualTime message_start = 0;
-    std::uint64_t link_epoch = 0;     // counts connection losses
+    std::uint64_t link_epoch = 0;     // counts link losses (cable removed, drive powered off)
     std::uint64_t message_epoch = 0;  // link_epoch when the message went out
     std::uint64_t messages = 0;
     std::uint16_t datalink_error = 0;  // first refusal of the last datalink transfer
@@ -87,7 +87,7 @@ class Sm1Module final : public Module {
   bool connected(const Channel& ch) const { return ch.drive && ch.powered && ch.cable; }
   bool datalink_valid(const Channel& ch, int link) const;  // link 0-3 = A-D
   void advance_drives();
-  void lose_connection(Channel& ch);
+  void fault_if_enabled(Channel& ch);
   void set_enable(Channel& ch, bool de);
   void send_outputs(Channel& ch);
   void apply_fault_state();

@@ -387,6 +387,24 @@ TEST(Sm1Messaging, ADeviceThatPadsEveryReplyToSixBytes) {
   }
 }
 
+TEST(Sm1Messaging, MessagingIsIndependentOfDataEnable) {
+  // "These functions are independent; you can use either function by itself" (chapter 4):
+  // clearing DE during a message faults the drive but does not cut the message.
+  Bench b(sm1_program(kEnhanced, copy_program(0)), kOneDrive);
+  b.run();
+  b.set("O:1.0/0", 1);
+  b.rt->scan(2);
+  load_request(b, {0x000e, 0x000f, 5, 1});
+  send(b, 1, 0);
+  b.rt->scan(1);
+  b.set("O:1.0/0", 0);
+  ASSERT_TRUE(b.until([&] { return done(b, 1); }, ms(100)));
+  std::uint16_t w = 0;
+  sm1(b).read_m(MFile::M1, 105, w);
+  EXPECT_EQ(w, 7);
+  EXPECT_EQ(observed(b, "DRIVE1", "faulted"), 1);
+}
+
 TEST(Sm1Messaging, ClearingMeWhileBusyEndsReady) {
   Bench b(sm1_program(kEnhanced, copy_program(0)), kOneDrive);
   b.run();

@@ -178,9 +178,9 @@ struct FaultStateCase {
   std::uint16_t reference;
 };
 
-class Sm1FaultState : public ::testing::TestWithParam<FaultStateCase> {};
+class Sm1DipSwitch : public ::testing::TestWithParam<FaultStateCase> {};
 
-TEST_P(Sm1FaultState, ProgramModeAndProcessorFaultApplyTheSwitch) {
+TEST_P(Sm1DipSwitch, ProgramModeAndProcessorFaultApplyTheSwitch) {
   const auto& p = GetParam();
   for (Mode leave_run_for : {Mode::Program, Mode::Test, Mode::Faulted}) {
     SCOPED_TRACE(std::string(to_string(leave_run_for)));
@@ -215,7 +215,7 @@ TEST_P(Sm1FaultState, ProgramModeAndProcessorFaultApplyTheSwitch) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Chapter2, Sm1FaultState,
+    Chapter2, Sm1DipSwitch,
     ::testing::Values(FaultStateCase{"fault", true, true, 0, 0}, FaultStateCase{"zero", true, false, 0, 0},
                       FaultStateCase{"hold", true, false, 0x0002, 5000}, FaultStateCase{"safe", true, false, 0x0002, 1000},
                       FaultStateCase{"zero", false, false, 0, 0}, FaultStateCase{"hold", false, false, 0x0002, 5000},
@@ -223,7 +223,7 @@ INSTANTIATE_TEST_SUITE_P(
                       FaultStateCase{"safe", false, true, 0, 0}),
     [](const auto& info) { return info.param.option + (info.param.enhanced ? "_enhanced" : "_basic"); });
 
-TEST(Sm1FaultStateReturn, BackInRunTheImageRulesAgain) {
+TEST(Sm1DipSwitchReturn, BackInRunTheImageRulesAgain) {
   Bench b(sm1_program(kEnhanced + " G_FILE 4\n 0 0 2 1000 OPTION ch1=safe"), kOneDrive);
   b.run();
   b.set("O:1.0/0", 1);

@@ -4,6 +4,8 @@
 // B). Manual: ../shared/seeds/001_0b60ddd8c475c2fb.txt.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "modules/scanport/messages.h"
 #include "sm1_test_util.h"
 
@@ -455,6 +457,67 @@ TEST(Sm1Datalinks, DisabledDatalinksCarryNothing) {
   b.rt->scan(3);
   EXPECT_EQ(observed(b, "DRIVE1", "parameters", 27), 12);
   EXPECT_EQ(b.u("I:1.8"), 0);
+}
+
+// ---- Robustness ----------------------------------------------------------------------------------------------------
+
+TEST(Sm1Robustness, BasicModeHasNoMFilesAnAccessFaultsTheProcessor) {
+  Bench b(sm1_program(kBasic, "SOR XIC B3:0/0 MOV 1 M0:1.0 EOR \n"), kOneDrive);
+  b.run();
+  b.set("B3:0/0", 1);
+  b.rt->scan(1);
+  EXPECT_EQ(b.fault_code(), 0x0155);  // xx55h with xx = the slot
+}
+
+TEST(Sm1Robustness, RandomCommandsAndBuffersNeverBreakTheHandshake) {
+  // Arbitrary channel command words, M0 contents (any service, class, length, buffer), mode
+  // changes and link faults: the module never crashes, READY and DONE are never both set, and
+  // every message ends (DONE or READY) within the timeout.
+  std::string slot = kEnhanced + " G_FILE 32\n 0 4095";  // every datalink enabled
+  for (int k = 2; k < 32; ++k) slot += " 7";                // safe state data
+  slot += " OPTION ch1=hold OPTION ch2=zero OPTION ch3=safe";
+  Bench b(sm1_program(slot, "SOR XIC B3:0/0 COP #N10:0 #M0:1.0 10 EOR \nSOR XIC B3:0/1 COP #N10:0 #M0:1.700 10 EOR \n"),
+          "scanport SM1 slot=1 {\n  drive D1 channel=1\n  drive D2 channel=2 pad=6\n  drive D3 channel=3 port=6\n}\n");
+  b.run();
+  std::mt19937 rng(1203);
+  auto pick = [&](int n) { return static_cast<int>(rng() % static_cast<unsigned>(n)); };
+  for (int step = 0; step < 3000; ++step) {
+    switch (pick(20)) {
+      case 0:
+        b.set("N10:" + std::to_string(pick(10)), static_cast<std::int16_t>(rng()));
+        break;
+      case 1:
+        b.set("N10:" + std::to_string(pick(5)), pick(0x100));
+        break;
+      case 2:
+        b.set("B3:0/" + std::to_string(pick(2)), pick(2));
+        break;
+      case 3:
+        if (!b.rt->fault()) (void)b.rt->set_mode(pick(3) == 0 ? Mode::Program : Mode::Run);
+        break;
+      case 4: {
+        const char* faults[] = {"cable removed", "cable restored", "offline", "online", "message timeout", "normal"};
+        b.inject("D" + std::to_string(1 + pick(3)), faults[pick(6)]);
+        break;
+      }
+      default:
+        b.set(pick(2) ? "O:1.0" : "O:1.1", static_cast<std::int16_t>(rng()));
+        break;
+    }
+    b.rt->scan(1);
+    const std::uint16_t w1 = b.u("I:1.1");
+    for (int c = 1; c <= 3; ++c) ASSERT_FALSE(((w1 >> (8 + 2 * (c - 1))) & 3) == 3) << "step " << step;
+  }
+  // Everything settles: with ME cleared no channel stays BUSY past the timeout.
+  if (b.rt->fault()) b.rt->clear_fault();
+  ASSERT_TRUE(b.rt->set_mode(Mode::Run).ok);
+  b.set("O:1.0", 0);
+  b.set("O:1.1", 0);
+  b.rt->run_for(ms(1200));
+  for (int c = 1; c <= 3; ++c) {
+    EXPECT_EQ(sm1(b).message_state(c), Sm1Module::MessageState::Ready) << c;
+    EXPECT_GT(observed(b, "SM1", "messages", static_cast<std::size_t>(c - 1)), 20) << c;  // it did exercise messaging
+  }
 }
 
 }  // namespace

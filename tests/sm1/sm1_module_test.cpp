@@ -447,6 +447,24 @@ TEST(Sm1Datalinks, DataInA1WritesAndDataOutA1ReadsParameter27) {
   EXPECT_EQ(observed(b, "DRIVE1", "datalink error"), 6);
 }
 
+TEST(Sm1Datalinks, AStoppedOnlyParameterRefusesDatalinkWritesWhileRunning) {
+  // Data In A1 = parameter 1 (Maximum Freq, written only while stopped): error 7 while running.
+  Bench b(sm1_program(kEnhanced + " G_FILE 2\n 0 1"),
+          "scanport SM1 slot=1 {\n  drive DRIVE1 channel=1 parameters=111:1\n}\n");
+  b.run();
+  b.set("O:1.0/0", 1);
+  b.set("O:1.8", 90);
+  b.rt->scan(2);
+  EXPECT_EQ(observed(b, "DRIVE1", "parameters", 1), 90);
+  b.set("O:1.2", 0x0002);  // start
+  b.set("O:1.3", 1000);
+  b.set("O:1.8", 100);
+  b.rt->scan(2);
+  EXPECT_EQ(observed(b, "DRIVE1", "running"), 1);
+  EXPECT_EQ(observed(b, "DRIVE1", "parameters", 1), 90);
+  EXPECT_EQ(observed(b, "DRIVE1", "datalink error"), 7);
+}
+
 TEST(Sm1Datalinks, DisabledDatalinksCarryNothing) {
   Bench b(sm1_program(kEnhanced + " G_FILE 2\n 0 0"),
           "scanport SM1 slot=1 {\n  drive DRIVE1 channel=1 parameters=111:27,119:27\n}\n");

@@ -50,7 +50,6 @@ class Sm1Module final : public Module {
 
   // ---- For tests and tools ----
   enum class MessageState : std::uint8_t { Ready, Busy, Done };
-  const Sm1Config& config() const { return config_; }
   MessageState message_state(int channel) const { return channel_(channel).message; }
   const scanport::Drive* drive(int channel) const;
   bool m0_status() const;

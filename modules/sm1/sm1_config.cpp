@@ -4,7 +4,6 @@
 #include <filesystem>
 
 #include "modules/scanport/drive_json.h"
-#include "parser/checker.h"
 
 namespace softslc {
 
@@ -57,8 +56,10 @@ Sm1Config decode_sm1_slot(const Program& program, const SlotConfig& slot, std::v
                             (c.enhanced() && slot.scan_in == kSm1BasicImageWords ? " (ID_CODE 3516 selects basic mode)" : ""));
 
   if (c.enhanced()) {
-    c.m0_words = m0_words(slot);
-    c.m1_words = m1_words(slot);
+    // M0_SIZE/M1_SIZE, else the sizes the manual tells users to configure (also for a slot
+    // that names the module only by its ID code).
+    c.m0_words = slot.m0_size.value_or(kSm1MaxM0Words);
+    c.m1_words = slot.m1_size.value_or(kSm1MaxM1Words);
     if (c.m0_words > kSm1MaxM0Words)
       add(findings, true, "M0_SIZE " + std::to_string(c.m0_words) + ": for this module, the maximum M0 file size is 800 (chapter 4)");
     if (c.m1_words > kSm1MaxM1Words)

@@ -422,6 +422,23 @@ TEST(Sm1Messaging, ClearingMeWhileBusyEndsReady) {
   EXPECT_EQ(w, 216);  // the response still arrived
 }
 
+TEST(Sm1Messaging, SmallerMFilesHoldFewerBuffers) {
+  // M0_SIZE 100 holds buffer 0 only: MSG ID 3 sends an empty request (all words 0), which the
+  // drive refuses; M1_SIZE 200 has no room for channel 2's response, which is lost, but the
+  // handshake still completes (decision).
+  Bench b(sm1_program(kEnhanced + " M0_SIZE 100 M1_SIZE 200", copy_program(0)),
+          "scanport SM1 slot=1 {\n  drive D1 channel=1\n  drive D2 channel=2\n}\n");
+  b.run();
+  load_request(b, {0x000e, 0x000f, 5, 1});
+  send(b, 1, 3);
+  send(b, 2, 0);
+  ASSERT_TRUE(b.until([&] { return done(b, 1) && done(b, 2); }, ms(100)));
+  std::uint16_t w = 0;
+  sm1(b).read_m(MFile::M1, 100, w);
+  EXPECT_EQ(w, 0x0014);
+  EXPECT_EQ(sm1(b).read_m(MFile::M1, 200, w), MAccess::NoSuchWord);
+}
+
 // ---- Datalinks (chapter 4, "Datalinks") ------------------------------------------------------------------------------
 
 TEST(Sm1Datalinks, DataInA1WritesAndDataOutA1ReadsParameter27) {

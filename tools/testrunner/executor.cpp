@@ -145,7 +145,8 @@ void collect_ote_bits(const std::vector<RungElement>& elements, std::vector<Addr
 
 class Session {
  public:
-  Session(const std::string& file, const RuntimeOptions& options) : file_(file), options_(options) {}
+  Session(const std::string& file, const RuntimeOptions& options, bool record_coverage)
+      : file_(file), options_(options), record_coverage_(record_coverage) {}
 
   TestOutcome run(const TestCase& tc) {
     TestOutcome out;
@@ -166,10 +167,32 @@ class Session {
     }
     out.virtual_time = rt_ ? now() : 0;
     out.scans = rt_ ? scans() : 0;
+    harvest_coverage();
+    out.coverage = std::move(coverage_);
     return out;
   }
 
  private:
+  // ---- Coverage ----
+
+  // Folds the coverage of the current Runtime into the test's, before the Runtime is replaced.
+  void harvest_coverage() {
+    if (!rt_ || !rt_->coverage() || !program_) return;
+    const auto& flags = rt_->coverage()->flags();
+    for (auto& [program, merged] : coverage_)
+      if (program == program_) {
+        for (std::size_t i = 0; i < merged.size() && i < flags.size(); ++i) merged[i] |= flags[i];
+        return;
+      }
+    coverage_.emplace_back(program_, flags);
+  }
+
+  void replace_runtime(std::unique_ptr<Runtime> fresh) {
+    harvest_coverage();
+    rt_ = std::move(fresh);
+    if (record_coverage_) rt_->enable_coverage();
+  }
+
   // ---- Time and scans across power cycles ----
 
   VirtualTime now() const { return time_base_ + rt_->now(); }
@@ -199,14 +222,25 @@ class Session {
   }
 
   // A fresh Runtime of `program` in `mode`, with the test's clock, scans and forces reset.
+  // The options of every Runtime of `program`: its modules (from its SLOT lines and bench),
+  // with the caller's processor and scan-time model where given.
+  static RuntimeOptions options_for(const LoadedProgram& program, const RuntimeOptions& caller) {
+    RuntimeOptions o = program.modules;
+    if (caller.processor) o.processor = caller.processor;
+    if (caller.time_model) o.time_model = caller.time_model;
+    if (caller.module_factory) o.module_factory = caller.module_factory;
+    if (caller.module_instruction) o.module_instruction = caller.module_instruction;
+    return o;
+  }
+
   std::optional<Failure> start(const LoadedProgram& program, Mode mode, Location loc, const std::string& what) {
-    RuntimeResult r = Runtime::create(program.program, options_);
+    RuntimeResult r = Runtime::create(program.program, options_for(program, options_));
     if (!r.ok()) {
       Failure f = failure_at(loc, what, {});
       f.error = "the program did not compile: " + r.render_errors();
       return f;
     }
-    rt_ = std::move(r.runtime);
+    replace_runtime(std::move(r.runtime));
     program_ = &program;
     time_base_ = 0;
     scan_base_ = 0;
@@ -214,6 +248,7 @@ class Session {
     last_scans_ = 0;
     forces_cleared_ = false;
     forces_.clear();
+    injected_.clear();
     if (mode != Mode::Program) {
       if (auto st = rt_->set_mode(mode); !st) {
         Failure f = failure_at(loc, what, {});
@@ -275,6 +310,10 @@ class Session {
         return std::nullopt;
       case Step::Kind::Snapshot: return std::nullopt;
       case Step::Kind::Restore: return restore(s, context);
+      case Step::Kind::Device:
+        if (auto st = rt_->inject(s.name, s.change, s.args); !st) return refused(s, context, st.message);
+        injected_.push_back(&s);
+        return std::nullopt;
     }
     return std::nullopt;
   }
@@ -378,8 +417,8 @@ class Session {
   }
 
   // Power off and on: a new Runtime with the old data table (battery-backed on the SLC) except
-  // the bits OTE instructions write (non-retentive on power loss), the field inputs as they were
-  // (the field did not change), the test's forces (kept in processor memory), in the mode the
+  // the bits OTE instructions write (non-retentive on power loss), the field inputs and the
+  // changes injected into bench devices as they were (the field did not change), the test's forces (kept in processor memory), in the mode the
   // processor was in. Entering Run sets the first pass bit and zeroes S:4, as on power-up in Run.
   std::optional<Failure> power_cycle(const Step& s, const std::string& context) {
     if (rt_->fault() || rt_->mode() == Mode::Faulted)
@@ -387,7 +426,7 @@ class Session {
                      "power cycle while faulted is not supported yet: the SLC keeps a major fault through a power "
                      "cycle and softslc cannot restore one; 'clear fault' first");
     const Mode mode = rt_->mode();
-    RuntimeResult r = Runtime::create(program_->program, options_);
+    RuntimeResult r = Runtime::create(program_->program, options_for(*program_, options_));
     if (!r.ok()) return refused(s, context, "the program did not compile: " + r.render_errors());
     Runtime& fresh = *r.runtime;
     const std::uint16_t fresh_s1 = fresh.data().status(status::kMode);
@@ -411,7 +450,11 @@ class Session {
     }
     time_base_ += rt_->now();
     scan_base_ += rt_->stats().scans;
-    rt_ = std::move(r.runtime);
+    replace_runtime(std::move(r.runtime));
+    // The field devices did not lose power with the processor: what the test injected into them
+    // (an adapter off line, a module's data) still holds, so it is applied to the new modules.
+    for (const Step* d : injected_)
+      if (auto st = rt_->inject(d->name, d->change, d->args); !st) return refused(s, context, st.message);
     if (forces_cleared_) rt_->clear_forces();
     for (const auto& [addr, on] : forces_) {
       if (on) rt_->force(addr, *on);
@@ -428,6 +471,24 @@ class Session {
     auto v = rt_->get(r.address, &error);
     if (!v) error = r.describe() + ": " + error;
     return v;
+  }
+
+  // The observed value of a bench device: element `index` of the observation, or its only one.
+  std::optional<std::int64_t> observe(const DeviceRef& d, std::string& error) const {
+    const auto values = rt_->observe(d.name, d.what);
+    const std::string what = "device " + d.name + " " + d.what;
+    if (!values) {
+      error = what + ": not observable";
+      return std::nullopt;
+    }
+    if (d.index < 0) {
+      if (values->size() == 1) return values->front();
+      error = what + " has " + std::to_string(values->size()) + " values; name one with an index (" + d.what + "[0])";
+      return std::nullopt;
+    }
+    if (static_cast<std::size_t>(d.index) < values->size()) return (*values)[static_cast<std::size_t>(d.index)];
+    error = what + " has " + std::to_string(values->size()) + " value(s); there is no element " + std::to_string(d.index);
+    return std::nullopt;
   }
 
   // nullopt with `error` set when an operand cannot be read.
@@ -459,6 +520,21 @@ class Session {
       return compare_ordered<Nanoseconds>(last_elapsed_, k.op, k.rhs.duration, k.high.duration);
     if (k.lhs.kind == Operand::Kind::Scans)
       return compare_ordered<std::int64_t>(static_cast<std::int64_t>(last_scans_), k.op, k.rhs.count, k.high.count);
+    if (k.lhs.kind == Operand::Kind::Device) {
+      auto a = observe(k.lhs.device, error);
+      if (!a) return std::nullopt;
+      if (k.rhs.kind == Operand::Kind::Data) {
+        auto b = read(k.rhs.data, error);
+        if (!b) return std::nullopt;
+        return compare_numbers(Number{false, *a, 0.0}, k.op, number_of(*b));
+      }
+      // Observations are 64-bit numbers: literals compare as written (hexadecimal as its value).
+      if (k.rhs.literal.kind == Literal::Kind::Pattern) {
+        const bool m = matches_pattern(Value::of_int(*a), k.rhs.literal, 64);
+        return k.op == CompareOp::Eq ? m : !m;
+      }
+      return compare_ordered<std::int64_t>(*a, k.op, k.rhs.literal.integer, k.high.literal.integer);
+    }
     auto a = read(k.lhs.data, error);
     if (!a) return std::nullopt;
     const int width = width_of(k.lhs.data.address);
@@ -518,6 +594,11 @@ class Session {
       return;
     }
     const Literal* hint = k.rhs.kind == Operand::Kind::Literal ? &k.rhs.literal : nullptr;
+    if (k.lhs.kind == Operand::Kind::Device) {
+      std::string error;
+      const auto v = observe(k.lhs.device, error);
+      add_part(parts, seen, k.lhs.spelling, v ? k.lhs.spelling + " = " + std::to_string(*v) : error);
+    }
     for (const Operand* o : {&k.lhs, &k.rhs}) {
       if (o->kind != Operand::Kind::Data) continue;
       std::string error;
@@ -530,6 +611,8 @@ class Session {
 
   const std::string& file_;
   const RuntimeOptions& options_;
+  bool record_coverage_ = false;
+  std::vector<std::pair<const LoadedProgram*, std::vector<std::uint8_t>>> coverage_;
   std::unique_ptr<Runtime> rt_;
   const LoadedProgram* program_ = nullptr;
   VirtualTime time_base_ = 0;       // virtual time of the Runtimes before the last power cycle
@@ -538,12 +621,14 @@ class Session {
   std::uint64_t last_scans_ = 0;
   bool forces_cleared_ = false;     // `unforce all` removed the program's own FORCE blocks
   std::map<std::string, std::optional<bool>> forces_;  // by address: forced value, or unforced
+  std::vector<const Step*> injected_;  // the device steps run on the current bench, in order
 };
 
 }  // namespace
 
-TestOutcome run_test(const TestCase& test, const std::string& file_name, const RuntimeOptions& options) {
-  Session session(file_name, options);
+TestOutcome run_test(const TestCase& test, const std::string& file_name, const RuntimeOptions& options,
+                     bool record_coverage) {
+  Session session(file_name, options, record_coverage);
   return session.run(test);
 }
 

@@ -300,11 +300,19 @@ std::string AutomaxMaster::refusal(int word, bool write) const {
   return {};
 }
 
+// A Remote I/O Head's registers are the drop's whatever the SLOT field (decision,
+// docs/automax.md): they are kept at slot 0 of its area.
+int AutomaxMaster::storage_word(int word) const {
+  const auto& d = drops_[static_cast<std::size_t>(word / kAutomaxAreaWords)];
+  const bool head = d && (d->spec->kind == AutomaxDropKind::Head57C328 || d->spec->kind == AutomaxDropKind::Head57C330);
+  return head ? word - word % kAutomaxAreaWords + word % kAutomaxSlotRegisters : word;
+}
+
 MAccess AutomaxMaster::read_m(MFile f, int word, std::uint16_t& value) {
   if (f != MFile::M0) return MAccess::NoSuchWord;
   const Access a = access(word, nullptr);
   if (a == Access::BusError) return MAccess::NoSuchWord;
-  value = a == Access::Ignored ? 0 : image_[static_cast<std::size_t>(word)];
+  value = a == Access::Ignored ? 0 : image_[static_cast<std::size_t>(storage_word(word))];
   return MAccess::Ok;
 }
 
@@ -313,7 +321,7 @@ MAccess AutomaxMaster::write_m(MFile f, int word, std::uint16_t value) {
   const Access a = access(word, nullptr);
   if (a == Access::BusError) return MAccess::NoSuchWord;
   if (a == Access::ReadOnly) return MAccess::Forbidden;
-  if (a == Access::ReadWrite) image_[static_cast<std::size_t>(word)] = value;
+  if (a == Access::ReadWrite) image_[static_cast<std::size_t>(storage_word(word))] = value;
   return MAccess::Ok;
 }
 
@@ -449,14 +457,11 @@ std::optional<std::vector<std::int64_t>> AutomaxMaster::observe(std::string_view
     for (auto s : d->rail_state) v.push_back(static_cast<std::int64_t>(s));
     return v;
   }
-  // "outputs S": registers 0-31 of slot S as the drop last received them.
-  if (what.starts_with("outputs ")) {
-    NumberValue n;
-    if (!parse_number_text(what.substr(8), n) || n.is_float || n.integer < 0 || n.integer >= kAutomaxSlots) return std::nullopt;
-    V v;
-    for (int r = 0; r < kAutomaxSlotRegisters; ++r)
-      v.push_back(d->field_out[static_cast<std::size_t>(n.integer * kAutomaxSlotRegisters + r)]);
-    return v;
+  // The drop's 512 registers (index 32 * slot + register) as it last received them, and as its
+  // inputs read in the field.
+  if (what == "outputs" || what == "inputs") {
+    const auto& regs = what == "outputs" ? d->field_out : d->field_in;
+    return V(regs.begin(), regs.end());
   }
   return std::nullopt;
 }

@@ -128,6 +128,7 @@ class AutomaxMaster : public Module {
   };
 
   Access access(int word, std::string* why) const;
+  int storage_word(int word) const;
   Drop* find_drop(std::string_view name);
   const Drop* find_drop(std::string_view name) const;
   bool has_rail(const Drop& d, int rail) const;

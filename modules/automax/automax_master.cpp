@@ -30,6 +30,7 @@ AutomaxMaster::AutomaxMaster(const SlotConfig& slot, std::shared_ptr<const Autom
     d.online = spec.online;
     d.noisy = spec.noisy;
     d.rails = spec.rails;
+    d.known_rails = spec.rails;
     drops_[static_cast<std::size_t>(spec.area)] = std::move(d);
   }
 }
@@ -38,20 +39,29 @@ AutomaxMaster::AutomaxMaster(const SlotConfig& slot, std::shared_ptr<const Autom
 
 void AutomaxMaster::attach(ModuleHost& host) {
   Module::attach(host);
-  // "At power up, the master will poll all of the slave drops to determine which drops are
-  // connected to the network" (section 4.4): before the processor's first scan.
-  for (int area = 1; area < kAutomaxAreas; ++area) {
-    count(kMessagesTransmitted);
-    auto& d = drops_[static_cast<std::size_t>(area)];
-    if (d && answers(*d)) {
-      count(kMessagesReceived);
-      join(*d);
-    } else {
-      count(kReceiveTimeouts);
-    }
-  }
+  // The master powers up with the processor: its first event polls the drops, so what the
+  // field looks like at that moment (a drop a test took off line) is what it finds.
+  host.schedule_at(host.now(), [this](VirtualTime) { power_up(); });
+}
+
+// "At power up, the master will poll all of the slave drops to determine which drops are
+// connected to the network" (section 4.4); then the update cycles start.
+void AutomaxMaster::power_up() {
+  for (int area = 1; area < kAutomaxAreas; ++area) poll_inactive(area);
   set_status();
-  host.schedule_at(host.now(), [this](VirtualTime) { update_cycle(); });
+  update_cycle();
+}
+
+// A poll of a drop not in the active list: one message; a drop that answers joins.
+void AutomaxMaster::poll_inactive(int area) {
+  count(kMessagesTransmitted);
+  auto& d = drops_[static_cast<std::size_t>(area)];
+  if (d && answers(*d)) {
+    count(kMessagesReceived);
+    join(*d);
+  } else {
+    count(kReceiveTimeouts);
+  }
 }
 
 bool AutomaxMaster::answers(Drop& d) {
@@ -61,7 +71,6 @@ bool AutomaxMaster::answers(Drop& d) {
 
 void AutomaxMaster::join(Drop& d) {
   d.active = true;
-  d.known = true;
   // The head sends its rail configuration when it is first polled (sections 4.6.2, 4.6.3).
   d.known_rails = d.rails;
   for (int r : d.rails)
@@ -125,13 +134,7 @@ void AutomaxMaster::update_cycle() {
     next_inactive_ = next_inactive_ % (kAutomaxAreas - 1) + 1;
     auto& d = drops_[static_cast<std::size_t>(area)];
     if (d && d->active) continue;
-    count(kMessagesTransmitted);
-    if (d && answers(*d)) {
-      count(kMessagesReceived);
-      join(*d);
-    } else {
-      count(kReceiveTimeouts);
-    }
+    poll_inactive(area);
     break;
   }
   elapsed += microseconds(throughput::kAutomaxInactivePoll);
@@ -242,7 +245,9 @@ AutomaxMaster::Access AutomaxMaster::access(int word, std::string* why) const {
   if (area == 0) return say(Access::ReadOnly, "drop 0 register " + std::to_string(word) + " (status, read only: section 4.2)");
   const auto& dp = drops_[static_cast<std::size_t>(area)];
   const std::string point = point_text(area, slot, reg);
-  if (!dp || !dp->known) return say(Access::BusError, point + ": drop " + std::to_string(area) + " has not answered a poll");
+  // The drops and their modules are the network's configuration (section 4.6): a drop that has
+  // not answered yet still has its registers (decision, docs/automax.md).
+  if (!dp) return say(Access::BusError, point + ": there is no drop " + std::to_string(area) + " on the network");
   const Drop& d = *dp;
   const AutomaxDropSpec& s = *d.spec;
   switch (s.kind) {

@@ -113,14 +113,13 @@ class AutomaxMaster : public Module {
     bool online = true;        // the drop answers (bench state, offline/online injections)
     int noisy = 0;
     bool active = false;       // in the master's list of active drops (status bit)
-    bool known = false;        // has answered a poll: the master knows its register map
     VirtualTime ready_at = 0;  // running its power-up diagnostics until then
     std::uint64_t messages = 0;  // messages exchanged with it (for `noisy`)
     std::uint64_t retries = 0;
     std::array<std::uint16_t, kAutomaxAreaWords> field_in{};   // what its inputs read
     std::array<std::uint16_t, kAutomaxAreaWords> field_out{};  // what it last received
     std::vector<int> rails;                   // connected rails / ports now
-    std::vector<int> known_rails;             // as sent at the last connection (57C328)
+    std::vector<int> known_rails;             // as sent at the last connection (configured at first)
     std::array<Rail, 16> rail_state{};        // 57C330 rail definitions
     std::array<bool, 4> port_online{true, true, true, true};  // drive head
     bool shark_configured = false;
@@ -139,6 +138,8 @@ class AutomaxMaster : public Module {
   void exchange(Drop& d);
   void go_offline(Drop& d);
   void join(Drop& d);
+  void power_up();
+  void poll_inactive(int area);
   void update_cycle();
   void count(int reg);
   void set_status();

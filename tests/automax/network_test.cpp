@@ -55,7 +55,8 @@ const std::string kStatusDefs =
     "RIODEF HEAD_R1%[MASTER_SLOT=8,DROP=4,SLOT=1,REGISTER=1]\n"
     "RIODEF HEAD_R2%[MASTER_SLOT=8,DROP=4,SLOT=1,REGISTER=2]\n"
     "RIODEF NOWHERE%[MASTER_SLOT=8,DROP=2,SLOT=5,REGISTER=0]\n"
-    "RIODEF R5IN%[MASTER_SLOT=8,DROP=5,SLOT=0,REGISTER=0]\n";
+    "RIODEF R5IN%[MASTER_SLOT=8,DROP=5,SLOT=0,REGISTER=0]\n"
+    "RIODEF R3IN%[MASTER_SLOT=8,DROP=3,SLOT=0,REGISTER=0]\n";
 
 const std::string kNoRungs = "SOR XIC B3:0/1 OTE B3:0/0 EOR\n";
 
@@ -63,13 +64,16 @@ const std::string kNoRungs = "SOR XIC B3:0/1 OTE B3:0/0 EOR\n";
 // 14-19 the message counters; at power-up the master polls all seven drops (section 4.4).
 TEST(AutomaxMaster, Drop0RegistersAfterPowerUp) {
   Bench b(program(kNoRungs, kStatusDefs), kTwoDrops);
+  b->scan(1);  // the master's power-up poll is its first event
   EXPECT_EQ(b.i(A(b, "STATUS")), (1 << 2) | (1 << 4));  // drop 5 is off-line: its bit is clear
   EXPECT_EQ(b.i(A(b, "DROPNO")), 0);
   EXPECT_EQ(b.i(A(b, "KEYSW")), 3);  // program (the bench default)
-  // Power-up: 7 polls, drops 2 and 4 answer, 5 do not.
-  EXPECT_EQ(b.i(A(b, "SENT")), 7);
-  EXPECT_EQ(b.i(A(b, "RECEIVED")), 2);
-  EXPECT_EQ(b.i(A(b, "TIMEOUTS")), 5);
+  // Power-up: 7 polls, drops 2 and 4 answer, the other 5 numbers do not. Then the first update
+  // cycle (the scan is far shorter than one cycle): drops 2 and 4, and one inactive poll (drop 1,
+  // absent).
+  EXPECT_EQ(b.i(A(b, "SENT")), 7 + 3);
+  EXPECT_EQ(b.i(A(b, "RECEIVED")), 2 + 2);
+  EXPECT_EQ(b.i(A(b, "TIMEOUTS")), 5 + 1);
   // Drop 0 is read only (section 4.2): a write is refused (fault xx55h with the slot).
   EXPECT_FALSE(b->set("M0:8.12", Value::of_int(1)));
 }
@@ -79,6 +83,7 @@ TEST(AutomaxMaster, Drop0RegistersAfterPowerUp) {
 // not yet defined (data both ways, X = 2, Y = 2): 1.9 + 2 x 0.08 + 2 x 0.036 = 2.132 ms.
 TEST(AutomaxMaster, UpdatePeriodIsTheSection45Sum) {
   Bench b(program(kNoRungs, kStatusDefs), kTwoDrops);
+  b->scan(1);  // the master's power-up poll is its first event
   b.run();
   b->run_for(milliseconds(100));
   EXPECT_EQ(master(b).update_period(), microseconds(1590 + 2132 + 2700));
@@ -101,6 +106,7 @@ TEST(AutomaxMaster, UpdatePeriodOfTheManualExampleMatchesTheThroughputCalculator
       "  shark D4 drop=12 {\n    module C slot=1 type=digital inputs=1\n  }\n"
       "}\n";
   Bench b(program(kNoRungs, ""), bench);
+  b->scan(1);  // the master's power-up poll is its first event
   // Define the head's rails as the example has them: 6 input rails (0-5), 5 output rails (6-10).
   for (int r = 0; r < 6; ++r) b.inject("D3", "input", {"0", std::to_string(r), "1"});
   for (int r = 6; r < 11; ++r) ASSERT_TRUE(b->set("M0:8." + std::to_string(3 * 512 + r), Value::of_int(1)));
@@ -121,16 +127,19 @@ TEST(AutomaxMaster, UpdatePeriodOfTheManualExampleMatchesTheThroughputCalculator
 // for slot 8).
 TEST(AutomaxMaster, AccessRulesAndBusErrorFault) {
   Bench b(program(kNoRungs, kStatusDefs), kTwoDrops);
+  b->scan(1);  // the master's power-up poll is its first event
   EXPECT_TRUE(b->set(A(b, "SPD_IND"), Value::of_int(7)));          // output: read/write
   EXPECT_FALSE(b->set(A(b, "START"), Value::of_int(1)));            // input: read only
   EXPECT_FALSE(b->get(A(b, "NOWHERE")).has_value());                // no module in drop 2 slot 5
-  EXPECT_FALSE(b->get(A(b, "R5IN")).has_value());                   // drop 5 never answered
+  EXPECT_FALSE(b->get(A(b, "R3IN")).has_value());                   // no drop 3 on the network
+  EXPECT_EQ(b->get(A(b, "R5IN"))->as_int(), 0);  // drop 5 has not answered, but it is configured
   EXPECT_EQ(master(b).refusal(2 * 512 + 5 * 32, false), "bus error: drop 2 slot 5 register 0: no module in slot 5");
   EXPECT_EQ(master(b).refusal(2 * 512 + 11 * 32, true),
             "write refused: drop 2 slot 11 register 0 (DIN input, read only)");
-  EXPECT_EQ(master(b).refusal(5 * 512, false), "bus error: drop 5 slot 0 register 0: drop 5 has not answered a poll");
+  EXPECT_EQ(master(b).refusal(3 * 512, false), "bus error: drop 3 slot 0 register 0: there is no drop 3 on the network");
 
   Bench f(program("SOR XIC B3:0/1 MOV NOWHERE N7:0 EOR\n", kStatusDefs), kTwoDrops);
+  f->scan(1);  // the master's power-up poll is its first event
   f.run();
   f->scan(1);
   EXPECT_EQ(f.fault_code(), 0);
@@ -144,6 +153,7 @@ TEST(AutomaxMaster, AccessRulesAndBusErrorFault) {
 // status bit clears); the inactive poll finds it again when it answers.
 TEST(AutomaxMaster, DropGoesOfflineAfterThreeRetriesAndRejoins) {
   Bench b(program(kNoRungs, kStatusDefs), kTwoDrops);
+  b->scan(1);  // the master's power-up poll is its first event
   b.run();
   b->run_for(milliseconds(50));
   const auto timeouts = b.i(A(b, "TIMEOUTS"));
@@ -166,6 +176,7 @@ TEST(AutomaxMaster, DropGoesOfflineAfterThreeRetriesAndRejoins) {
 // A noisy drop: a message in error (CRC) is retried and the drop stays on-line.
 TEST(AutomaxMaster, NoisyDropIsRetriedAndCounted) {
   Bench b(program(kNoRungs, kStatusDefs), kTwoDrops);
+  b->scan(1);  // the master's power-up poll is its first event
   b.inject("RACK2", "noisy", {"3"});
   b.run();
   b->run_for(milliseconds(100));
@@ -179,6 +190,7 @@ TEST(AutomaxMaster, NoisyDropIsRetriedAndCounted) {
 // until the line goes inactive.
 TEST(AutomaxMaster, Head57C330RailDefinition) {
   Bench b(program(kNoRungs, kStatusDefs), kTwoDrops);
+  b->scan(1);  // the master's power-up poll is its first event
   b.run();
   EXPECT_TRUE(b->set(A(b, "HEAD_R0"), Value::of_int(0)));  // undefined: writable
   b.inject("HEAD4", "input", {"0", "0", "0x0102"});
@@ -214,6 +226,7 @@ TEST(AutomaxMaster, Head57C328RailsAndReconfiguration) {
       "RIODEF OUT2%[MASTER_SLOT=8,DROP=3,SLOT=0,REGISTER=6]\n"
       "RIODEF R8%[MASTER_SLOT=8,DROP=3,SLOT=0,REGISTER=8]\n";
   Bench b(program(kNoRungs, defs), bench);
+  b->scan(1);  // the master's power-up poll is its first event
   b.run();
   EXPECT_FALSE(b->set(A(b, "IN0"), Value::of_int(1)));
   EXPECT_TRUE(b->set(A(b, "OUT1"), Value::of_int(9)));
@@ -249,6 +262,7 @@ TEST(AutomaxMaster, SharkConfigurationRules) {
       "RIODEF AIN_R20%[MASTER_SLOT=8,DROP=2,SLOT=1,REGISTER=20]\n"
       "RIODEF EMPTY%[MASTER_SLOT=8,DROP=2,SLOT=3,REGISTER=0]\n";
   Bench b(program(kNoRungs, defs), bench);
+  b->scan(1);  // the master's power-up poll is its first event
   b.inject("S2", "input", {"1", "0", "1234"});
   b.inject("S2", "input", {"5", "0", "0x0020"});
   b.run();
@@ -288,6 +302,7 @@ TEST(AutomaxMaster, DriveHeadClearsInputsOfASilentDrive) {
       "RIODEF FDBK%[MASTER_SLOT=8,DROP=6,SLOT=1,REGISTER=2]\n"
       "RIODEF P2%[MASTER_SLOT=8,DROP=6,SLOT=2,REGISTER=0]\n";
   Bench b(program(kNoRungs, defs), bench);
+  b->scan(1);  // the master's power-up poll is its first event
   b.inject("DH", "input", {"1", "2", "500"});
   b.run();
   EXPECT_TRUE(b->set(A(b, "REF"), Value::of_int(300)));

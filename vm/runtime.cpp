@@ -520,6 +520,11 @@ MAccess Runtime::write_m(int slot, MFile f, int word, std::uint16_t value) {
   return m ? m->write_m(f, word, value) : MAccess::NoSuchWord;
 }
 
+std::string Runtime::m_refusal(int slot, MFile f, int word, bool write) const {
+  const Module* m = module(slot);
+  return m ? m->m_refusal(f, word, write) : std::string();
+}
+
 void Runtime::immediate_input(int slot, int first, int count, std::uint16_t mask) {
   Module* m = module(slot);
   const DataTableLayout& L = *program_->layout;

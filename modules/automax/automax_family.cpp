@@ -31,7 +31,15 @@ void register_automax_family(ModuleRegistry& registry) {
     check_master(ctx.program, ctx.slot, ctx.program_diagnostics);
     std::shared_ptr<const AutomaxBench> bench;
     if (ctx.bench) bench = interpret_automax_bench(*ctx.bench, ctx.bench_diagnostics);
-    return [bench](const SlotConfig& s) -> std::unique_ptr<Module> { return std::make_unique<AutomaxMaster>(s, bench); };
+    auto names = std::make_shared<AutomaxMaster::SymbolNames>();
+    for (const auto& sym : ctx.program.symbols)
+      if (sym.automax && sym.address.type == FileType::M0 && sym.address.element == ctx.slot.slot) {
+        std::string& text = (*names)[sym.address.word_in_element()];
+        text += (text.empty() ? "" : ", ") + std::string(keyword_of(sym.automax->kind)) + " " + sym.name;
+      }
+    return [bench, names](const SlotConfig& s) -> std::unique_ptr<Module> {
+      return std::make_unique<AutomaxMaster>(s, bench, names);
+    };
   };
   registry.add(std::move(f));
 }

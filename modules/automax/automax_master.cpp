@@ -19,8 +19,9 @@ std::uint16_t& counter(std::array<std::uint16_t, kAutomaxImageWords>& image, int
 
 }  // namespace
 
-AutomaxMaster::AutomaxMaster(const SlotConfig& slot, std::shared_ptr<const AutomaxBench> bench)
-    : Module(slot.slot, slot.catalog, slot.scan_in, slot.scan_out), bench_(std::move(bench)) {
+AutomaxMaster::AutomaxMaster(const SlotConfig& slot, std::shared_ptr<const AutomaxBench> bench,
+                             std::shared_ptr<const SymbolNames> symbols)
+    : Module(slot.slot, slot.catalog, slot.scan_in, slot.scan_out), bench_(std::move(bench)), symbols_(std::move(symbols)) {
   counter(image_, kDropNumberRegister) = 0;  // the master is drop 0
   counter(image_, kKeyswitchRegister) = static_cast<std::uint16_t>(bench_ ? bench_->keyswitch : 3);
   if (!bench_) return;
@@ -311,6 +312,14 @@ int AutomaxMaster::storage_word(int word) const {
   const auto& d = drops_[static_cast<std::size_t>(word / kAutomaxAreaWords)];
   const bool head = d && (d->spec->kind == AutomaxDropKind::Head57C328 || d->spec->kind == AutomaxDropKind::Head57C330);
   return head ? word - word % kAutomaxAreaWords + word % kAutomaxSlotRegisters : word;
+}
+
+std::string AutomaxMaster::m_refusal(MFile f, int word, bool write) const {
+  if (f != MFile::M0) return "the AutoMax master has no M1 file (its dual-port image is M0)";
+  std::string why = refusal(word, write);
+  if (why.empty() || !symbols_) return why;
+  auto it = symbols_->find(word);
+  return it == symbols_->end() ? why : it->second + ": " + why;
 }
 
 MAccess AutomaxMaster::read_m(MFile f, int word, std::uint16_t& value) {

@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -86,7 +87,10 @@ class AutomaxMaster : public Module {
   static constexpr int kMessagesTransmitted = 19;
   static constexpr int kRetries = 3;  // "re-transmitted up to three times"
 
-  AutomaxMaster(const SlotConfig& slot, std::shared_ptr<const AutomaxBench> bench);
+  // `symbols`: the program's IODEF/RIODEF names by M0 word, so a refused access names them.
+  using SymbolNames = std::map<int, std::string>;
+  AutomaxMaster(const SlotConfig& slot, std::shared_ptr<const AutomaxBench> bench,
+                std::shared_ptr<const SymbolNames> symbols = nullptr);
 
   void attach(ModuleHost& host) override;
   void input_scan(std::span<std::uint16_t>) override {}
@@ -103,6 +107,7 @@ class AutomaxMaster : public Module {
   // Why an access to M0 word `word` is refused (empty when it is not): "bus error: ..." or
   // "read only: ...", naming the drop, slot and register.
   std::string refusal(int word, bool write) const;
+  std::string m_refusal(MFile f, int word, bool write) const override;
   Nanoseconds update_period() const { return update_period_; }
 
  private:
@@ -145,6 +150,7 @@ class AutomaxMaster : public Module {
   void set_status();
 
   std::shared_ptr<const AutomaxBench> bench_;
+  std::shared_ptr<const SymbolNames> symbols_;
   std::array<std::uint16_t, kAutomaxImageWords> image_{};
   std::array<std::optional<Drop>, kAutomaxAreas> drops_;  // by image area
   bool cable_removed_ = false;

@@ -146,7 +146,19 @@ TEST(AutomaxMaster, AccessRulesAndBusErrorFault) {
   f.set("B3:0/1", 1);
   f->scan(1);
   EXPECT_EQ(f.fault_code(), 0x0855);
-  EXPECT_NE(f->fault()->message.find("M0:8.1184"), std::string::npos) << f->fault()->message;
+  // The fault names the symbol, the drop, slot and register, and why.
+  EXPECT_EQ(f->fault()->message,
+            "reading M0:8.1184: module refused (no such word): RIODEF NOWHERE: bus error: drop 2 slot 5 register 0: "
+            "no module in slot 5");
+  // A write to an input register is refused too (read only, section 4.3).
+  Bench w(program("SOR XIC B3:0/2 OTE START EOR\n", kStatusDefs), kTwoDrops);
+  w.run();
+  w.set("B3:0/2", 1);
+  w->scan(1);
+  EXPECT_EQ(w.fault_code(), 0x0855);
+  EXPECT_EQ(w->fault()->message,
+            "writing M0:8.1376/5: module refused (forbidden): RIODEF START: write refused: drop 2 slot 11 register 0 "
+            "(DIN input, read only)");
 }
 
 // Section 4.4: a drop that stops answering is retried three times, then goes off-line (its

@@ -1,0 +1,273 @@
+// The 1747-SDN module on the chassis: its image (status and command registers), the M0/M1 tables,
+// Run/Idle, the failures a bench injects, and the errors of its SLOT line and bench node. Expected
+// values are the manual's (1747-UM655B, pages as cited), never read back from the module.
+#include <gtest/gtest.h>
+
+#include "sdn_test_util.h"
+
+namespace softslc::test {
+namespace {
+
+// A 1747-SDN in slot 1. N7:0 is copied to the command register every scan; B3 mirrors nothing.
+const std::string kProgram =
+    "START 1747-L542\n"
+    "SLOT 0 1747-L542 SCAN_IN 0 SCAN_OUT 0\n"
+    "SLOT 1 1747-SDN SCAN_IN 32 SCAN_OUT 32\n"
+    "LADDER 2\n"
+    "SOR MOV N7:0 O:1.0 EOR\n";
+
+// The manual's example network (p.57-61) at node 0, 125K.
+const std::string kNetwork =
+    "devicenet DNET slot=1 node=0 baud=125K {\n"
+    "  node STATION address=7 model=redistation {\n"
+    "    key vendor=1 device_type=24 product_code=2705\n"
+    "    poll rx=1 tx=1\n"
+    "    input from=poll bits=8 to=M1:0/0\n"
+    "    output to=poll bits=8 from=M0:0/0\n"
+    "  }\n"
+    "  node EYE address=9 model=series-9000-photoeye {\n"
+    "    strobe rx=1\n"
+    "    input from=strobe bits=8 to=M1:0/8\n"
+    "  }\n"
+    "  node GHOST address=12 {\n"
+    "    poll rx=2 tx=0\n"
+    "    input from=poll bits=16 to=M1:1/0\n"
+    "  }\n"
+    "}\n";
+
+constexpr std::int64_t kRun = 1, kFault = 2, kDisable = 16;
+
+// M1:210, high byte node, low byte code (p.136 "node address and status").
+std::int64_t node_status(int node, int code) { return (node << 8) | code; }
+
+Bench network(std::string extra_nodes = "") {
+  std::string bench = kNetwork;
+  bench.insert(bench.rfind('}'), extra_nodes);
+  return Bench(kProgram, bench);
+}
+
+TEST(SdnModule, FactoryDefaultsWithoutBench) {
+  // Without a bench the module has the factory configuration (p.140): node 63, no scanlist, and it
+  // is alone on its cable: "79 Module has failed to transmit a message" once the duplicate node
+  // check (2 s) is over, with the communication failure bit 10 (p.135).
+  Bench b(kProgram, "");
+  b.run();
+  b->run_for(seconds(3));
+  EXPECT_EQ(b.i("M1:1.210"), node_status(63, 79));
+  EXPECT_TRUE(b.b("I:1.0/10"));
+  EXPECT_EQ(b->devices().size(), 0u);
+}
+
+TEST(SdnModule, StatusRegisterEchoesRunFaultDisable) {
+  // Status register bits 0, 1 and 4 echo command bits 0, 1 and 4 (p.135).
+  Bench b = network();
+  b.run();
+  for (std::int64_t cmd : {kRun, kFault, kDisable, std::int64_t{0}}) {
+    b.set("N7:0", cmd);
+    b->scan(3);
+    EXPECT_EQ(b.i("I:1.0") & 0x13, cmd) << cmd;
+  }
+}
+
+TEST(SdnModule, CommandCodesInNodeStatusWord) {
+  // Fault network shows 81, disable network 90, halt 97 (chapter 7, p.90-91); a reserved command
+  // bit is a command error (81, docs/1747-sdn.md decision 4).
+  Bench b = network();
+  b.run();
+  b->run_for(seconds(3));
+  const std::vector<std::pair<std::int64_t, int>> cases = {{kFault, 81}, {kDisable, 90}, {64, 97}, {8, 81}};
+  for (auto [cmd, code] : cases) {
+    b.set("N7:0", cmd);
+    b->scan(3);
+    EXPECT_EQ(b.i("M1:1.210"), node_status(0, code)) << cmd;
+  }
+}
+
+TEST(SdnModule, RunMapsOutputsIdleKeepsConnectionsAndInputs) {
+  Bench b = network();
+  b.run();
+  b.set("M0:1.0", 1);  // the light's output bit, written by the processor
+  b->run_for(seconds(4));
+  // Idle (command bit 0 off): connections made, active table bits 7 and 9 (p.136), inputs mapped,
+  // outputs not: the RediSTATION gets idle data and its light stays off.
+  EXPECT_TRUE(b.b("M1:1.206/7"));
+  EXPECT_TRUE(b.b("M1:1.206/9"));
+  EXPECT_EQ(b.i("M1:1.210"), node_status(12, 78));  // GHOST: no device answers (chapter 7)
+  b.inject("STATION", "input", {"start", "1"});
+  b->run_for(milliseconds(200));
+  EXPECT_TRUE(b.b("M1:1.0/1"));
+  EXPECT_EQ(*b->observe("STATION", "light"), one(0));
+  // Run: outputs are mapped.
+  b.set("N7:0", kRun);
+  b->run_for(milliseconds(200));
+  EXPECT_EQ(*b->observe("STATION", "light"), one(1));
+  // Back to Idle: the device applies its idle action (clear).
+  b.set("N7:0", 0);
+  b->run_for(milliseconds(200));
+  EXPECT_EQ(*b->observe("STATION", "light"), one(0));
+}
+
+TEST(SdnModule, ProcessorProgramModeSendsZerosSoTheScannerGoesIdle) {
+  Bench b = network();
+  b.set("M0:1.0", 1);
+  b.run();
+  b.set("N7:0", kRun);
+  b->run_for(seconds(4));
+  EXPECT_EQ(*b->observe("STATION", "light"), one(1));
+  ASSERT_TRUE(b->set_mode(Mode::Program));
+  b->run_for(milliseconds(300));
+  EXPECT_FALSE(b.b("I:1.0/0")) << "the output image is zeros outside Run: command Idle";
+  EXPECT_EQ(*b->observe("STATION", "light"), one(0));
+  EXPECT_TRUE(b.b("M1:1.206/7")) << "Idle keeps the connection";
+}
+
+TEST(SdnModule, OfflineDeviceFailsAndRecovers) {
+  Bench b = network();
+  b.run();
+  b.set("N7:0", kRun);
+  b->run_for(seconds(4));
+  ASSERT_TRUE(b.b("M1:1.206/7"));
+  b.inject("STATION", "offline");
+  // The connection times out after 4 x the 75 ms expected packet rate; the device failure table
+  // (M1:216-219, p.137) and status bit 6 (p.135) show it, with code 72 for node 7.
+  b->run_for(milliseconds(400));
+  EXPECT_TRUE(b.b("M1:1.216/7"));
+  EXPECT_FALSE(b.b("M1:1.206/7"));
+  EXPECT_TRUE(b.b("I:1.0/6"));
+  EXPECT_EQ(b.i("M1:1.210") & 0xFF00, 7 << 8);  // node 7 is the lowest failing node...
+  EXPECT_EQ(b.i("M1:1.210") & 0xFF, 72);        // ...with "72 Slave device stopped communicating"
+  b.inject("STATION", "online");
+  b->run_for(seconds(2));
+  EXPECT_FALSE(b.b("M1:1.216/7"));
+  EXPECT_TRUE(b.b("M1:1.206/7"));
+}
+
+TEST(SdnModule, InjectedFailuresShowTheirChapter7Codes) {
+  struct Case {
+    std::string device, fault;
+    std::vector<std::string> args;
+    int node, code;
+    std::string status_bit;  // an I:1.0 bit that must be set, or ""
+    bool at_power_up = false;  // keying and ownership are checked when a connection is made
+  };
+  const std::vector<Case> cases = {
+      {"STATION", "data size", {"2"}, 7, 77, "I:1.0/8"},  // autoverify failure (p.135 bit 8)
+      {"STATION", "key mismatch", {}, 7, 73, "I:1.0/6", true},  // "Device's identity information does not match"
+      {"STATION", "owned elsewhere", {}, 7, 83, "I:1.0/6", true},
+      {"STATION", "idle", {}, 7, 86, ""},                 // "Device is producing zero length data (idle)"
+      {"DNET", "bus off", {}, 0, 91, "I:1.0/10"},
+      {"DNET", "power off", {}, 0, 92, "I:1.0/10"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.device + " " + c.fault);
+    Bench b = network("  node EXTRA address=20 model=redistation\n");
+    if (c.at_power_up) b.inject(c.device, c.fault, c.args);
+    b.run();
+    b.set("N7:0", kRun);
+    b->run_for(seconds(4));
+    if (!c.at_power_up) b.inject(c.device, c.fault, c.args);
+    b->run_for(seconds(3));  // a reconnection (1 s) and its checks
+    EXPECT_EQ(b.i("M1:1.210"), node_status(c.node, c.code));
+    if (!c.status_bit.empty()) {
+      EXPECT_TRUE(b.b(c.status_bit));
+    }
+    // "normal" withdraws the change.
+    b.inject(c.device, "normal");
+    b->run_for(seconds(4));
+    EXPECT_EQ(b.i("M1:1.210"), node_status(12, 78)) << "only the missing GHOST remains";
+  }
+}
+
+TEST(SdnModule, DuplicateNodeAddressAtPortStart) {
+  // A node answering the scanner's address in the duplicate MAC ID check: 70 and status bit 12.
+  Bench b = network();
+  b.inject("DNET", "duplicate", {"0"});
+  b.run();
+  b->run_for(seconds(3));
+  EXPECT_EQ(b.i("M1:1.210"), node_status(0, 70));
+  EXPECT_TRUE(b.b("I:1.0/12"));
+}
+
+TEST(SdnModule, MFilesAreReadWriteAndSized) {
+  // Both files are read/write for this module (appendix D); M1 data written by the ladder stays
+  // until the scanner next updates those bits; the pass-through area is not emulated (reads 0).
+  Bench b = network();
+  b.run();
+  b.set("M1:1.100", 1234);
+  EXPECT_EQ(b.i("M1:1.100"), 1234);
+  b.set("M0:1.149", -1);
+  EXPECT_EQ(b.i("M0:1.149"), -1);
+  EXPECT_EQ(b.i("M1:1.300"), 0);
+  EXPECT_EQ(sdn(b, 1).m_file_words(MFile::M0), 395);
+  std::uint16_t v = 0;
+  EXPECT_EQ(sdn(b, 1).read_m(MFile::M1, 395, v), MAccess::NoSuchWord);
+}
+
+TEST(SdnModule, DeviceChangesAreRefusedWithReasons) {
+  Bench b = network();
+  EXPECT_FALSE(b->inject("STATION", "exploded"));
+  EXPECT_NE(b->inject("STATION", "exploded").message.find("'offline'"), std::string::npos);
+  EXPECT_NE(b->inject("STATION", "input", {"nonesuch", "1"}).message.find("stop, start, bulb_missing"),
+            std::string::npos);
+  EXPECT_NE(b->inject("GHOST", "offline").message.find("no device"), std::string::npos);
+  EXPECT_FALSE(b->inject("DNET", "duplicate"));
+  EXPECT_EQ(b->devices(), (std::vector<std::string>{"DNET", "STATION", "EYE", "GHOST"}));
+}
+
+// ---- Configuration errors ----------------------------------------------------------------------------------
+
+std::string setup_messages(const std::string& program, const std::string& bench) {
+  LoadResult lr = load_program(program, "test.slc");
+  EXPECT_TRUE(lr.ok()) << lr.render_diagnostics();
+  ModuleSetup s = load_module_setup_text(*lr.program, bench, "test.bench");
+  return s.render("test.slc", lr.source);
+}
+
+TEST(SdnModule, SlotLineChecks) {
+  const std::string big = "START 1747-L542\nSLOT 1 1747-SDN SCAN_IN 33 SCAN_OUT 32 M0_SIZE 400\nLADDER 2\n";
+  const std::string m = setup_messages(big, "");
+  EXPECT_NE(m.find("test.slc:2:6: error: 1747-SDN in slot 1: the module has a 32-word input and output image"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("M0 is 400 words"), std::string::npos) << m;
+  const std::string small = "START 1747-L542\nSLOT 1 1747-SDN SCAN_IN 32 SCAN_OUT 32 M1_SIZE 150\nLADDER 2\n";
+  EXPECT_NE(setup_messages(small, "").find("warning: 1747-SDN in slot 1: M1 is 150 words"), std::string::npos);
+  const std::string slc501 = "START 1747-L511\nSLOT 1 1747-SDN SCAN_IN 32 SCAN_OUT 32\nLADDER 2\n";
+  EXPECT_NE(setup_messages(slc501, "").find("needs a modular SLC 5/02 or later"), std::string::npos);
+}
+
+TEST(SdnModule, BenchErrorsArePositioned) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"devicenet D slot=1 node=0 {\n  node A address=7 model=toaster\n}\n",
+       "test.bench:2:26: error: node A: model=toaster: no such built-in DeviceNet device"},
+      {"devicenet D slot=1 node=0 {\n  node A address=7 {\n    poll rxx=1\n  }\n}\n",
+       "test.bench:3:14: error: scanlist[0].poll.rxx: unknown key"},
+      {"devicenet D slot=1 node=0 baud=99K\n", "test.bench:1:32: error: baud"},
+      {"devicenet D slot=1 node=64\n", "test.bench:1:25: error: node: expected an integer in 0...63, got 64"},
+      {"devicenet D slot=1 node=0 {\n  node A address=0 model=redistation\n}\n",
+       "test.bench:2:18: error: node A has the scanner's own address 0"},
+      {"devicenet D slot=1 node=0 {\n  node A address=5 model=redistation\n  node B address=5 model=redistation\n}\n",
+       "test.bench:3:18: error: address 5 already holds device A"},
+      {"devicenet D slot=1 {\n  adapter X\n}\n", "test.bench:2:3: error: a devicenet network's children"},
+      {"devicenet D slot=1 node=0 {\n  node A address=7 {\n    input from=poll to=M1:0/0\n  }\n}\n",
+       "test.bench:3:16: warning: node 7: the entry has no poll connection"},
+  };
+  for (const auto& [bench, expected] : cases) {
+    const std::string m = setup_messages(kProgram, bench);
+    EXPECT_NE(m.find(expected), std::string::npos) << bench << "\n--- got:\n" << m;
+  }
+}
+
+TEST(SdnModule, IllegalScanlistEntryShowsCode71) {
+  // An entry whose input lands outside the 150-word M1 data area: the scanner skips it and shows
+  // "71 Illegal data in scan list table" for its node (chapter 7).
+  Bench b(kProgram,
+          "devicenet D slot=1 node=0 {\n  node A address=7 model=redistation {\n    poll rx=1 tx=1\n"
+          "    input from=poll bits=8 to=M1:150/0\n  }\n}\n");
+  b.run();
+  b->run_for(seconds(3));
+  EXPECT_EQ(b.i("M1:1.210"), node_status(7, 71));
+}
+
+}  // namespace
+}  // namespace softslc::test

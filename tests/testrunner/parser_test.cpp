@@ -164,9 +164,9 @@ INSTANTIATE_TEST_SUITE_P(
                "t.test:3:15: error: expected a comparison after the operand: ==, !=, <, <=, >, >= or 'in "
                "LOW..HIGH'\n  expect N7:0 = 5\n              ^\n"},
         Golden{"UnknownStatement", "program lamp.slc\ntest \"t\"\n  frobnicate N7:0\n",
-               "t.test:3:3: error: unknown statement 'frobnicate': expected program, test, row, set, force, "
-               "unforce, scan, run, expect, mode, power cycle, clear fault, snapshot or restore\n  frobnicate "
-               "N7:0\n  ^\n"},
+               "t.test:3:3: error: unknown statement 'frobnicate': expected program, bench, test, row, set, "
+               "force, unforce, scan, run, expect, mode, power cycle, clear fault, snapshot, restore or device\n"
+               "  frobnicate N7:0\n  ^\n"},
         Golden{"IncompleteStep", "program lamp.slc\ntest \"t\"\n  run\n",
                "t.test:3:3: error: incomplete 'run' line: write run DURATION  or  run until CONDITION within "
                "DURATION\n  run\n  ^\n"},
@@ -188,13 +188,12 @@ INSTANTIATE_TEST_SUITE_P(
                "t.test:3:10: error: unexpected text at the end of the line\n  scan 1 2\n         ^\n"},
         Golden{"StepOutsideTest", "program lamp.slc\nscan 1\n",
                "t.test:2:1: error: a step must belong to a test: start one with test \"name\"\nscan 1\n^\n"},
-        Golden{"BenchFile", "program lamp.slc\nbench lamp.bench\ntest \"t\"\n  scan 1\n",
-               "t.test:2:1: error: bench files are not supported yet (simulated field devices come with the "
-               "module support); remove the 'bench' line\nbench lamp.bench\n^\n"},
-        Golden{"DeviceFaultInjection", "program lamp.slc\ntest \"t\"\n  device DRIVE1 cable removed\n",
-               "t.test:3:3: error: fault injection on bench devices is not supported yet (it comes with bench "
-               "files and the module support); see docs/testing.md, \"Reserved: bench devices\"\n  device "
-               "DRIVE1 cable removed\n  ^\n"},
+        Golden{"MissingBenchFile", "program lamp.slc\nbench nowhere.bench\ntest \"t\"\n  scan 1\n",
+               "nowhere.bench: error: cannot open the bench file\nt.test:2:7: error: bench 'nowhere.bench' did "
+               "not load (its errors are listed above)\nbench nowhere.bench\n      ^\n"},
+        Golden{"DeviceWithoutBench", "program lamp.slc\ntest \"t\"\n  device DRIVE1 cable removed\n",
+               "t.test:3:10: error: no bench device 'DRIVE1' (this test has no bench: add 'bench FILE.bench')\n"
+               "  device DRIVE1 cable removed\n         ^\n"},
         Golden{"DeviceWithoutChange", "program lamp.slc\ntest \"t\"\n  device DRIVE1 42\n",
                "t.test:3:17: error: expected the change to inject, in lower-case words, then its arguments "
                "(offline, cable removed, data size 4, ...)\n  device DRIVE1 42\n                ^\n"},

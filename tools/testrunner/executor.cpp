@@ -199,8 +199,19 @@ class Session {
   }
 
   // A fresh Runtime of `program` in `mode`, with the test's clock, scans and forces reset.
+  // The options of every Runtime of `program`: its modules (from its SLOT lines and bench),
+  // with the caller's processor and scan-time model where given.
+  static RuntimeOptions options_for(const LoadedProgram& program, const RuntimeOptions& caller) {
+    RuntimeOptions o = program.modules;
+    if (caller.processor) o.processor = caller.processor;
+    if (caller.time_model) o.time_model = caller.time_model;
+    if (caller.module_factory) o.module_factory = caller.module_factory;
+    if (caller.module_instruction) o.module_instruction = caller.module_instruction;
+    return o;
+  }
+
   std::optional<Failure> start(const LoadedProgram& program, Mode mode, Location loc, const std::string& what) {
-    RuntimeResult r = Runtime::create(program.program, options_);
+    RuntimeResult r = Runtime::create(program.program, options_for(program, options_));
     if (!r.ok()) {
       Failure f = failure_at(loc, what, {});
       f.error = "the program did not compile: " + r.render_errors();
@@ -275,6 +286,9 @@ class Session {
         return std::nullopt;
       case Step::Kind::Snapshot: return std::nullopt;
       case Step::Kind::Restore: return restore(s, context);
+      case Step::Kind::Device:
+        if (auto st = rt_->inject(s.name, s.change, s.args); !st) return refused(s, context, st.message);
+        return std::nullopt;
     }
     return std::nullopt;
   }
@@ -387,7 +401,7 @@ class Session {
                      "power cycle while faulted is not supported yet: the SLC keeps a major fault through a power "
                      "cycle and softslc cannot restore one; 'clear fault' first");
     const Mode mode = rt_->mode();
-    RuntimeResult r = Runtime::create(program_->program, options_);
+    RuntimeResult r = Runtime::create(program_->program, options_for(*program_, options_));
     if (!r.ok()) return refused(s, context, "the program did not compile: " + r.render_errors());
     Runtime& fresh = *r.runtime;
     const std::uint16_t fresh_s1 = fresh.data().status(status::kMode);
@@ -430,6 +444,24 @@ class Session {
     return v;
   }
 
+  // The observed value of a bench device: element `index` of the observation, or its only one.
+  std::optional<std::int64_t> observe(const DeviceRef& d, std::string& error) const {
+    const auto values = rt_->observe(d.name, d.what);
+    const std::string what = "device " + d.name + " " + d.what;
+    if (!values) {
+      error = what + ": not observable";
+      return std::nullopt;
+    }
+    if (d.index < 0) {
+      if (values->size() == 1) return values->front();
+      error = what + " has " + std::to_string(values->size()) + " values; name one with an index (" + d.what + "[0])";
+      return std::nullopt;
+    }
+    if (static_cast<std::size_t>(d.index) < values->size()) return (*values)[static_cast<std::size_t>(d.index)];
+    error = what + " has " + std::to_string(values->size()) + " value(s); there is no element " + std::to_string(d.index);
+    return std::nullopt;
+  }
+
   // nullopt with `error` set when an operand cannot be read.
   std::optional<bool> evaluate(const Condition& c, std::string& error) {
     switch (c.kind) {
@@ -459,6 +491,21 @@ class Session {
       return compare_ordered<Nanoseconds>(last_elapsed_, k.op, k.rhs.duration, k.high.duration);
     if (k.lhs.kind == Operand::Kind::Scans)
       return compare_ordered<std::int64_t>(static_cast<std::int64_t>(last_scans_), k.op, k.rhs.count, k.high.count);
+    if (k.lhs.kind == Operand::Kind::Device) {
+      auto a = observe(k.lhs.device, error);
+      if (!a) return std::nullopt;
+      if (k.rhs.kind == Operand::Kind::Data) {
+        auto b = read(k.rhs.data, error);
+        if (!b) return std::nullopt;
+        return compare_numbers(Number{false, *a, 0.0}, k.op, number_of(*b));
+      }
+      // Observations are 64-bit numbers: literals compare as written (hexadecimal as its value).
+      if (k.rhs.literal.kind == Literal::Kind::Pattern) {
+        const bool m = matches_pattern(Value::of_int(*a), k.rhs.literal, 64);
+        return k.op == CompareOp::Eq ? m : !m;
+      }
+      return compare_ordered<std::int64_t>(*a, k.op, k.rhs.literal.integer, k.high.literal.integer);
+    }
     auto a = read(k.lhs.data, error);
     if (!a) return std::nullopt;
     const int width = width_of(k.lhs.data.address);
@@ -518,6 +565,11 @@ class Session {
       return;
     }
     const Literal* hint = k.rhs.kind == Operand::Kind::Literal ? &k.rhs.literal : nullptr;
+    if (k.lhs.kind == Operand::Kind::Device) {
+      std::string error;
+      const auto v = observe(k.lhs.device, error);
+      add_part(parts, seen, k.lhs.spelling, v ? k.lhs.spelling + " = " + std::to_string(*v) : error);
+    }
     for (const Operand* o : {&k.lhs, &k.rhs}) {
       if (o->kind != Operand::Kind::Data) continue;
       std::string error;

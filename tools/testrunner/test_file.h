@@ -24,6 +24,7 @@
 #include "parser/program.h"
 #include "tools/testrunner/values.h"
 #include "vm/module.h"
+#include "vm/runtime.h"
 #include "vm/virtual_time.h"
 
 namespace softslc::testing {
@@ -43,11 +44,24 @@ struct DataRef {
   std::string describe() const;
 };
 
+// An observable value of a named bench device (Runtime::observe): `device BT8 btw data[2]`.
+// The observation is a list of numbers; `[K]` picks element K, and without an index the list
+// must hold exactly one number.
+struct DeviceRef {
+  std::string name;   // the bench device
+  std::string what;   // the observation, words joined by one blank ("btw count")
+  int index = -1;     // -1: no index
+  std::string spelling;
+  Location loc;       // of the word `device`
+  Location name_loc;
+};
+
 // One side of a comparison.
 struct Operand {
-  enum class Kind : std::uint8_t { Data, Literal, Duration, Count, Elapsed, Scans };
+  enum class Kind : std::uint8_t { Data, Literal, Duration, Count, Elapsed, Scans, Device };
   Kind kind = Kind::Literal;
   DataRef data;
+  DeviceRef device;
   Literal literal;
   Nanoseconds duration = 0;
   std::int64_t count = 0;
@@ -101,6 +115,7 @@ struct Step {
     ClearFault,   // clear fault
     Snapshot,     // snapshot NAME
     Restore,      // restore NAME
+    Device,       // device NAME CHANGE [ARGS...]: Runtime::inject
   };
   Kind kind = Kind::Scan;
   Location loc;
@@ -112,14 +127,22 @@ struct Step {
   Nanoseconds duration = 0;
   Condition condition;
   Mode mode = Mode::Run;
-  std::string name;                           // Snapshot / Restore
+  std::string name;                           // Snapshot / Restore; Device: the device
+  Location name_loc;                          // Device
+  std::string change;                         // Device: "offline", "cable removed", ...
+  std::vector<std::string> args;              // Device
   std::shared_ptr<const Snapshot> snapshot;   // Restore: resolved by the loader
 };
 
-// A program a test runs, loaded once per path and shared (read-only) by every test using it.
+// A program a test runs with its bench (the simulated field devices, or none), loaded once per
+// (program, bench) pair and shared (read-only) by every test using it. `modules` builds the
+// modules of every Runtime a test creates; the options are copyable and thread-safe
+// (modules/module_setup.h).
 struct LoadedProgram {
-  std::string path;  // as shown in messages (relative to the current directory when given so)
+  std::string path;        // as shown in messages (relative to the current directory when given so)
+  std::string bench_path;  // likewise; empty without a bench
   Program program;
+  RuntimeOptions modules;  // module_factory and module_instruction of the program + bench
 };
 
 // The state a `snapshot` step names: replaying `steps` into a fresh Runtime of `program`
@@ -137,6 +160,8 @@ struct TestCase {
   Location loc;
   std::string program_path;  // as written (file level or in the test), relative to the test file
   Location program_loc;
+  std::string bench_path;    // likewise; empty without a bench
+  Location bench_loc;
   std::shared_ptr<const LoadedProgram> program;  // set by the loader
   // Tests start in Run; a `mode` step written first sets the starting mode instead.
   Mode initial_mode = Mode::Run;

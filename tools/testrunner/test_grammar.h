@@ -81,7 +81,7 @@ struct kw_mode_faulted : TAO_PEGTL_KEYWORD("faulted") {};
 // Words that a condition reads as keywords; a program SYMBOL spelled exactly so cannot be named
 // in a condition (symbols are case-sensitive, and these are lower case).
 struct reserved_word
-    : sor<kw_and, kw_or, kw_in, kw_within, kw_elapsed, kw_scans, kw_fault, kw_no, kw_mode, kw_until> {};
+    : sor<kw_and, kw_or, kw_in, kw_within, kw_elapsed, kw_scans, kw_fault, kw_no, kw_mode, kw_until, kw_device> {};
 
 // ---- Values ----------------------------------------------------------------------------------------
 
@@ -112,6 +112,8 @@ struct address_range : seq<range_first, two_dots, must<range_last>> {};
 // A program SYMBOL.
 struct symbol : seq<not_at<reserved_word>, pg::identifier, token_end> {};
 struct data_operand : sor<address_range, address, symbol> {};
+// The name of a bench device: letters, digits, '_', '-' and '.' (docs/bench-format.md).
+struct device_name : seq<plus<sor<alnum, one<'_', '-', '.'>>>, token_end> {};
 
 // ---- Conditions ------------------------------------------------------------------------------------
 
@@ -163,7 +165,16 @@ struct mode_name : sor<kw_mode_program, kw_mode_run, kw_mode_test, kw_mode_fault
 struct condition_mode_name : mode_name {};
 struct mode_primary : seq<kw_mode, ws, must<condition_mode_name>> {};
 
-struct leaf : sor<fault_primary, no_fault_primary, mode_primary, elapsed_comparison, scans_comparison, data_comparison> {};
+// device NAME WHAT[K] == 5, device NAME WHAT in 1..3: an observable value of a bench device
+// (Runtime::observe), WHAT being lower-case words ("btw count", "outputs"), K an element index.
+struct observation_word : seq<not_at<kw_in>, range<'a', 'z'>, star<sor<range<'a', 'z'>, one<'_', '-'>>>> {};
+struct observation_index : seq<one<'['>, digits, one<']'>> {};
+struct observation_what : seq<observation_word, star<ws, observation_word>, opt<observation_index>, token_end> {};
+struct device_observation : seq<kw_device, ws, must<device_name>, ws, must<observation_what>> {};
+struct device_comparison : seq<device_observation, opt_ws, must<data_tail>> {};
+
+struct leaf : sor<fault_primary, no_fault_primary, mode_primary, elapsed_comparison, scans_comparison,
+                  device_comparison, data_comparison> {};
 struct paren_close : one<')'> {};
 struct nested_condition;
 struct paren : seq<one<'('>, opt_ws, must<nested_condition>, opt_ws, must<paren_close>> {};
@@ -245,16 +256,18 @@ struct restore_name : snapshot_name {};
 struct snapshot_line : seq<kw_snapshot, ws, must<snapshot_name>> {};
 struct restore_line : seq<kw_restore, ws, must<restore_name>> {};
 
-// Reserved for bench devices (fault injection), shaped like Runtime::inject(device, fault,
-// args): the change is one or more lower-case words ("offline", "cable removed", "data size",
-// "message timeout", ... as each module family documents), then its arguments. Parsed so that
-// the line's shape is checked, then refused by the action as not supported yet:
-//   device NAME offline | cable removed | data size 4 | bt data 1 2 3 | ...
-struct device_name : seq<pg::identifier, token_end> {};
-struct device_word : seq<range<'a', 'z'>, star<sor<range<'a', 'z'>, one<'_', '-'>>>, token_end> {};
+// device NAME CHANGE [ARGS...]: a change injected into a bench device, shaped like
+// Runtime::inject(device, change, args). The change is one or more lower-case words ("offline",
+// "cable removed", "data size", "bt data", ... as each module family documents); the arguments
+// start at the first token that is not such a word, and the switch words `on` and `off` are
+// always arguments ("hold last state on" is the change "hold last state" with the argument "on").
+//   device NAME offline | cable removed | data size 4 | bt data 1 2 3 | noisy off
+struct device_line_name : device_name {};
+struct switch_word : sor<TAO_PEGTL_KEYWORD("on"), TAO_PEGTL_KEYWORD("off")> {};
+struct device_word : seq<not_at<switch_word>, range<'a', 'z'>, star<sor<range<'a', 'z'>, one<'_', '-'>>>, token_end> {};
 struct device_arg : plus<not_one<' ', '\t', '#'>> {};
 struct device_change : seq<device_word, star<ws, device_word>, star<ws, device_arg>> {};
-struct device_line : seq<kw_device, ws, must<device_name>, ws, must<device_change>> {};
+struct device_line : seq<kw_device, ws, must<device_line_name>, ws, must<device_change>> {};
 
 // Anything else that starts a line: reported by its action as an unknown statement.
 struct unknown_statement : plus<not_one<' ', '\t', '#'>> {};

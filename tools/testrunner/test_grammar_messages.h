@@ -72,6 +72,10 @@ template <> inline constexpr auto error_message<clear_fault_word> = "expected 'c
 template <> inline constexpr auto error_message<snapshot_name> = "expected a snapshot name (letters, digits, '_')";
 template <> inline constexpr auto error_message<restore_name> = "expected the name of a snapshot to restore";
 template <> inline constexpr auto error_message<device_name> = "expected a bench device name after 'device'";
+template <> inline constexpr auto error_message<device_line_name> = "expected a bench device name after 'device'";
+template <> inline constexpr auto error_message<observation_what> =
+    "expected what to observe of the device, in lower-case words, optionally with an element index (btw count, "
+    "btw data[2], outputs[0])";
 template <> inline constexpr auto error_message<device_change> =
     "expected the change to inject, in lower-case words, then its arguments (offline, cable removed, data size 4, "
     "...)";

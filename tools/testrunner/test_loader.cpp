@@ -1,10 +1,12 @@
 #include "tools/testrunner/test_loader.h"
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <tuple>
 
+#include "modules/module_setup.h"
 #include "parser/loader.h"
 #include "tools/testrunner/test_parser.h"
 
@@ -56,16 +58,26 @@ class Checker {
     if (seen_.insert({at.line, at.column, message}).second) out_.diagnostics.error(at.line, at.column, std::move(message));
   }
 
+  // A path as written in the test file: where it is, and how messages show it.
+  std::pair<std::filesystem::path, std::string> locate(const std::string& path_text) const {
+    const std::filesystem::path written(path_text);
+    if (written.is_absolute()) return {written, written.generic_string()};
+    return {dir_ / written, (display_dir_ / written).lexically_normal().generic_string()};
+  }
+
   ProgramCache::Entry* program_for(const TestCase& tc) {
-    const std::filesystem::path written(tc.program_path);
-    const auto actual = written.is_absolute() ? written : dir_ / written;
-    const auto display = written.is_absolute() ? written.generic_string()
-                                                : (display_dir_ / written).lexically_normal().generic_string();
-    auto& entry = cache_.load(actual, display);
+    const auto [actual, display] = locate(tc.program_path);
+    const auto [bench, bench_display] =
+        tc.bench_path.empty() ? std::pair<std::filesystem::path, std::string>{} : locate(tc.bench_path);
+    auto& entry = cache_.load(actual, display, bench, bench_display);
     if (!entry.program) {
-      if (!entry.errors.empty() && reported_.insert(display).second) out_.program_diagnostics += entry.errors;
-      error(tc.program_loc, "program '" + tc.program_path + "' did not load" +
-                                (entry.errors.empty() ? "" : " (its errors are listed above)"));
+      if (!entry.errors.empty() && reported_.insert(display + "\n" + bench_display).second)
+        out_.program_diagnostics += entry.errors;
+      if (entry.bench_failed)
+        error(tc.bench_loc, "bench '" + tc.bench_path + "' did not load (its errors are listed above)");
+      else
+        error(tc.program_loc, "program '" + tc.program_path + "' did not load" +
+                                  (entry.errors.empty() ? "" : " (its errors are listed above)"));
       return nullptr;
     }
     return &entry;
@@ -219,8 +231,30 @@ class Checker {
       case Step::Kind::ExpectWords: check_words(s, p, probe); return;
       case Step::Kind::RunUntil:
       case Step::Kind::Expect: check_condition(s.condition, p, probe); return;
+      case Step::Kind::Device: check_device(s.name, s.name_loc, p, probe); return;
       default: return;
     }
+  }
+
+  // A bench device named by a `device` step or an observation. Which changes it accepts can
+  // depend on its state, so those are checked when the step runs (a refusal fails the test with
+  // the module's reason).
+  bool check_device(const std::string& name, Location at, const LoadedProgram& p, Runtime& probe) {
+    const auto names = probe.devices();
+    if (std::find(names.begin(), names.end(), name) != names.end()) return true;
+    std::string known;
+    for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+    error(at, "no bench device '" + name + "'" +
+                  (p.bench_path.empty() ? std::string(" (this test has no bench: add 'bench FILE.bench')")
+                                        : " in " + p.bench_path + (known.empty() ? "" : " (its devices: " + known + ")")));
+    return false;
+  }
+
+  void check_observation(const DeviceRef& d, const LoadedProgram& p, Runtime& probe) {
+    if (!check_device(d.name, d.name_loc, p, probe)) return;
+    if (!probe.observe(d.name, d.what))
+      error(d.loc, "device '" + d.name + "' has no observable '" + d.what +
+                       "' (the observations of each device kind are listed in docs/bench-format.md)");
   }
 
   void check_set(Step& s, const LoadedProgram& p, Runtime& probe) {
@@ -286,6 +320,18 @@ class Checker {
       default: return;
     }
     Comparison& k = c.compare;
+    if (k.lhs.kind == Operand::Kind::Device) {
+      check_observation(k.lhs.device, p, probe);
+      if (k.rhs.kind == Operand::Kind::Data) {
+        check_single(k.rhs.data, p, probe);
+        return;
+      }
+      // Observations are 64-bit integers: a value must be an integer (hexadecimal and binary
+      // patterns up to 64 bits).
+      for (const Literal* l : {&k.rhs.literal, k.op == CompareOp::In ? &k.high.literal : nullptr})
+        if (l && l->kind == Literal::Kind::Float) error(l->loc, "a device observation is an integer; write an integer");
+      return;
+    }
     if (k.lhs.kind == Operand::Kind::Elapsed || k.lhs.kind == Operand::Kind::Scans) {
       if (k.op == CompareOp::In) {
         const bool empty = k.lhs.kind == Operand::Kind::Elapsed ? k.rhs.duration > k.high.duration
@@ -333,8 +379,9 @@ int width_of(const Address& a) {
   return 16;
 }
 
-ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const std::string& display) {
-  const std::string key = cache_key(path);
+ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const std::string& display,
+                                        const std::filesystem::path& bench, const std::string& bench_display) {
+  const std::string key = cache_key(path) + "\n" + (bench.empty() ? std::string() : cache_key(bench));
   if (auto it = entries_.find(key); it != entries_.end()) return it->second;
   Entry& e = entries_[key];
   auto text = read_file(path);
@@ -347,14 +394,33 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
     e.errors = lr.render_diagnostics();
     return e;
   }
-  RuntimeResult rr = Runtime::create(*lr.program);
+  ModuleSetup setup;
+  if (bench.empty()) {
+    setup = load_module_setup(*lr.program, std::nullopt);
+  } else {
+    auto bench_text = read_file(bench);
+    if (!bench_text) {
+      e.errors = bench_display + ": error: cannot open the bench file\n";
+      e.bench_failed = true;
+      return e;
+    }
+    setup = load_module_setup_text(*lr.program, std::move(*bench_text), bench_display);
+  }
+  if (!setup.ok()) {
+    e.errors = setup.render(display, lr.source);
+    e.bench_failed = setup.bench_diagnostics.has_errors();
+    return e;
+  }
+  RuntimeResult rr = Runtime::create(*lr.program, setup.options);
   if (!rr.ok()) {
     for (const auto& err : rr.errors) e.errors += display + ": error: " + err.to_string() + "\n";
     return e;
   }
   auto loaded = std::make_shared<LoadedProgram>();
   loaded->path = display;
+  loaded->bench_path = bench_display;
   loaded->program = std::move(*lr.program);
+  loaded->modules = std::move(setup.options);
   e.program = std::move(loaded);
   e.probe = std::move(rr.runtime);
   return e;

@@ -1,13 +1,15 @@
 // Loading a test file: parse it, load the programs it names, and check every step against them.
 //
 // After parsing (test_parser.h) the loader
-//   1. loads each program a test names (paths are relative to the test file), once per path for
-//      the whole run, through ProgramCache; a program that does not load or compile is reported
-//      with its own diagnostics and marks the `program` line of the test file;
+//   1. loads each program a test names with its bench (paths are relative to the test file), once
+//      per (program, bench) for the whole run, through ProgramCache; a program or bench that does
+//      not load or compile is reported with its own diagnostics and marks the `program` (or
+//      `bench`) line of the test file;
 //   2. resolves symbols to addresses (a name that is not a SYMBOL of the program is an error);
 //   3. checks every operand and literal: an address the program's data table does not have, a
 //      value that does not fit its word, a force on something other than an I/O bit, a range
-//      over a structured file. Addresses are checked by reading (or writing) them on a probe
+//      over a structured file, a bench device the bench does not have or an observation it
+//      does not offer. Addresses are checked by reading (or writing) them on a probe
 //      Runtime of the program, so the rules are exactly the runtime's;
 //   4. resolves snapshots: `snapshot NAME` records the steps that lead to it (flattened through
 //      earlier restores) and `restore NAME` must name a snapshot defined above it in the file.
@@ -33,10 +35,16 @@ class ProgramCache {
   struct Entry {
     std::shared_ptr<const LoadedProgram> program;  // null when the program did not load
     std::unique_ptr<Runtime> probe;                // for checking operands at load time
-    std::string errors;                            // rendered diagnostics of the program
+    std::string errors;                            // rendered diagnostics of the program and bench
+    bool bench_failed = false;                     // the bench (not the program) has the errors
   };
-  // Loads `path` (shown as `display`) once. Not thread-safe: loading happens before the run.
-  Entry& load(const std::filesystem::path& path, const std::string& display);
+  // Loads the program at `path` (shown as `display`) with the bench at `bench` (shown as
+  // `bench_display`; an empty path means no bench) once per pair: the program is parsed and
+  // checked, the modules set up from its SLOT lines and the bench (modules/module_setup.h), and a
+  // probe Runtime built with them. Configuration and bench errors are the entry's errors, as for
+  // `softslc run --bench`. Not thread-safe: loading happens before the run.
+  Entry& load(const std::filesystem::path& path, const std::string& display, const std::filesystem::path& bench = {},
+              const std::string& bench_display = {});
   // The probe runtime of a loaded program.
   Runtime* probe_for(const LoadedProgram* program);
 

@@ -180,6 +180,39 @@ template <> struct action<symbol> {
   }
 };
 
+// `device NAME WHAT[K]`: the grammar has checked the shape, so the text splits on blanks.
+template <> struct action<device_observation> {
+  template <typename Input, typename State>
+  static void apply(const Input& in, State& s) {
+    const std::string text = in.string();
+    std::vector<std::pair<std::string, std::size_t>> words;  // word, offset in the text
+    for (std::size_t pos = 0; pos < text.size();) {
+      const auto b = text.find_first_not_of(" \t", pos);
+      if (b == std::string::npos) break;
+      const auto e = std::min(text.find_first_of(" \t", b), text.size());
+      words.emplace_back(text.substr(b, e - b), b);
+      pos = e;
+    }
+    Operand o;
+    o.kind = Operand::Kind::Device;
+    o.loc = loc_of(in);
+    o.spelling = text;
+    DeviceRef& d = o.device;
+    d.spelling = text;
+    d.loc = o.loc;
+    d.name = words.at(1).first;
+    d.name_loc = {o.loc.line, o.loc.column + static_cast<std::uint32_t>(words[1].second)};
+    for (std::size_t i = 2; i < words.size(); ++i) d.what += (i > 2 ? " " : "") + words[i].first;
+    if (const auto bracket = d.what.find('['); bracket != std::string::npos) {
+      const std::string digits = d.what.substr(bracket + 1, d.what.size() - bracket - 2);
+      if (digits.size() > 5) fail_at(in, text.find('['), "element index out of range (at most 65535)");
+      d.index = std::stoi(digits);
+      d.what.resize(bracket);
+    }
+    s.add_operand(std::move(o));
+  }
+};
+
 // Literals.
 struct literal_action {
   template <typename Input, typename State>
@@ -506,13 +539,26 @@ template <> struct action<restore_line> {
   static void apply(const Input& in, LineState& s) { begin_step(in, s, Step::Kind::Restore); }
 };
 
+template <> struct action<device_line_name> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    s.out.step.name = in.string();
+    s.out.step.name_loc = loc_of(in);
+  }
+};
+template <> struct action<device_word> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    s.out.step.change += (s.out.step.change.empty() ? "" : " ") + in.string();
+  }
+};
+template <> struct action<device_arg> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) { s.out.step.args.push_back(in.string()); }
+};
 template <> struct action<device_line> {
   template <typename Input>
-  static void apply(const Input& in, LineState&) {
-    fail_at(in, 0,
-            "fault injection on bench devices is not supported yet (it comes with bench files and the module "
-            "support); see docs/testing.md, \"Reserved: bench devices\"");
-  }
+  static void apply(const Input& in, LineState& s) { begin_step(in, s, Step::Kind::Device); }
 };
 
 // The usage of each statement, for a keyword written without its operands.
@@ -542,8 +588,8 @@ template <> struct action<unknown_statement> {
       if (word == keyword) fail_at(in, 0, "incomplete '" + word + "' line: write " + std::string(usage));
     fail_at(in, 0,
             "unknown statement '" + word +
-                "': expected program, test, row, set, force, unforce, scan, run, expect, mode, power cycle, clear "
-                "fault, snapshot or restore");
+                "': expected program, bench, test, row, set, force, unforce, scan, run, expect, mode, power cycle, "
+                "clear fault, snapshot, restore or device");
   }
 };
 
@@ -656,6 +702,8 @@ void for_each_location(Condition& c, F& f) {
     f(o->loc);
     f(o->data.loc);
     f(o->literal.loc);
+    f(o->device.loc);
+    f(o->device.name_loc);
   }
   f(c.fault_literal.loc);
   for (auto& t : c.terms) for_each_location(t, f);
@@ -670,6 +718,7 @@ void for_each_location(ParsedLine& l, F f) {
   for (auto& v : l.row_values) f(v.second);
   f(l.step.loc);
   f(l.step.target.loc);
+  f(l.step.name_loc);
   for (auto& v : l.step.values) f(v.loc);
   for_each_location(l.step.condition, f);
 }
@@ -787,10 +836,6 @@ class Driver {
     switch (pl.kind) {
       case ParsedLine::Kind::Empty:
         return;
-      case ParsedLine::Kind::Bench:
-        error(pl.loc, "bench files are not supported yet (simulated field devices come with the module support); "
-                      "remove the 'bench' line");
-        return;
       case ParsedLine::Kind::Test:
         finish_test();
         pending_.emplace();
@@ -817,18 +862,24 @@ class Driver {
         pending_->rows.push_back(std::move(pl));
         return;
       case ParsedLine::Kind::Program:
+      case ParsedLine::Kind::Bench: {
         if (pending_) {
           pending_->body.push_back({number, std::string(raw), {}, std::move(pl)});
           return;
         }
-        if (!file_program_.empty()) {
-          error(pl.loc, "a second file-level 'program' line (the first is at line " +
-                            std::to_string(file_program_loc_.line) + "); name a test's own program inside the test");
+        const bool program = pl.kind == ParsedLine::Kind::Program;
+        std::string& path = program ? file_program_ : file_bench_;
+        Location& where = program ? file_program_loc_ : file_bench_loc_;
+        const char* word = program ? "program" : "bench";
+        if (!path.empty()) {
+          error(pl.loc, std::string("a second file-level '") + word + "' line (the first is at line " +
+                            std::to_string(where.line) + "); name a test's own " + word + " inside the test");
           return;
         }
-        file_program_ = pl.path;
-        file_program_loc_ = pl.path_loc;
+        path = pl.path;
+        where = pl.path_loc;
         return;
+      }
       case ParsedLine::Kind::Step:
         if (!pending_) {
           error(pl.loc, "a step must belong to a test: start one with test \"name\"");
@@ -945,21 +996,25 @@ class Driver {
     tc.loc = at;
     tc.program_path = file_program_;
     tc.program_loc = file_program_loc_;
-    bool own_program = false, steps_seen = false, ok = true;
-    Location own_program_loc;
+    tc.bench_path = file_bench_;
+    tc.bench_loc = file_bench_loc_;
+    bool steps_seen = false, ok = true;
+    std::optional<Location> own_program, own_bench;
     for (auto& pl : lines) {
-      if (pl.kind == ParsedLine::Kind::Program) {
+      if (pl.kind == ParsedLine::Kind::Program || pl.kind == ParsedLine::Kind::Bench) {
+        const bool program = pl.kind == ParsedLine::Kind::Program;
+        std::optional<Location>& own = program ? own_program : own_bench;
+        const std::string word = program ? "program" : "bench";
         if (steps_seen) {
-          error(pl.loc, "a test's 'program' line must come before its first step");
+          error(pl.loc, "a test's '" + word + "' line must come before its first step");
           ok = false;
-        } else if (own_program) {
-          error(pl.loc, "this test already names its program at line " + std::to_string(own_program_loc.line));
+        } else if (own) {
+          error(pl.loc, "this test already names its " + word + " at line " + std::to_string(own->line));
           ok = false;
         } else {
-          own_program = true;
-          own_program_loc = pl.loc;
-          tc.program_path = pl.path;
-          tc.program_loc = pl.path_loc;
+          own = pl.loc;
+          (program ? tc.program_path : tc.bench_path) = pl.path;
+          (program ? tc.program_loc : tc.bench_loc) = pl.path_loc;
         }
         continue;
       }
@@ -977,6 +1032,12 @@ class Driver {
         continue;
       }
       tc.steps.push_back(std::move(pl.step));
+    }
+    // A bench describes the wiring of one program: a test that names its own program does not
+    // inherit the file's bench (it names its own, or runs without one).
+    if (own_program && !own_bench) {
+      tc.bench_path.clear();
+      tc.bench_loc = {};
     }
     if (tc.program_path.empty()) {
       if (!program_line_broken)
@@ -1000,6 +1061,8 @@ class Driver {
   std::set<std::tuple<std::uint32_t, std::uint32_t, std::string>> seen_;
   std::string file_program_;
   Location file_program_loc_;
+  std::string file_bench_;
+  Location file_bench_loc_;
   std::optional<PendingTest> pending_;
   std::map<std::string, std::uint32_t> names_;
   std::vector<TestCase> tests_;

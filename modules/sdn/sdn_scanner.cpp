@@ -166,10 +166,17 @@ std::optional<int> SdnScanner::address_of(std::string_view device) const {
   return std::nullopt;
 }
 
-DeviceStatus SdnScanner::inject(const DeviceFault& fault) {
-  const bool network = !bench_->name.empty() && fault.device == bench_->name;
-  const auto address = address_of(fault.device);
+DeviceStatus SdnScanner::inject(const DeviceFault& given) {
+  const bool network = !bench_->name.empty() && given.device == bench_->name;
+  const auto address = address_of(given.device);
   if (!network && !address) return {};
+  // The test runner passes the switch words as arguments ("bus" {"off"}); the change words here
+  // read as one phrase ("bus off", "duplicate off").
+  DeviceFault fault = given;
+  if (!fault.args.empty() && (fault.args[0] == "on" || fault.args[0] == "off")) {
+    fault.fault += " " + fault.args[0];
+    fault.args.erase(fault.args.begin());
+  }
   sync(host()->now());
   DeviceStatus st = network ? inject_network(fault) : inject_node(*address, fault);
   rearm();

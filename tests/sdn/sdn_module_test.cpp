@@ -121,6 +121,26 @@ TEST(SdnModule, ProcessorProgramModeSendsZerosSoTheScannerGoesIdle) {
   EXPECT_TRUE(b.b("M1:1.206/7")) << "Idle keeps the connection";
 }
 
+TEST(SdnModule, FlushFollowsTheManualsProcedure) {
+  // p.139: "While the SLC processor in Program mode, clear the module command word 0 and set bit 2",
+  // then cycle the keyswitch to Run and back: the word reaches the module with the Run output scan
+  // and it shows E9 "Module memory has been flushed" (chapter 7) until its power is cycled.
+  Bench b = network();
+  b.set("N7:0", 4);
+  b->scan(2);
+  EXPECT_NE(b.i("M1:1.210") & 0xFF, 0xE9) << "Program mode: the module saw only zeros";
+  b.run();
+  b->scan(2);
+  ASSERT_TRUE(b->set_mode(Mode::Program));
+  b->scan(2);
+  EXPECT_EQ(b.i("M1:1.210"), node_status(63, 0xE9)) << "factory default node 63";
+  b.set("N7:0", kRun);
+  b.run();
+  b->run_for(seconds(3));
+  EXPECT_EQ(b.i("M1:1.210") & 0xFF, 0xE9);
+  EXPECT_FALSE(b.b("M1:1.206/7"));
+}
+
 TEST(SdnModule, OfflineDeviceFailsAndRecovers) {
   Bench b = network();
   b.run();

@@ -36,6 +36,7 @@ struct ModulePrepareContext {
   const BenchNode* bench;              // the top-level bench node wired to this slot, or nullptr
   DiagnosticList& program_diagnostics;  // positions in the program file (the SLOT line)
   DiagnosticList& bench_diagnostics;    // positions in the bench file
+  std::string bench_source_name = {};   // the bench file's path, for files it names (relative to it)
 };
 
 struct ModuleFamily {

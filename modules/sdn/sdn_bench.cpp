@@ -1,6 +1,9 @@
 #include "modules/sdn/sdn_bench.h"
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <map>
 
 #include "parser/loader.h"
@@ -53,7 +56,8 @@ bool is_connection(std::string_view kind) {
 
 }  // namespace
 
-std::shared_ptr<const SdnBench> interpret_sdn_bench(const BenchNode& node, DiagnosticList& diags) {
+std::shared_ptr<const SdnBench> interpret_sdn_bench(const BenchNode& node, DiagnosticList& diags,
+                                                    const std::string& bench_path) {
   auto bench = std::make_shared<SdnBench>();
   bench->name = node.name;
   ConfigBuilder b;
@@ -83,7 +87,9 @@ std::shared_ptr<const SdnBench> interpret_sdn_bench(const BenchNode& node, Diagn
     r.require("address", "0-63");
     const auto address = r.integer("address", 0, 63);
     const auto model = r.text("model");
+    const auto description = r.text("description");
     r.finish();
+    if (model && description) r.error("give model= (a built-in device) or description= (a JSON file), not both");
     if (!address) continue;
     if (!c.name.empty()) bench->nodes.push_back({c.name, static_cast<int>(*address)});
     if (model) {
@@ -95,7 +101,24 @@ std::shared_ptr<const SdnBench> interpret_sdn_bench(const BenchNode& node, Diagn
         r.error_at("model", "model=" + *model + ": no such built-in DeviceNet device (" + names + ")");
       }
     }
-    // The scanlist entry, if the node has one.
+    if (description && !model) {
+      // A device description (docs/1747-sdn.md, "Device descriptions"), beside the bench file.
+      const std::filesystem::path file = std::filesystem::path(bench_path).parent_path() / *description;
+      std::ifstream in(file, std::ios::binary);
+      std::ostringstream text;
+      text << in.rdbuf();
+      if (!in) {
+        r.error_at("description", "cannot read device description " + file.string());
+      } else {
+        try {
+          bench->devices.push_back(
+              {c.name, static_cast<int>(*address), devicenet::parse_device_model_text(text.str(), file.string())});
+        } catch (const ConfigError& e) {
+          r.error_at("description", file.string() + ": " + e.what());
+        }
+      }
+    }
+        // The scanlist entry, if the node has one.
     json entry = json::object();
     const std::string path = devicenet::element_path("scanlist", scanlist.size());
     bool listed = false;
@@ -146,7 +169,7 @@ std::shared_ptr<const SdnBench> interpret_sdn_bench(const BenchNode& node, Diagn
   for (const auto& c : node.children) {
     if (c.kind != "node") continue;
     const BenchAttribute* a = c.find("address");
-    const BenchAttribute* m = c.find("model");
+    const BenchAttribute* m = c.find("model") ? c.find("model") : c.find("description");
     NumberValue v;
     if (!a || !m || !parse_number_text(a->value, v) || v.is_float) continue;
     const int addr = static_cast<int>(v.integer);

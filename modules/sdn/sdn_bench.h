@@ -6,7 +6,7 @@
 //   devicenet NAME slot=N node=0 baud=500K [network_baud=500K] [interscan_delay_ms=10]
 //             [background_poll_ratio=1] {
 //     autoscan enabled=false allocation_bytes=4
-//     node NAME address=7 [model=redistation] {        # a device on the cable ...
+//     node NAME address=7 [model=redistation | description=FILE.json] {   # a device on the cable ...
 //       poll rx=1 tx=1 [epr_ms=75] [background=false]   # ... and/or its scanlist entry
 //       key vendor=1 device_type=24 product_code=2705 major=2 minor=3
 //       input from=poll byte=0 bit=0 bits=8 to=M1:2/0
@@ -52,7 +52,9 @@ struct SdnBench {
 };
 
 // Interprets a `devicenet` node; problems are reported at their positions in `diags`. Scanlist
-// issues the scanner would show as code 71 are warnings (the module runs and shows 71).
-std::shared_ptr<const SdnBench> interpret_sdn_bench(const BenchNode& node, DiagnosticList& diags);
+// issues the scanner would show as code 71 are warnings (the module runs and shows 71). Device
+// description files (description=) are read relative to the directory of `bench_path`.
+std::shared_ptr<const SdnBench> interpret_sdn_bench(const BenchNode& node, DiagnosticList& diags,
+                                                    const std::string& bench_path = "");
 
 }  // namespace softslc

@@ -41,7 +41,8 @@ TEST(SdnExamples, EveryExampleLoadsRunsAndHasItsMFileAccessesCharged) {
     LoadResult lr = load_program(sdn_example(n + ".slc"), n + ".slc");
     ASSERT_TRUE(lr.ok()) << lr.render_diagnostics();
     EXPECT_EQ(lr.diagnostics.items().size(), 0u) << lr.render_diagnostics();
-    ModuleSetup s = load_module_setup_text(*lr.program, sdn_example(n + ".bench"), n + ".bench");
+    ModuleSetup s = load_module_setup(*lr.program, std::filesystem::path(SOFTSLC_SOURCE_DIR) / "examples/ladder/1747-sdn" /
+                                                       (n + ".bench"));
     EXPECT_TRUE(s.ok()) << s.render(n, lr.source);
     EXPECT_EQ(s.bench_diagnostics.items().size() + s.program_diagnostics.items().size(), 0u) << s.render(n, lr.source);
     auto rr = Runtime::create(*lr.program, s.options);

@@ -269,6 +269,10 @@ TEST(SdnModule, BenchErrorsArePositioned) {
       {"devicenet D slot=1 node=0 {\n  node A address=5 model=redistation\n  node B address=5 model=redistation\n}\n",
        "test.bench:3:18: error: address 5 already holds device A"},
       {"devicenet D slot=1 {\n  adapter X\n}\n", "test.bench:2:3: error: a devicenet network's children"},
+      {"devicenet D slot=1 node=0 {\n  node A address=7 description=no-such-file.json\n}\n",
+       "test.bench:2:32: error: node A: cannot read device description no-such-file.json"},
+      {"devicenet D slot=1 node=0 {\n  node A address=7 model=redistation description=x.json\n}\n",
+       "test.bench:2:3: error: node A: give model= (a built-in device) or description= (a JSON file), not both"},
       {"devicenet D slot=1 node=0 {\n  node A address=7 {\n    input from=poll to=M1:0/0\n  }\n}\n",
        "test.bench:3:16: warning: node 7: the entry has no poll connection"},
   };

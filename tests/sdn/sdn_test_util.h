@@ -12,6 +12,8 @@ namespace softslc::test {
 inline std::string sdn_example(const std::string& name) {
   return read_text(std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder/1747-sdn/" + name);
 }
+// Benches with description= files are read from their directory; these helpers load benches as text
+// and suit the examples without device description files.
 inline Bench sdn_bench(const std::string& stem) {
   return Bench(sdn_example(stem + ".slc"), sdn_example(stem + ".bench"));
 }

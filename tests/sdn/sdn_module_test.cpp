@@ -208,6 +208,142 @@ TEST(SdnModule, DuplicateNodeAddressAtPortStart) {
   EXPECT_TRUE(b.b("I:1.0/12"));
 }
 
+TEST(SdnModule, WrongDataRateIsBusOff) {
+  // The scanner at 125K on a 500K network: "91 Bus-off condition detected on integral DeviceNet port"
+  // (chapter 7), communication failure bit 10.
+  std::string bench = kNetwork;
+  bench.replace(bench.find("baud=125K"), 9, "baud=125K network_baud=500K");
+  Bench b(kProgram, bench);
+  b.run();
+  b->run_for(seconds(3));
+  EXPECT_EQ(b.i("M1:1.210"), node_status(0, 91));
+  EXPECT_TRUE(b.b("I:1.0/10"));
+}
+
+TEST(SdnModule, HaltSendsRunningDevicesToTheirFaultState) {
+  // Halt (command bit 6, p.138): "No communication occur ... If scanner was in Run mode, devices will
+  // go to their fault state" once their connections time out; reboot (bit 7) restarts the port (84).
+  Bench b = network();
+  b.set("M0:1.0", 1);
+  b.run();
+  b.set("N7:0", kRun);
+  b->run_for(seconds(4));
+  ASSERT_EQ(*b->observe("STATION", "light"), one(1));
+  b.set("N7:0", kRun | 64);
+  b->run_for(seconds(1));
+  EXPECT_EQ(b.i("M1:1.210"), node_status(0, 97));
+  EXPECT_EQ(*b->observe("STATION", "output state"), one(3));  // Fault
+  EXPECT_EQ(*b->observe("STATION", "light"), one(0));         // fault action: clear
+  b.set("N7:0", kRun | 128);
+  b->scan(2);
+  EXPECT_EQ(b.i("M1:1.210"), node_status(0, 84));
+  b.set("N7:0", kRun);
+  b->run_for(seconds(6));
+  // The reboot cleared the module's RAM, M0 included (docs/1747-sdn.md decision 6): the light stays
+  // off until the processor writes M0 again.
+  EXPECT_EQ(b.i("M0:1.0"), 0);
+  EXPECT_EQ(*b->observe("STATION", "light"), one(0));
+  b.set("M0:1.0", 1);
+  b->run_for(milliseconds(100));
+  EXPECT_EQ(*b->observe("STATION", "light"), one(1));
+}
+
+// Appendix E through the M0/M1 files (p.145-150), the way a ladder program does it: the block is
+// written word by word, taken after the scan.
+struct Empc {
+  Bench& b;
+  void write(std::vector<std::int64_t> words) {
+    for (std::size_t k = 0; k < words.size(); ++k) b.set("M0:1." + std::to_string(224 + k), words[k]);
+    b->scan(1);
+  }
+  std::int64_t head(int word) { return b.u("M1:1." + std::to_string(224 + word)); }
+};
+
+TEST(SdnModule, TransactionCommandsThroughTheMFiles) {
+  Bench b = network();
+  b.run();
+  b.set("N7:0", kRun);
+  b->run_for(seconds(4));
+  b.inject("STATION", "message timeout");  // requests stay in progress for 1.5 s
+  Empc e{b};
+  const std::int64_t get_identity_vendor = 0x0E07;  // Get_Attribute_Single to MAC 7
+  e.write({(5 << 8) | 1, 6, get_identity_vendor, 1, 1, 1});
+  EXPECT_FALSE(b.b("I:1.0/15")) << "in progress: nothing queued yet";
+  // Command 2, get status: "2 Transaction in progress".
+  e.write({(5 << 8) | 2});
+  b->scan(1);
+  EXPECT_TRUE(b.b("I:1.0/15"));
+  EXPECT_EQ(e.head(0), (5 << 8) | 2);
+  // Command 4 deletes the report; get status of an unknown TXID: 6.
+  e.write({(5 << 8) | 4});
+  e.write({(9 << 8) | 2});
+  b->scan(1);
+  EXPECT_EQ(e.head(0), (9 << 8) | 6);
+  e.write({(9 << 8) | 4});
+  // An unknown command: status 8.
+  e.write({(9 << 8) | 7});
+  b->scan(1);
+  EXPECT_EQ(e.head(0), (9 << 8) | 8);
+  // Command 3 resets everything: the queue empties and TXID 5 is free again.
+  e.write({3});
+  b->scan(1);
+  EXPECT_FALSE(b.b("I:1.0/15"));
+  EXPECT_FALSE(sdn(b, 1).scanner().txid_in_use(5));
+  // A TXID in use is ignored (p.150): the second execute with TXID 6 does not replace the first.
+  b.inject("STATION", "responding");
+  e.write({(6 << 8) | 1, 6, get_identity_vendor, 1, 1, 1});
+  e.write({(6 << 8) | 1, 6, 0x0E09, 1, 1, 1});  // to the photoeye instead
+  ASSERT_TRUE(b.until([&] { return b.b("I:1.0/15"); }, milliseconds(100)));
+  b->scan(1);
+  EXPECT_EQ(e.head(0), (6 << 8) | 1);
+  EXPECT_EQ(e.head(2), 0x8E07) << "the answer of the first request, from MAC 7";
+  EXPECT_EQ(e.head(3), 1) << "vendor 1 (the RediSTATION's identity)";
+}
+
+TEST(SdnModule, ResponsesQueueInArrivalOrder) {
+  Bench b = network();
+  b.run();
+  b.set("N7:0", kRun);
+  b->run_for(seconds(4));
+  Empc e{b};
+  // "Responses are queued in the order they complete" (p.148), not in the order asked: TXID 1 goes
+  // to a photoeye that does not answer (status 7 after the retries), TXID 2 to the RediSTATION.
+  b.inject("EYE", "message timeout");
+  e.write({(1 << 8) | 1, 6, 0x0E09, 1, 1, 1});
+  e.write({(2 << 8) | 1, 6, 0x0E07, 1, 1, 1});
+  ASSERT_TRUE(b.until([&] { return b.b("I:1.0/15"); }, milliseconds(100)));
+  b->scan(1);
+  EXPECT_EQ(e.head(0), (2 << 8) | 1);
+  b->run_for(seconds(2));
+  EXPECT_EQ(e.head(0), (2 << 8) | 1) << "the head stays until deleted";
+  e.write({(2 << 8) | 4});
+  b->scan(1);
+  EXPECT_EQ(e.head(0), (1 << 8) | 7);
+  e.write({(1 << 8) | 4});
+  b->scan(1);
+  EXPECT_FALSE(b.b("I:1.0/15"));
+  EXPECT_EQ(sdn(b, 1).scanner().transactions_in_use(), 0u);
+}
+
+TEST(SdnModule, ARequestBlockWrittenOverSeveralRungsIsOneRequest) {
+  // Decision 1 (docs/1747-sdn.md): the block is taken after the scan that wrote it, so the command
+  // word may come first and the body later in the same scan.
+  const std::string program = kProgram.substr(0, kProgram.find("LADDER")) +
+                              "LADDER 2\nSOR MOV N7:0 O:1.0 EOR\n"
+                              "SOR XIC B3:0/0 MOV 0x0301 M0:1.224 EOR\n"
+                              "SOR XIC B3:0/0 BST MOV 6 M0:1.225 NXB MOV 0x0E07 M0:1.226 NXB MOV 1 M0:1.227 NXB "
+                              "MOV 1 M0:1.228 NXB MOV 1 M0:1.229 BND EOR\nSOR XIC B3:0/0 OTU B3:0/0 EOR\n";
+  Bench b(program, kNetwork);
+  b.run();
+  b.set("N7:0", kRun);
+  b->run_for(seconds(4));
+  b.set("B3:0/0", 1);
+  ASSERT_TRUE(b.until([&] { return b.b("I:1.0/15"); }, milliseconds(100)));
+  b->scan(1);
+  EXPECT_EQ(b.i("M1:1.224"), (3 << 8) | 1);
+  EXPECT_EQ(b.i("M1:1.227"), 1) << "vendor 1: the whole block was sent";
+}
+
 TEST(SdnModule, MFilesAreReadWriteAndSized) {
   // Both files are read/write for this module (appendix D); M1 data written by the ladder stays
   // until the scanner next updates those bits; the pass-through area is not emulated (reads 0).

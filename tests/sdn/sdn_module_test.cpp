@@ -46,6 +46,14 @@ Bench network(std::string extra_nodes = "") {
   return Bench(kProgram, bench);
 }
 
+// Processor in Run, scanner commanded to Run, devices connected (the 2 s duplicate node check and the
+// connections).
+void start_in_run(Bench& b) {
+  b.run();
+  b.set("N7:0", kRun);
+  b->run_for(seconds(4));
+}
+
 TEST(SdnModule, FactoryDefaultsWithoutBench) {
   // Without a bench the module has the factory configuration (p.140): node 63, no scanlist, and it
   // is alone on its cable: "79 Module has failed to transmit a message" once the duplicate node
@@ -110,9 +118,7 @@ TEST(SdnModule, RunMapsOutputsIdleKeepsConnectionsAndInputs) {
 TEST(SdnModule, ProcessorProgramModeSendsZerosSoTheScannerGoesIdle) {
   Bench b = network();
   b.set("M0:1.0", 1);
-  b.run();
-  b.set("N7:0", kRun);
-  b->run_for(seconds(4));
+  start_in_run(b);
   EXPECT_EQ(*b->observe("STATION", "light"), one(1));
   ASSERT_TRUE(b->set_mode(Mode::Program));
   b->run_for(milliseconds(300));
@@ -143,9 +149,7 @@ TEST(SdnModule, FlushFollowsTheManualsProcedure) {
 
 TEST(SdnModule, OfflineDeviceFailsAndRecovers) {
   Bench b = network();
-  b.run();
-  b.set("N7:0", kRun);
-  b->run_for(seconds(4));
+  start_in_run(b);
   ASSERT_TRUE(b.b("M1:1.206/7"));
   b.inject("STATION", "offline");
   // The connection times out after 4 x the 75 ms expected packet rate; the device failure table
@@ -225,9 +229,7 @@ TEST(SdnModule, HaltSendsRunningDevicesToTheirFaultState) {
   // go to their fault state" once their connections time out; reboot (bit 7) restarts the port (84).
   Bench b = network();
   b.set("M0:1.0", 1);
-  b.run();
-  b.set("N7:0", kRun);
-  b->run_for(seconds(4));
+  start_in_run(b);
   ASSERT_EQ(*b->observe("STATION", "light"), one(1));
   b.set("N7:0", kRun | 64);
   b->run_for(seconds(1));
@@ -261,9 +263,7 @@ struct Empc {
 
 TEST(SdnModule, TransactionCommandsThroughTheMFiles) {
   Bench b = network();
-  b.run();
-  b.set("N7:0", kRun);
-  b->run_for(seconds(4));
+  start_in_run(b);
   b.inject("STATION", "message timeout");  // requests stay in progress for 1.5 s
   Empc e{b};
   const std::int64_t get_identity_vendor = 0x0E07;  // Get_Attribute_Single to MAC 7
@@ -302,9 +302,7 @@ TEST(SdnModule, TransactionCommandsThroughTheMFiles) {
 
 TEST(SdnModule, ResponsesQueueInArrivalOrder) {
   Bench b = network();
-  b.run();
-  b.set("N7:0", kRun);
-  b->run_for(seconds(4));
+  start_in_run(b);
   Empc e{b};
   // "Responses are queued in the order they complete" (p.148), not in the order asked: TXID 1 goes
   // to a photoeye that does not answer (status 7 after the retries), TXID 2 to the RediSTATION.
@@ -334,9 +332,7 @@ TEST(SdnModule, ARequestBlockWrittenOverSeveralRungsIsOneRequest) {
                               "SOR XIC B3:0/0 BST MOV 6 M0:1.225 NXB MOV 0x0E07 M0:1.226 NXB MOV 1 M0:1.227 NXB "
                               "MOV 1 M0:1.228 NXB MOV 1 M0:1.229 BND EOR\nSOR XIC B3:0/0 OTU B3:0/0 EOR\n";
   Bench b(program, kNetwork);
-  b.run();
-  b.set("N7:0", kRun);
-  b->run_for(seconds(4));
+  start_in_run(b);
   b.set("B3:0/0", 1);
   ASSERT_TRUE(b.until([&] { return b.b("I:1.0/15"); }, milliseconds(100)));
   b->scan(1);

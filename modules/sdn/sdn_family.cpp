@@ -51,7 +51,7 @@ void register_sdn_scanner_family(ModuleRegistry& registry) {
   f.prepare = [](const ModulePrepareContext& ctx) -> SlotModuleBuilder {
     check_sdn(ctx.program, ctx.slot, ctx.program_diagnostics);
     std::shared_ptr<const SdnBench> bench;
-    if (ctx.bench) bench = interpret_sdn_bench(*ctx.bench, ctx.bench_diagnostics, ctx.bench_source_name);
+    if (ctx.bench) bench = interpret_sdn_bench(*ctx.bench, ctx.bench_diagnostics, ctx.bench_name);
     if (ctx.bench_diagnostics.has_errors()) bench = nullptr;  // a broken bench builds the bare module
     const int m0 = std::min(m0_words(ctx.slot), kMaxMFileWords), m1 = std::min(m1_words(ctx.slot), kMaxMFileWords);
     return [bench, m0, m1](const SlotConfig& s) -> std::unique_ptr<Module> {

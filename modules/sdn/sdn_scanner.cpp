@@ -35,17 +35,21 @@ SdnScanner::SdnScanner(const SlotConfig& slot, int m0_words, int m1_words, std::
       m1_words_(std::min(m1_words, dn::layout::kMFileWords)) {
   network_ = std::make_unique<dn::Network>(bench_->network_baud);
   for (const auto& d : bench_->devices) network_->attach(d.address, d.model);
-  scanner_ = std::make_unique<dn::Scanner>(*network_, bench_->config);
-  dem_ = std::make_unique<dn::dem::DemPort>(*scanner_);
 }
 
 // The scanner withdraws its events from the network's timeline; the host's queue dies with the
 // runtime that owns this module.
 SdnScanner::~SdnScanner() = default;
 
+// The module powers up when the runtime takes it: at time 0, or later after a power cycle (the
+// processor's clock carries on), so the network's clock starts there and the scanner's start-up
+// (the duplicate node check) runs from that moment.
 void SdnScanner::attach(ModuleHost& host) {
   Module::attach(host);
-  sync(host.now());
+  network_->advance_to(host.now());
+  scanner_ = std::make_unique<dn::Scanner>(*network_, bench_->config);
+  dem_ = std::make_unique<dn::dem::DemPort>(*scanner_);
+  rearm();
 }
 
 // ---- Time ------------------------------------------------------------------------------------------------

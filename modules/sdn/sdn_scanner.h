@@ -67,7 +67,7 @@ class SdnScanner final : public Module {
   std::shared_ptr<const SdnBench> bench_;
   int m0_words_ = 0, m1_words_ = 0;
   std::unique_ptr<devicenet::Network> network_;
-  std::unique_ptr<devicenet::Scanner> scanner_;
+  std::unique_ptr<devicenet::Scanner> scanner_;       // made in attach(), at power-up time
   std::unique_ptr<devicenet::dem::DemPort> dem_;
   std::optional<VirtualTime> wake_at_;  // time of the armed host event
   EventQueue::EventId wake_id_ = 0;

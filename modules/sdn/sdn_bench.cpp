@@ -105,20 +105,23 @@ std::shared_ptr<const SdnBench> interpret_sdn_bench(const BenchNode& node, Diagn
       // A device description (docs/1747-sdn.md, "Device descriptions"), beside the bench file.
       const std::filesystem::path file = std::filesystem::path(bench_path).parent_path() / *description;
       std::ifstream in(file, std::ios::binary);
-      std::ostringstream text;
-      text << in.rdbuf();
-      if (!in) {
+      if (!in.is_open()) {
         r.error_at("description", "cannot read device description " + file.string());
       } else {
+        std::ostringstream text;
+        text << in.rdbuf();
         try {
           bench->devices.push_back(
               {c.name, static_cast<int>(*address), devicenet::parse_device_model_text(text.str(), file.string())});
         } catch (const ConfigError& e) {
-          r.error_at("description", file.string() + ": " + e.what());
+          // JSON syntax errors name the file already; structural ones give their JSON path only.
+          std::string m = e.what();
+          if (m.rfind(file.string(), 0) != 0) m = file.string() + ": " + m;
+          r.error_at("description", m);
         }
       }
     }
-        // The scanlist entry, if the node has one.
+    // The scanlist entry, if the node has one.
     json entry = json::object();
     const std::string path = devicenet::element_path("scanlist", scanlist.size());
     bool listed = false;

@@ -414,6 +414,21 @@ TEST(SdnModule, BenchErrorsArePositioned) {
   }
 }
 
+TEST(SdnModule, DeviceDescriptionsAreReadBesideTheBench) {
+  LoadResult lr = load_program(kProgram, "test.slc");
+  ASSERT_TRUE(lr.ok());
+  const std::string dir = std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder/1747-sdn/";
+  ModuleSetup good = load_module_setup_text(
+      *lr.program, "devicenet D slot=1 node=0 {\n  node S address=5 description=weigh-scale.json\n}\n", dir + "x.bench");
+  EXPECT_TRUE(good.ok()) << good.render("test.slc", lr.source);
+  ModuleSetup bad = load_module_setup_text(
+      *lr.program, "devicenet D slot=1 node=0 {\n  node S address=5 description=device_failure_idle.slc\n}\n",
+      dir + "x.bench");
+  const std::string m = bad.render("test.slc", lr.source);
+  EXPECT_NE(m.find("x.bench:2:32: error: node S: "), std::string::npos) << m;
+  EXPECT_NE(m.find("device_failure_idle.slc: not valid JSON"), std::string::npos) << m;
+}
+
 TEST(SdnModule, IllegalScanlistEntryShowsCode71) {
   // An entry whose input lands outside the 150-word M1 data area: the scanner skips it and shows
   // "71 Illegal data in scan list table" for its node (chapter 7).

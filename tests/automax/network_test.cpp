@@ -185,6 +185,20 @@ TEST(AutomaxMaster, DropGoesOfflineAfterThreeRetriesAndRejoins) {
   EXPECT_TRUE(b.until([&] { return b.b(A(b, "START")); }, milliseconds(20)));
 }
 
+// The master's cable removed: every drop stops answering and goes off-line after its retries;
+// restored, the inactive poll brings them back one per cycle.
+TEST(AutomaxMaster, CableRemovedTakesEveryDropOffline) {
+  Bench b(program(kNoRungs, kStatusDefs), kTwoDrops);
+  b->scan(1);  // the master's power-up poll is its first event
+  b.run();
+  b->run_for(milliseconds(20));
+  b.inject("NET", "cable removed");
+  b->run_for(milliseconds(20));
+  EXPECT_EQ(b.i(A(b, "STATUS")), 0);
+  b.inject("NET", "cable restored");
+  EXPECT_TRUE(b.until([&] { return b.i(A(b, "STATUS")) == ((1 << 2) | (1 << 4)); }, milliseconds(60)));
+}
+
 // A noisy drop: a message in error (CRC) is retried and the drop stays on-line.
 TEST(AutomaxMaster, NoisyDropIsRetriedAndCounted) {
   Bench b(program(kNoRungs, kStatusDefs), kTwoDrops);
@@ -224,6 +238,15 @@ TEST(AutomaxMaster, Head57C330RailDefinition) {
   EXPECT_TRUE(b.until([&] { return b.b(A(b, "RIO_D04")); }, milliseconds(80)));
   EXPECT_EQ(b->observe("HEAD4", "rails")->at(0), 1);
   EXPECT_TRUE(b->set(A(b, "HEAD_R0"), Value::of_int(0)));
+  // A power cycle of the drop also clears the definitions (4.6.3 a).
+  b.inject("HEAD4", "input", {"0", "0", "1"});
+  b->run_for(milliseconds(20));
+  EXPECT_EQ(b->observe("HEAD4", "rails")->at(0), 2);
+  b.inject("HEAD4", "power cycle");
+  b->run_for(milliseconds(20));
+  EXPECT_EQ(b->observe("HEAD4", "active")->at(0), 0);  // running its power-up diagnostics
+  EXPECT_EQ(b->observe("HEAD4", "rails")->at(0), 0);
+  EXPECT_TRUE(b.until([&] { return b.b(A(b, "RIO_D04")); }, seconds(1)));
 }
 
 // Section 4.6.2: the 57C328's registers 0-3 are rail inputs, 4-7 rail outputs, 8-31 not

@@ -944,7 +944,7 @@ template <> struct action<def_value> {
     const char c = f.spelling.size() == 1 ? static_cast<char>(std::toupper(static_cast<unsigned char>(f.spelling[0]))) : 0;
     if (c >= 'A' && c <= 'F') {
       f.value = c - 'A' + 10;
-    } else if (parse_number_text(f.spelling, v) && !v.is_float && v.integer <= 0xFFFF) {
+    } else if (parse_number_text(f.spelling, v) && !v.is_float && v.integer <= 0x7FFFFFFF) {
       f.value = v.integer;
     } else {
       f.value = -1;

@@ -91,6 +91,9 @@ TEST(AutomaxSymbols, PositionedErrors) {
   EXPECT_NE(errors_of("RIODEF X%[MASTER_SLOT=8,DROP=2,SLOT=1,REGISTER=0,BIT=3]\n")
                 .find("5:50: error: RIODEF X%: unknown field BIT (a RIODEF register takes MASTER_SLOT, DROP, SLOT, REGISTER)"),
             std::string::npos);
+  EXPECT_NE(errors_of("IODEF X%[SLOT=8,REGISTER=99999]\n")
+                .find("5:26: error: IODEF X%: REGISTER must be 0-511 (drop 0 registers, figure 4.1)"),
+            std::string::npos);
   EXPECT_NE(errors_of("IODEF X%[SLOT=8,SLOT=8,REGISTER=1]\n").find("5:17: error: IODEF X%: field SLOT is given twice"),
             std::string::npos);
   EXPECT_NE(errors_of("IODEF X%[SLOT=8,REGISTER=4Q]\n").find("5:26: error: field REGISTER: '4Q' is not a number"),

@@ -356,6 +356,21 @@ TEST(AutomaxMaster, DriveHeadClearsInputsOfASilentDrive) {
   EXPECT_EQ(b.i(A(b, "FDBK")), 77);
 }
 
+// The master's SLOT line: no SLC image words or G file, and the M0 file is the 4096-word image.
+TEST(AutomaxMaster, SlotLineChecks) {
+  auto check = [](const std::string& slot_line) {
+    auto lr = load_program("START 1747-L532\n" + slot_line + "\nLADDER 2 MAIN\n" + kNoRungs, "t.slc");
+    EXPECT_TRUE(lr.ok()) << lr.render_diagnostics();
+    DiagnosticList d;
+    check_module_configuration(*lr.program, d);
+    return render_all(d, "t.slc", lr.source);
+  };
+  EXPECT_EQ(check("SLOT 8 57C416"), "");
+  EXPECT_NE(check("SLOT 8 57C416 SCAN_IN 2").find("t.slc:2:6: error: 57C416 in slot 8: the AutoMax master has no SLC image"),
+            std::string::npos);
+  EXPECT_NE(check("SLOT 8 57C416 M0_SIZE 512").find("M0_SIZE must be 4096"), std::string::npos);
+}
+
 TEST(AutomaxBench, PositionedErrors) {
   auto errors = [](const std::string& bench) {
     auto lr = load_program(program(kNoRungs, ""), "t.slc");

@@ -224,8 +224,8 @@ void AutomaxMaster::exchange(Drop& d) {
         for (int r = 2; r < 4; ++r) {
           // A drive that stops answering: the head clears its input registers and keeps trying
           // (section 4.6.4); the drop stays on-line.
-          if (!d.port_online[static_cast<std::size_t>(port)]) d.field_in[static_cast<std::size_t>(o + r)] = 0;
-          in(o + r);
+          if (d.port_online[static_cast<std::size_t>(port)]) in(o + r);
+          else img(o + r) = 0;
         }
       }
       break;

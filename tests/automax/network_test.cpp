@@ -351,6 +351,8 @@ TEST(AutomaxMaster, DriveHeadClearsInputsOfASilentDrive) {
   EXPECT_EQ(b.i(A(b, "FDBK")), 0);
   EXPECT_TRUE(b.b(A(b, "RIO_D06")));
   b.inject("DH", "drive online", {"1"});
+  b->run_for(milliseconds(10));
+  EXPECT_EQ(b.i(A(b, "FDBK")), 500);  // the drive answers again with what it sends
   b.inject("DH", "input", {"1", "2", "77"});
   b->run_for(milliseconds(10));
   EXPECT_EQ(b.i(A(b, "FDBK")), 77);

@@ -1,5 +1,7 @@
 #include "vm/interpreter.h"
 
+#include "vm/coverage.h"
+
 #include "vm/compiler.h"
 
 #include <algorithm>
@@ -1162,6 +1164,8 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
       std::uint64_t n = 0;
       std::uint16_t* const w = w_;
       const Nanoseconds* const cost = cost_.data();
+      // Coverage observes every instruction in the general switch (one test per fast-path entry).
+      if (coverage_) [[unlikely]] goto general;
       for (;;) {
         // The operand word is read only by the ops that have one: a 0-operand op may be the last
         // word of the code array.
@@ -1221,6 +1225,7 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
     const std::uint32_t h = *pc;
     const Op op = bc::op_of(h);
     const std::uint32_t* const o = pc + 1;
+    const bool rung_in = rung;
     elapsed += cost_[(static_cast<unsigned>(op) << 1) | static_cast<unsigned>(rung)];
     count_ += countable_[static_cast<unsigned>(op)];
     switch (op) {
@@ -1378,6 +1383,7 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
       // ---- Program control ----
       case Op::JMP:
         if (rung) {
+          if (coverage_) [[unlikely]] coverage_->record(static_cast<std::uint32_t>(pc - code_), op, rung_in, rung);
           pc = code_ + bc::payload_of(o[1]);
           continue;
         }
@@ -1393,6 +1399,10 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
             goto fault;
           }
           frames[static_cast<std::size_t>(fsp++)] = {o + bc::count_of(h), cur_file, cur_rung, mcr_off, bsp, bsp_base};
+          if (coverage_) [[unlikely]] {
+            coverage_->record(static_cast<std::uint32_t>(pc - code_), op, rung_in, rung);
+            coverage_->called(bc::imm_of(o[0]));
+          }
           cur_file = bc::imm_of(o[0]);
           pc = code_ + bc::payload_of(o[1]);
           mcr_off = false;
@@ -1438,6 +1448,7 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
       elapsed += extra_ns_;
       extra_ns_ = 0;
     }
+    if (coverage_) [[unlikely]] coverage_->record(static_cast<std::uint32_t>(pc - code_), op, rung_in, rung);
     // The program counter advances here, after the handler, so only one copy of it is live
     // across the switch (computing it before the switch made the compiler spill it).
     pc = o + bc::count_of(h);

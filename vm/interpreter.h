@@ -74,6 +74,7 @@ struct ProgramScanResult {
 inline constexpr int kMaxCallDepth = 16;
 
 class ModuleCall;
+class CoverageRecorder;
 
 class Interpreter {
  public:
@@ -83,6 +84,11 @@ class Interpreter {
   // time already used before the program scan (input scan); `first_pass`: the first scan after
   // entering Run/Test; `watchdog`: the scan time at which fault 0022h is raised.
   ProgramScanResult program_scan(VirtualTime scan_start, Nanoseconds elapsed, bool first_pass, Nanoseconds watchdog);
+
+  // Attaches a coverage recorder (nullptr detaches). While one is attached the interpreter leaves
+  // its bit-logic fast path and reports every instruction (vm/coverage.h); without one nothing
+  // is recorded and the fast path is unchanged.
+  void set_coverage(CoverageRecorder* recorder) { coverage_ = recorder; }
 
   // The cost table (ns) indexed by op * 2 + rung-in.
   const std::vector<Nanoseconds>& costs() const { return cost_; }
@@ -181,6 +187,7 @@ class Interpreter {
   std::array<std::uint8_t, kOpCount> countable_{};
   int max_depth_;
   std::uint32_t s0_, s2_, s5_, s13_, s14_, s24_;
+  CoverageRecorder* coverage_ = nullptr;
 
   // Per-scan state used by the handlers.
   VirtualTime scan_start_ = 0;

@@ -98,6 +98,12 @@ Runtime::Runtime(std::unique_ptr<CompiledProgram> program, RuntimeOptions option
   write_mode_bits();
 }
 
+void Runtime::enable_coverage() {
+  if (coverage_) return;
+  coverage_ = std::make_unique<CoverageRecorder>(*program_);
+  interp_->set_coverage(coverage_.get());
+}
+
 Runtime::~Runtime() = default;
 
 // ---- Modes ------------------------------------------------------------------------------------------------

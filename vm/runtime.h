@@ -37,6 +37,7 @@
 #include "parser/program.h"
 #include "vm/bytecode.h"
 #include "vm/compiler.h"
+#include "vm/coverage.h"
 #include "vm/data_table.h"
 #include "vm/event_queue.h"
 #include "vm/faults.h"
@@ -147,6 +148,13 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // Every named field device, in slot order.
   std::vector<std::string> devices() const;
 
+  // ---- Ladder coverage (vm/coverage.h) ----
+  // Starts recording which rungs and instructions the program scans exercise. Costs nothing
+  // until called; from then on the interpreter reports every instruction.
+  void enable_coverage();
+  // The recorder, or nullptr when coverage is off.
+  const CoverageRecorder* coverage() const { return coverage_.get(); }
+
   // ---- Access for tools and tests ----
   Module* module(int slot) const;
   EventQueue& events() { return events_; }
@@ -192,6 +200,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::vector<std::unique_ptr<Module>> owned_modules_;
   std::array<Module*, kMaxSlots> modules_{};
   std::unique_ptr<Interpreter> interp_;
+  std::unique_ptr<CoverageRecorder> coverage_;
 
   Mode mode_ = Mode::Program;
   bool first_pass_ = false;

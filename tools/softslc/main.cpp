@@ -75,6 +75,11 @@ int main(int argc, char** argv) {
   test_cmd->add_flag("--list", test.list, "list the selected tests (FILE: NAME), run nothing");
   test_cmd->add_option("--junit", test.junit, "also write a JUnit XML report to FILE (atomically)")
       ->type_name("FILE");
+  test_cmd->add_flag("--coverage", test.coverage,
+                     "report ladder coverage: rungs run and seen true/false, conditions that decided their rung "
+                     "both ways, outputs energized, subroutines called");
+  test_cmd->add_option("--coverage-json", test.coverage_json, "also write the coverage report as JSON to FILE")
+      ->type_name("FILE");
 
   auto* instructions_cmd =
       app.add_subcommand("instructions", "List the instruction table: operands in text order, kinds, ranges");

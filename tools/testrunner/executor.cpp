@@ -145,7 +145,8 @@ void collect_ote_bits(const std::vector<RungElement>& elements, std::vector<Addr
 
 class Session {
  public:
-  Session(const std::string& file, const RuntimeOptions& options) : file_(file), options_(options) {}
+  Session(const std::string& file, const RuntimeOptions& options, bool record_coverage)
+      : file_(file), options_(options), record_coverage_(record_coverage) {}
 
   TestOutcome run(const TestCase& tc) {
     TestOutcome out;
@@ -166,10 +167,32 @@ class Session {
     }
     out.virtual_time = rt_ ? now() : 0;
     out.scans = rt_ ? scans() : 0;
+    harvest_coverage();
+    out.coverage = std::move(coverage_);
     return out;
   }
 
  private:
+  // ---- Coverage ----
+
+  // Folds the coverage of the current Runtime into the test's, before the Runtime is replaced.
+  void harvest_coverage() {
+    if (!rt_ || !rt_->coverage() || !program_) return;
+    const auto& flags = rt_->coverage()->flags();
+    for (auto& [program, merged] : coverage_)
+      if (program == program_) {
+        for (std::size_t i = 0; i < merged.size() && i < flags.size(); ++i) merged[i] |= flags[i];
+        return;
+      }
+    coverage_.emplace_back(program_, flags);
+  }
+
+  void replace_runtime(std::unique_ptr<Runtime> fresh) {
+    harvest_coverage();
+    rt_ = std::move(fresh);
+    if (record_coverage_) rt_->enable_coverage();
+  }
+
   // ---- Time and scans across power cycles ----
 
   VirtualTime now() const { return time_base_ + rt_->now(); }
@@ -217,7 +240,7 @@ class Session {
       f.error = "the program did not compile: " + r.render_errors();
       return f;
     }
-    rt_ = std::move(r.runtime);
+    replace_runtime(std::move(r.runtime));
     program_ = &program;
     time_base_ = 0;
     scan_base_ = 0;
@@ -225,6 +248,7 @@ class Session {
     last_scans_ = 0;
     forces_cleared_ = false;
     forces_.clear();
+    injected_.clear();
     if (mode != Mode::Program) {
       if (auto st = rt_->set_mode(mode); !st) {
         Failure f = failure_at(loc, what, {});
@@ -288,6 +312,7 @@ class Session {
       case Step::Kind::Restore: return restore(s, context);
       case Step::Kind::Device:
         if (auto st = rt_->inject(s.name, s.change, s.args); !st) return refused(s, context, st.message);
+        injected_.push_back(&s);
         return std::nullopt;
     }
     return std::nullopt;
@@ -392,8 +417,8 @@ class Session {
   }
 
   // Power off and on: a new Runtime with the old data table (battery-backed on the SLC) except
-  // the bits OTE instructions write (non-retentive on power loss), the field inputs as they were
-  // (the field did not change), the test's forces (kept in processor memory), in the mode the
+  // the bits OTE instructions write (non-retentive on power loss), the field inputs and the
+  // changes injected into bench devices as they were (the field did not change), the test's forces (kept in processor memory), in the mode the
   // processor was in. Entering Run sets the first pass bit and zeroes S:4, as on power-up in Run.
   std::optional<Failure> power_cycle(const Step& s, const std::string& context) {
     if (rt_->fault() || rt_->mode() == Mode::Faulted)
@@ -425,7 +450,11 @@ class Session {
     }
     time_base_ += rt_->now();
     scan_base_ += rt_->stats().scans;
-    rt_ = std::move(r.runtime);
+    replace_runtime(std::move(r.runtime));
+    // The field devices did not lose power with the processor: what the test injected into them
+    // (an adapter off line, a module's data) still holds, so it is applied to the new modules.
+    for (const Step* d : injected_)
+      if (auto st = rt_->inject(d->name, d->change, d->args); !st) return refused(s, context, st.message);
     if (forces_cleared_) rt_->clear_forces();
     for (const auto& [addr, on] : forces_) {
       if (on) rt_->force(addr, *on);
@@ -582,6 +611,8 @@ class Session {
 
   const std::string& file_;
   const RuntimeOptions& options_;
+  bool record_coverage_ = false;
+  std::vector<std::pair<const LoadedProgram*, std::vector<std::uint8_t>>> coverage_;
   std::unique_ptr<Runtime> rt_;
   const LoadedProgram* program_ = nullptr;
   VirtualTime time_base_ = 0;       // virtual time of the Runtimes before the last power cycle
@@ -590,12 +621,14 @@ class Session {
   std::uint64_t last_scans_ = 0;
   bool forces_cleared_ = false;     // `unforce all` removed the program's own FORCE blocks
   std::map<std::string, std::optional<bool>> forces_;  // by address: forced value, or unforced
+  std::vector<const Step*> injected_;  // the device steps run on the current bench, in order
 };
 
 }  // namespace
 
-TestOutcome run_test(const TestCase& test, const std::string& file_name, const RuntimeOptions& options) {
-  Session session(file_name, options);
+TestOutcome run_test(const TestCase& test, const std::string& file_name, const RuntimeOptions& options,
+                     bool record_coverage) {
+  Session session(file_name, options, record_coverage);
   return session.run(test);
 }
 

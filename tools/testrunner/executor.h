@@ -50,6 +50,9 @@ struct Failure {
 
 struct TestOutcome {
   std::optional<Failure> failure;
+  // With coverage on: the coverage flags (vm/coverage.h) of each program the test ran, in the
+  // order the test first ran them.
+  std::vector<std::pair<const LoadedProgram*, std::vector<std::uint8_t>>> coverage;
   VirtualTime virtual_time = 0;  // at the end of the test
   std::uint64_t scans = 0;       // program scans the test ran
   bool passed() const { return !failure.has_value(); }
@@ -59,6 +62,8 @@ struct TestOutcome {
 // (at the start, at each restore and power cycle) gets `options` (a scan-time model, a module
 // factory); the default is the runtime's own. Never throws: an unexpected exception from the
 // runtime becomes a failure at the step that raised it.
-TestOutcome run_test(const TestCase& test, const std::string& file_name, const RuntimeOptions& options = {});
+// With `record_coverage`, every Runtime records ladder coverage and the outcome carries it.
+TestOutcome run_test(const TestCase& test, const std::string& file_name, const RuntimeOptions& options = {},
+                     bool record_coverage = false);
 
 }  // namespace softslc::testing

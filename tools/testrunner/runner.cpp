@@ -11,6 +11,7 @@
 
 #include "vm/atomic_file.h"
 
+#include "tools/testrunner/coverage_report.h"
 #include "tools/testrunner/executor.h"
 #include "tools/testrunner/junit.h"
 #include "tools/testrunner/test_loader.h"
@@ -89,10 +90,10 @@ struct Result {
   std::int64_t host_ns = 0;
 };
 
-Result run_one(const Selected& s, const RuntimeOptions& options) {
+Result run_one(const Selected& s, const RuntimeOptions& options, bool coverage) {
   const auto t0 = std::chrono::steady_clock::now();
   Result r;
-  r.outcome = run_test(*s.test, s.file->name, options);
+  r.outcome = run_test(*s.test, s.file->name, options, coverage);
   r.host_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -160,6 +161,7 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
 
   // ---- Run and report in order ----
   const std::size_t n = selected.size();
+  const bool coverage = options.coverage || !options.coverage_json.empty();
   std::size_t jobs = options.jobs > 0 ? static_cast<std::size_t>(options.jobs)
                                       : std::max<std::size_t>(1, std::thread::hardware_concurrency());
   jobs = std::min(jobs, n);
@@ -169,7 +171,7 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i = next++; i < n; i = next++) {
-      Result r = run_one(selected[i], options.runtime);
+      Result r = run_one(selected[i], options.runtime, coverage);
       {
         std::lock_guard<std::mutex> lock(mutex);
         results[i] = std::move(r);
@@ -185,6 +187,7 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
 
   std::size_t passed = 0, failed = 0;
   std::vector<JUnitCase> report;
+  CoverageCollector covered;
   for (std::size_t i = 0; i < n; ++i) {
     {
       std::unique_lock<std::mutex> lock(mutex);
@@ -194,10 +197,24 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
     out << format_result(selected[i].file->name, selected[i].test->name, r.outcome, r.host_ns, options.host_times);
     out.flush();
     (r.outcome.passed() ? passed : failed) += 1;
+    covered.add(r.outcome);
     report.push_back({selected[i].file->name, selected[i].test->name, selected[i].test->loc.line, r.host_ns,
                       r.outcome.virtual_time, r.outcome.scans, r.outcome.failure});
   }
   for (auto& t : threads) t.join();
+  bool output_error = false;
+  if (coverage) {
+    // The coverage report comes before the summary, which stays the run's last line.
+    std::string error;
+    const auto reports = covered.reports(error);
+    out << render_coverage_text(reports);
+    if (!error.empty()) err << "error: coverage: " << error;
+    if (!options.coverage_json.empty())
+      if (auto e = write_file_atomically(options.coverage_json, render_coverage_json(reports)); !e.empty()) {
+        err << "error: cannot write the coverage report: " << e << "\n";
+        output_error = true;
+      }
+  }
   out << passed << " passed, " << failed << " failed\n";
   out.flush();
 
@@ -207,6 +224,7 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
       return kUsageError;
     }
   }
+  if (output_error) return kUsageError;
   return failed > 0 ? kTestsFailed : kAllPassed;
 }
 

@@ -40,6 +40,8 @@ struct RunOptions {
   bool list = false;               // print the selected tests instead of running them
   int jobs = 0;                    // worker threads; 0 = the host's hardware concurrency
   bool host_times = true;          // "(12 ms)" on PASS lines
+  bool coverage = false;           // report ladder coverage (before the summary line)
+  std::string coverage_json;       // also write it as JSON here (implies coverage); empty = none
   RuntimeOptions runtime;          // for every Runtime a test creates (tests fix the scan-time model)
 };
 

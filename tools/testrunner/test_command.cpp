@@ -11,6 +11,8 @@ int run_test_command(const TestCommandOptions& options, std::ostream& out, std::
   run.junit = options.junit;
   run.list = options.list;
   run.jobs = options.jobs;
+  run.coverage = options.coverage;
+  run.coverage_json = options.coverage_json;
   return run_tests(run, out, err);
 }
 

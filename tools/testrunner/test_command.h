@@ -22,6 +22,8 @@ struct TestCommandOptions {
   std::string junit;               // write a JUnit XML report here; empty = none
   bool list = false;               // list the selected tests, run nothing
   int jobs = 0;                    // parallel tests; 0 = one per hardware thread
+  bool coverage = false;           // print ladder coverage
+  std::string coverage_json;       // write ladder coverage as JSON here; empty = none
 };
 
 int run_test_command(const TestCommandOptions& options, std::ostream& out, std::ostream& err);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "modules/automax/automax_network.h"
+#include "modules/throughput/throughput_json.h"
 #include "tests/modules/modules_test_util.h"
 
 namespace softslc {
@@ -113,12 +114,12 @@ TEST(AutomaxMaster, UpdatePeriodOfTheManualExampleMatchesTheThroughputCalculator
   b.run();
   b->run_for(milliseconds(100));
   EXPECT_EQ(master(b).update_period(), microseconds(10448));
-  throughput::AutomaxNetwork net;
-  net.drops = {{throughput::AutomaxDropType::multibus, 13, 0, 0, 0, 1, "D1"},
-               {throughput::AutomaxDropType::multibus, 11, 0, 0, 0, 2, "D2"},
-               {throughput::AutomaxDropType::head_57c330, 0, 5, 6, 0, 3, "D3"},
-               {throughput::AutomaxDropType::shark_digital, 0, 0, 0, 0, 12, "D4"}};
-  EXPECT_EQ(master(b).update_period(), microseconds(throughput::compute_automax(net).update_period));
+  // What `softslc throughput examples/throughput/automax_example.json` prints for the same drops.
+  const auto config = nlohmann::json::parse(
+      test::read_text(std::string(SOFTSLC_SOURCE_DIR) + "/examples/throughput/automax_example.json"));
+  const auto result = throughput::compute_throughput(config);
+  EXPECT_EQ(result.at("update_period_ms").get<double>(), 10.448);
+  EXPECT_EQ(master(b).update_period(), microseconds(10448));
   EXPECT_EQ(b->observe("D4", "active")->at(0), 1);  // switch C: image area and status bit 4
 }
 

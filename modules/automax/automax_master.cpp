@@ -389,10 +389,7 @@ DeviceStatus AutomaxMaster::inject(const DeviceFault& f) {
   auto reset = [&] {  // the drop disconnects and re-runs its power-up diagnostics
     d->ready_at = now + s.diagnostics;
     d->messages = 0;
-    if (d->active) go_offline(*d);
-    d->active = false;
-    d->rail_state.fill(Rail::None);
-    d->shark_configured = false;
+    go_offline(*d);
   };
   if (f.fault == "offline") {
     d->online = false;

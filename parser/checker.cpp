@@ -297,6 +297,12 @@ class Checker {
       error(op.pos, "unknown symbol '" + op.symbol + "' (" + where + ")");
       return;
     }
+    if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
+      const Symbol* sym = symbols_.at(op.symbol);
+      if (sym->automax && sym->automax->kind == AutomaxDef::Kind::IoDef)
+        return error(op.pos, where + ": " + op.symbol + " is an IODEF point of drop 0, and drop 0 registers are read "
+                                                        "only (AutoMax Remote I/O manual, section 4.2)");
+    }
     auto expect = [&](std::string_view what) {
       error(op.pos, where + ": expected " + std::string(what) + ", found '" + op.spelling + "'");
     };

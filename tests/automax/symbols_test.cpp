@@ -105,6 +105,10 @@ TEST(AutomaxSymbols, PositionedErrors) {
   EXPECT_NE(errors_of("IODEF X@[SLOT=8 REGISTER=4,BIT=1]\n")
                 .find("5:17: error: expected ',' and another field, or ']' to close the fields"),
             std::string::npos);
+  // Drop 0 is read only: a program that writes an IODEF point is refused.
+  EXPECT_NE(errors_of("IODEF RIO_D02@[SLOT=8,REGISTER=4,BIT=2]\n", "SOR XIC B3:0/1 OTE RIO_D02 EOR\n")
+                .find("4:20: error: OTE bit: RIO_D02 is an IODEF point of drop 0, and drop 0 registers are read only"),
+            std::string::npos);
   // A name defined twice, and a ladder name that no definition gives.
   EXPECT_NE(errors_of("MEMDEF A@\nMEMDEF A@\n").find("6:1: error: symbol 'A' is defined twice (first at line 5)"),
             std::string::npos);

@@ -79,6 +79,17 @@ class Checker {
     }
   }
 
+  // True when `a` is in the file the program's MEMDEFs of its type are allocated in.
+  bool uses_memdef_file(const Address& a) const {
+    const char suffix = a.type == FileType::Bit && a.file == kMemdefBitFile       ? '@'
+                        : a.type == FileType::Integer && a.file == kMemdefWordFile ? '%'
+                                                                                    : 0;
+    if (!suffix) return false;
+    return std::any_of(program_.symbols.begin(), program_.symbols.end(), [&](const Symbol& s) {
+      return s.automax && s.automax->kind == AutomaxDef::Kind::MemDef && s.automax->suffix == suffix;
+    });
+  }
+
   // ---- AutoMax IODEF / RIODEF / MEMDEF (parser/automax_def.h, docs/automax.md) -------------------------
 
   // Checks the fields of an AutoMax definition and sets the symbol's address; false (after
@@ -297,6 +308,9 @@ class Checker {
       error(op.pos, "unknown symbol '" + op.symbol + "' (" + where + ")");
       return;
     }
+    if (op.kind == Operand::Kind::Address && uses_memdef_file(op.address))
+      return error(op.pos, where + ": " + std::string(file_letter(op.address.type)) + std::to_string(op.address.file) +
+                               " holds the program's MEMDEF variables; name them instead (docs/automax.md)");
     if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
       const Symbol* sym = symbols_.at(op.symbol);
       if (sym->automax && sym->automax->kind == AutomaxDef::Kind::IoDef)

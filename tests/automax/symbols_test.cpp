@@ -109,6 +109,11 @@ TEST(AutomaxSymbols, PositionedErrors) {
   EXPECT_NE(errors_of("IODEF RIO_D02@[SLOT=8,REGISTER=4,BIT=2]\n", "SOR XIC B3:0/1 OTE RIO_D02 EOR\n")
                 .find("4:20: error: OTE bit: RIO_D02 is an IODEF point of drop 0, and drop 0 registers are read only"),
             std::string::npos);
+  // MEMDEF bits live in B255: the program may not address that file directly.
+  EXPECT_NE(errors_of("MEMDEF OK@\n", "SOR XIC B255:0/3 OTE B3:0/0 EOR\n")
+                .find("4:9: error: XIC bit: B255 holds the program's MEMDEF variables; name them instead"),
+            std::string::npos);
+  EXPECT_TRUE(load("MEMDEF OK%\n", "SOR XIC B255:0/3 OTE B3:0/0 EOR\n").ok());  // no MEMDEF bits: B255 is free
   // A name defined twice, and a ladder name that no definition gives.
   EXPECT_NE(errors_of("MEMDEF A@\nMEMDEF A@\n").find("6:1: error: symbol 'A' is defined twice (first at line 5)"),
             std::string::npos);

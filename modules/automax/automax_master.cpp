@@ -32,6 +32,7 @@ AutomaxMaster::AutomaxMaster(const SlotConfig& slot, std::shared_ptr<const Autom
     d.noisy = spec.noisy;
     d.rails = spec.rails;
     d.known_rails = spec.rails;
+    d.head_rails = spec.rails;
     drops_[static_cast<std::size_t>(spec.area)] = std::move(d);
   }
 }
@@ -74,8 +75,20 @@ void AutomaxMaster::join(Drop& d) {
   d.active = true;
   // The head sends its rail configuration when it is first polled (sections 4.6.2, 4.6.3).
   d.known_rails = d.rails;
-  for (int r : d.rails)
-    if (d.rail_state[static_cast<std::size_t>(r)] == Rail::None) d.rail_state[static_cast<std::size_t>(r)] = Rail::Undefined;
+  read_rails(d);
+}
+
+// A 57C330 finds which ports have a rail "approximately every 20 milliseconds" (4.6.3): a rail
+// found is undefined, a rail gone loses its definition.
+void AutomaxMaster::read_rails(Drop& d) {
+  for (int r = 0; r < static_cast<int>(d.rail_state.size()); ++r) {
+    const bool connected = std::find(d.rails.begin(), d.rails.end(), r) != d.rails.end();
+    Rail& st = d.rail_state[static_cast<std::size_t>(r)];
+    if (!connected) st = Rail::None;
+    else if (st == Rail::None) st = Rail::Undefined;
+  }
+  d.head_rails = d.rails;
+  d.next_rail_read = host()->now() + kRailReadPeriod;
 }
 
 void AutomaxMaster::go_offline(Drop& d) {
@@ -91,7 +104,7 @@ Nanoseconds AutomaxMaster::drop_time(const Drop& d) const {
   if (d.spec->kind == AutomaxDropKind::Head57C330) {
     // X output and Y input registers transferred: defined rails count on their side, rails
     // not yet defined on both (data goes both ways until it defines them).
-    for (int r : d.rails) {
+    for (int r : d.head_rails) {
       const Rail s = d.rail_state[static_cast<std::size_t>(r)];
       t.outputs += s != Rail::Input;
       t.inputs += s != Rail::Output;
@@ -156,8 +169,8 @@ void AutomaxMaster::set_status() {
 }
 
 bool AutomaxMaster::has_rail(const Drop& d, int rail) const {
-  return std::find(d.known_rails.begin(), d.known_rails.end(), rail) != d.known_rails.end() &&
-         std::find(d.rails.begin(), d.rails.end(), rail) != d.rails.end();
+  // The master controls access with the rail configuration the drop sent when it connected.
+  return std::find(d.known_rails.begin(), d.known_rails.end(), rail) != d.known_rails.end();
 }
 
 // One successful message: the drop's inputs into the image, the image's outputs to the drop.
@@ -204,9 +217,9 @@ void AutomaxMaster::exchange(Drop& d) {
       }
       break;
     case AutomaxDropKind::Head57C330:
-      for (int rail : d.rails) {
+      if (host()->now() >= d.next_rail_read) read_rails(d);
+      for (int rail : d.head_rails) {
         Rail& s = d.rail_state[static_cast<std::size_t>(rail)];
-        if (s == Rail::None) s = Rail::Undefined;  // a rail found at a port (re-read each poll)
         if (s == Rail::Undefined) {
           // Non-zero data defines the rail: from the rail, an input; from the master, an output.
           if (d.field_in[static_cast<std::size_t>(rail)] != 0) s = Rail::Input;
@@ -421,13 +434,10 @@ DeviceStatus AutomaxMaster::inject(const DeviceFault& f) {
       d->rails.push_back(static_cast<int>(*rail));
       std::sort(d->rails.begin(), d->rails.end());
     }
-    if (s.kind == AutomaxDropKind::Head57C328) {
-      reset();  // "the drop will disconnect from the network, re-run the power-up diagnostics"
-    } else {
-      // The 57C330 re-reads its rails about every 20 ms: a removed rail loses its definition;
-      // the master learns the new set at the next connection.
-      d->rail_state[static_cast<std::size_t>(*rail)] = Rail::None;
-    }
+    // A 57C328 "will disconnect from the network, re-run the power-up diagnostics"; a 57C330
+    // notices at its next rail read (about every 20 ms) and the master learns the new set when
+    // the drop connects again.
+    if (s.kind == AutomaxDropKind::Head57C328) reset();
   } else if (f.fault == "drive offline" || f.fault == "drive online") {
     auto port = arg_int(f, 0);
     if (s.kind != AutomaxDropKind::DriveHead || !port || *port < 0 || *port > 3)

@@ -86,6 +86,7 @@ class AutomaxMaster : public Module {
   static constexpr int kAbortErrors = 18;
   static constexpr int kMessagesTransmitted = 19;
   static constexpr int kRetries = 3;  // "re-transmitted up to three times"
+  static constexpr Nanoseconds kRailReadPeriod = milliseconds(20);  // 57C330, section 4.6.3
 
   // `symbols`: the program's IODEF/RIODEF names by M0 word, so a refused access names them.
   using SymbolNames = std::map<int, std::string>;
@@ -126,6 +127,8 @@ class AutomaxMaster : public Module {
     std::vector<int> rails;                   // connected rails / ports now
     std::vector<int> known_rails;             // as sent at the last connection (configured at first)
     std::array<Rail, 16> rail_state{};        // 57C330 rail definitions
+    std::vector<int> head_rails;              // 57C330: the rails at its last rail read
+    VirtualTime next_rail_read = 0;
     std::array<bool, 4> port_online{true, true, true, true};  // drive head
     bool shark_configured = false;
     std::uint16_t shark_config = 0;
@@ -143,6 +146,7 @@ class AutomaxMaster : public Module {
   void exchange(Drop& d);
   void go_offline(Drop& d);
   void join(Drop& d);
+  void read_rails(Drop& d);
   void power_up();
   void poll_inactive(int area);
   void update_cycle();

@@ -239,6 +239,18 @@ TEST(AutomaxMaster, Head57C330RailDefinition) {
   EXPECT_TRUE(b.until([&] { return b.b(A(b, "RIO_D04")); }, milliseconds(80)));
   EXPECT_EQ(b->observe("HEAD4", "rails")->at(0), 1);
   EXPECT_TRUE(b->set(A(b, "HEAD_R0"), Value::of_int(0)));
+  // Rail 1 removed: the head notices at its next rail read, within about 20 ms, and the rail
+  // loses its definition; the master keeps the configuration the drop sent when it connected, so
+  // the register stays accessible until the drop reconnects.
+  b->run_for(milliseconds(20));
+  EXPECT_EQ(b->observe("HEAD4", "rails")->at(1), 3);
+  b.inject("HEAD4", "rail removed", {"1"});
+  b->run_for(milliseconds(30));
+  EXPECT_EQ(b->observe("HEAD4", "rails")->at(1), 0);
+  EXPECT_TRUE(b->set(A(b, "HEAD_R1"), Value::of_int(0)));
+  b.inject("HEAD4", "rail added", {"1"});
+  b->run_for(milliseconds(30));
+  EXPECT_EQ(b->observe("HEAD4", "rails")->at(1), 1);  // found again: undefined
   // A power cycle of the drop also clears the definitions (4.6.3 a).
   b.inject("HEAD4", "input", {"0", "0", "1"});
   b->run_for(milliseconds(20));

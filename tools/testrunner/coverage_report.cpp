@@ -8,7 +8,8 @@ namespace softslc::testing {
 
 void CoverageCollector::add(const TestOutcome& outcome) {
   for (const auto& [program, flags] : outcome.coverage) {
-    auto it = std::find_if(merged_.begin(), merged_.end(), [&](const auto& m) { return m.first == program; });
+    // (A structured binding is captured by name: clang 14, which builds the fuzzers, needs it.)
+    auto it = std::find_if(merged_.begin(), merged_.end(), [p = program](const auto& m) { return m.first == p; });
     if (it == merged_.end()) {
       merged_.emplace_back(program, flags);
       continue;

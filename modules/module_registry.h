@@ -36,6 +36,7 @@ struct ModulePrepareContext {
   const BenchNode* bench;              // the top-level bench node wired to this slot, or nullptr
   DiagnosticList& program_diagnostics;  // positions in the program file (the SLOT line)
   DiagnosticList& bench_diagnostics;    // positions in the bench file
+  std::string bench_name = {};          // the bench file's path as given (files it names are beside it)
 };
 
 struct ModuleFamily {
@@ -68,5 +69,6 @@ ModuleRegistry builtin_module_registry();
 // Registration functions of the built-in families (each family's own source file).
 void register_discrete_io_family(ModuleRegistry& registry);
 void register_rio_scanner_family(ModuleRegistry& registry);
+void register_scanport_family(ModuleRegistry& registry);
 
 }  // namespace softslc

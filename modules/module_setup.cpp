@@ -103,7 +103,7 @@ ModuleSetup setup_modules(const Program& program, const BenchFile* bench, const 
     if (!family) continue;
     auto it = nodes.find(slot.slot);
     ModulePrepareContext ctx{program, slot, it == nodes.end() ? nullptr : it->second, s.program_diagnostics,
-                             s.bench_diagnostics};
+                             s.bench_diagnostics, s.bench_name};
     if (SlotModuleBuilder b = family->prepare(ctx)) builders.emplace(slot.slot, std::move(b));
   }
   s.program_diagnostics.sort_by_position();

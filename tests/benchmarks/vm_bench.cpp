@@ -27,6 +27,7 @@
 
 #include "parser/loader.h"
 #include "vm/compiler.h"
+#include "vm/coverage.h"
 #include "vm/interpreter.h"
 
 namespace softslc {
@@ -130,6 +131,23 @@ void BM_VmProgramScan(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(instructions), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_VmProgramScan)->Arg(1000)->Arg(10000)->Unit(benchmark::kMicrosecond);
+
+// The same scan with ladder coverage recorded (softslc test --coverage): every instruction goes
+// through the general switch and is reported to the recorder.
+void BM_VmProgramScanWithCoverage(benchmark::State& state) {
+  VmFixture vm(static_cast<int>(state.range(0)));
+  CoverageRecorder recorder(vm.program);
+  vm.interp->set_coverage(&recorder);
+  std::uint64_t instructions = 0;
+  for (auto _ : state) {
+    ProgramScanResult r = vm.scan();
+    instructions += r.instructions;
+    benchmark::DoNotOptimize(r);
+  }
+  state.counters["s/instr"] =
+      benchmark::Counter(static_cast<double>(instructions), benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_VmProgramScanWithCoverage)->Arg(1000)->Unit(benchmark::kMicrosecond);
 
 void BM_NativeScan(benchmark::State& state) {
   NativeFixture native(static_cast<int>(state.range(0)));

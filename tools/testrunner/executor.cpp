@@ -248,6 +248,7 @@ class Session {
     last_scans_ = 0;
     forces_cleared_ = false;
     forces_.clear();
+    injected_.clear();
     if (mode != Mode::Program) {
       if (auto st = rt_->set_mode(mode); !st) {
         Failure f = failure_at(loc, what, {});
@@ -311,6 +312,7 @@ class Session {
       case Step::Kind::Restore: return restore(s, context);
       case Step::Kind::Device:
         if (auto st = rt_->inject(s.name, s.change, s.args); !st) return refused(s, context, st.message);
+        injected_.push_back(&s);
         return std::nullopt;
     }
     return std::nullopt;
@@ -415,8 +417,8 @@ class Session {
   }
 
   // Power off and on: a new Runtime with the old data table (battery-backed on the SLC) except
-  // the bits OTE instructions write (non-retentive on power loss), the field inputs as they were
-  // (the field did not change), the test's forces (kept in processor memory), in the mode the
+  // the bits OTE instructions write (non-retentive on power loss), the field inputs and the
+  // changes injected into bench devices as they were (the field did not change), the test's forces (kept in processor memory), in the mode the
   // processor was in. Entering Run sets the first pass bit and zeroes S:4, as on power-up in Run.
   std::optional<Failure> power_cycle(const Step& s, const std::string& context) {
     if (rt_->fault() || rt_->mode() == Mode::Faulted)
@@ -449,6 +451,10 @@ class Session {
     time_base_ += rt_->now();
     scan_base_ += rt_->stats().scans;
     replace_runtime(std::move(r.runtime));
+    // The field devices did not lose power with the processor: what the test injected into them
+    // (an adapter off line, a module's data) still holds, so it is applied to the new modules.
+    for (const Step* d : injected_)
+      if (auto st = rt_->inject(d->name, d->change, d->args); !st) return refused(s, context, st.message);
     if (forces_cleared_) rt_->clear_forces();
     for (const auto& [addr, on] : forces_) {
       if (on) rt_->force(addr, *on);
@@ -615,6 +621,7 @@ class Session {
   std::uint64_t last_scans_ = 0;
   bool forces_cleared_ = false;     // `unforce all` removed the program's own FORCE blocks
   std::map<std::string, std::optional<bool>> forces_;  // by address: forced value, or unforced
+  std::vector<const Step*> injected_;  // the device steps run on the current bench, in order
 };
 
 }  // namespace

@@ -1,0 +1,140 @@
+// softslc::Controller — the C++ API for testing ladder programs from GoogleTest (or any C++).
+//
+// One Controller is one simulated SLC 500 with its chassis and bench: load a program (and its
+// bench file of simulated field devices), then drive it the way `softslc test` files do —
+// set/get/force by address or SYMBOL, scan, run for a virtual duration or until a condition,
+// change modes, inject device faults, observe devices, take snapshots and restore them.
+//
+//   softslc::Controller plc = softslc::Controller::load("seal_in.slc");
+//   plc.scan();                                   // the first pass
+//   plc.set("START_PB", 1);
+//   plc.scan();
+//   EXPECT_EQ(plc.get_bit("MOTOR"), true);
+//   EXPECT_TRUE(plc.run_until([](const auto& p) { return p.get_bit("OL_TRIPPED"); }, softslc::seconds(2)));
+//
+// Errors are exceptions (softslc::ControllerError) carrying the whole message — gcc-style
+// diagnostics for a program or bench that does not load, the runtime's reason for a refused
+// request — so a test fails at the call that went wrong with a readable reason. A major fault of
+// the ladder is not an error: it is state, read with fault().
+//
+// Snapshots are exact and cheap to take: the simulation is deterministic, so a snapshot is the
+// journal of state-changing calls made since load (a run_until recorded as a run for the
+// virtual time it took), and restore() replays it into a fresh processor of the same program
+// and bench. A snapshot can be restored any number of times.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "parser/program.h"
+#include "vm/faults.h"
+#include "vm/runtime.h"
+
+namespace softslc {
+
+class ControllerError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One state-changing call, as a snapshot journal records it.
+struct ControllerCall {
+  enum class Kind : std::uint8_t { Set, SetFloat, Force, Unforce, Scans, RunFor, SetMode, ClearFault, Inject };
+  Kind kind = Kind::Scans;
+  std::string target;  // address (symbols resolved) or device
+  std::int64_t integer = 0;  // Set: value; Force: 0/1; Scans: how many; RunFor: nanoseconds
+  double real = 0.0;         // SetFloat
+  Mode mode = Mode::Run;     // SetMode
+  std::string change;        // Inject
+  std::vector<std::string> args;
+};
+
+class Controller {
+ public:
+  // A snapshot: the calls that lead from the download state to the state it names.
+  class Snapshot {
+   public:
+    std::size_t calls() const { return journal_.size(); }
+
+   private:
+    friend class Controller;
+    std::vector<ControllerCall> journal_;
+  };
+
+  // Loads a program file and, optionally, its bench file. The processor starts in Run (as a
+  // `softslc test` test does): call set_mode(Mode::Program) first to start elsewhere.
+  static Controller load(const std::filesystem::path& program,
+                         const std::optional<std::filesystem::path>& bench = std::nullopt);
+  // The same from text (`name` and `bench_name` are used in diagnostics).
+  static Controller from_text(std::string program_text, std::string bench_text = {},
+                              std::string name = "program.slc", std::string bench_name = "program.bench");
+
+  Controller(Controller&&) noexcept;
+  Controller& operator=(Controller&&) noexcept;
+  ~Controller();
+
+  // ---- Data: addresses as in programs (N7:0, I:1/0, T4:0.ACC, #N7:2) or SYMBOL names ----
+  // An I: address sets the field input (seen at the next input scan); anything else writes now.
+  void set(std::string_view target, std::int64_t value);
+  void set_float(std::string_view target, double value);
+  Value get(std::string_view target) const;
+  bool get_bit(std::string_view target) const { return get(target).as_bool(); }
+  std::int64_t get_int(std::string_view target) const { return get(target).as_int(); }
+  double get_float(std::string_view target) const { return get(target).as_double(); }
+
+  // ---- Forces (I: and O: bits), as on the SLC ----
+  void force(std::string_view target, bool on);
+  void unforce(std::string_view target);
+
+  // ---- Running (virtual time) ----
+  // Runs n scan cycles; returns how many ran (fewer when the processor faulted).
+  int scan(int n = 1);
+  // Runs whole scans until at least `duration` of virtual time has passed; returns scans run.
+  int run_for(Nanoseconds duration);
+  // Runs whole scans until `condition` holds (checked before the first scan and after each) or
+  // `limit` has passed; returns whether it held.
+  bool run_until(const std::function<bool(const Controller&)>& condition, Nanoseconds limit);
+  VirtualTime now() const;
+  std::uint64_t scans() const;
+
+  // ---- Modes and faults ----
+  void set_mode(Mode m);
+  Mode mode() const;
+  const std::optional<FaultInfo>& fault() const;
+  void clear_fault();
+
+  // ---- Bench devices (docs/bench-format.md) ----
+  void inject(std::string_view device, std::string_view change, std::vector<std::string> args = {});
+  std::vector<std::int64_t> observe(std::string_view device, std::string_view what) const;
+  std::vector<std::string> devices() const;
+
+  // ---- Snapshots ----
+  Snapshot snapshot() const;
+  void restore(const Snapshot& s);
+
+  // ---- The underlying processor, for anything the API does not cover ----
+  // (Changes made through it directly are not recorded in snapshots.)
+  Runtime& runtime();
+  const Runtime& runtime() const;
+  const Program& program() const;
+
+ private:
+  struct Loaded;
+  explicit Controller(std::shared_ptr<const Loaded> loaded);
+  void fresh_runtime();
+  std::string address_of(std::string_view target) const;
+  // Performs a call on the current processor; records it in the journal when `record`.
+  void apply(const ControllerCall& c, bool record);
+
+  std::shared_ptr<const Loaded> loaded_;
+  std::unique_ptr<Runtime> runtime_;
+  std::vector<ControllerCall> journal_;
+};
+
+}  // namespace softslc

@@ -19,6 +19,7 @@ ModuleRegistry builtin_module_registry() {
   ModuleRegistry r;
   register_discrete_io_family(r);
   register_rio_scanner_family(r);
+  register_sdn_scanner_family(r);
   register_scanport_family(r);
   return r;
 }

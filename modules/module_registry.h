@@ -69,6 +69,7 @@ ModuleRegistry builtin_module_registry();
 // Registration functions of the built-in families (each family's own source file).
 void register_discrete_io_family(ModuleRegistry& registry);
 void register_rio_scanner_family(ModuleRegistry& registry);
+void register_sdn_scanner_family(ModuleRegistry& registry);
 void register_scanport_family(ModuleRegistry& registry);
 
 }  // namespace softslc

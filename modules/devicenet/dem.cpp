@@ -77,6 +77,11 @@ void DemPort::on_rung(std::uint32_t owner, std::span<std::uint16_t, kWords> cb, 
     // A DEM still waiting for the slot gives up; a finished one clears EN (p.100).
     w0 = static_cast<std::uint16_t>(w0 & ~kWS);
     if ((w0 & kEN) != 0 && (w0 & (kDN | kER)) != 0) w0 = static_cast<std::uint16_t>(w0 & ~kEN);
+    // An abandoned message never completes: its EN clears here, so the next transition sends again.
+    if (abandoned_ == owner) {
+      w0 = static_cast<std::uint16_t>(w0 & ~kEN);
+      abandoned_.reset();
+    }
     return;
   }
   if ((w0 & kEN) != 0 || owner_ == owner) return;  // accepted already (or still in flight)
@@ -104,6 +109,7 @@ void DemPort::on_rung(std::uint32_t owner, std::span<std::uint16_t, kWords> cb, 
 
 void DemPort::abandon() {
   if (owner_) scanner_.delete_transaction(txid_);
+  abandoned_ = owner_;
   owner_.reset();
 }
 

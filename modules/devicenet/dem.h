@@ -93,7 +93,7 @@ class DemPort {
   // data-table index of word 0) so several DEM instructions can share the module's one slot.
   void on_rung(std::uint32_t owner, std::span<std::uint16_t, kWords> cb, bool rung_in, VirtualTime now);
   // Forgets the in-flight message and deletes its transaction (the processor left Run). The
-  // owner's control block keeps EN until it executes again with its rung false.
+  // owner's control block keeps EN until it executes again with its rung false, which clears it.
   void abandon();
   std::optional<std::uint32_t> owner() const { return owner_; }
 
@@ -102,6 +102,7 @@ class DemPort {
 
   Scanner& scanner_;
   std::optional<std::uint32_t> owner_;
+  std::optional<std::uint32_t> abandoned_;  // the owner abandon() dropped, until its EN is cleared
   std::uint8_t txid_ = 0;
   VirtualTime start_ = 0;
   Nanoseconds timeout_ = 0;

@@ -1,0 +1,77 @@
+// The 1747-SDN DeviceNet scanner in a chassis slot: the library's Scanner (modules/devicenet) on
+// the backplane interface of vm/module.h.
+//
+// The module owns a simulated DeviceNet Network with the bench's devices attached and a Scanner
+// configured from the bench (or the factory defaults: node 63, 125K, empty scanlist; p.140). The
+// network keeps its own timeline; the module keeps it in step with the runtime: one host event at
+// the network's next event time advances it, and every access from the processor (image scans,
+// M0/M1, DEM) first advances it to the access's time, so both clocks agree and nothing happens
+// out of order. The network never runs ahead of the processor except to a DEM's own execution
+// time within the current scan.
+//
+//   input scan   I:e.0...n-1  = the scanner's input image (word 0 = module status register)
+//   output scan  O:e.0...n-1  -> the scanner (word 0 = command register; zeros outside Run = Idle)
+//   M0/M1        forwarded word by word, both files read/write (appendix D); a write to M0 words
+//                224-255 marks the request block, which the scanner takes once at the end of
+//                that processor scan (so a block written word by word or by one COP is one request)
+//   DEM          the module's single DemPort (chapter 8) over the instruction's 70-word control block
+//
+// Bench devices are reached by name: the network's name takes bus-level changes, each node's name
+// device-level ones (docs/1747-sdn.md, "The module").
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "modules/devicenet/dem.h"
+#include "modules/devicenet/network.h"
+#include "modules/devicenet/scanner.h"
+#include "modules/sdn/sdn_bench.h"
+#include "parser/program.h"
+#include "vm/module.h"
+
+namespace softslc {
+
+class SdnScanner final : public Module {
+ public:
+  SdnScanner(const SlotConfig& slot, int m0_words, int m1_words, std::shared_ptr<const SdnBench> bench);
+  ~SdnScanner() override;
+
+  // ---- Module ----
+  void attach(ModuleHost& host) override;
+  void input_scan(std::span<std::uint16_t> image) override;
+  void output_scan(std::span<const std::uint16_t> image) override;
+  int m_file_words(MFile f) const override;
+  MAccess read_m(MFile f, int word, std::uint16_t& value) override;
+  MAccess write_m(MFile f, int word, std::uint16_t value) override;
+  void on_mode_change(Mode from, Mode to) override;
+  void execute(ModuleInstructionContext& ctx) override;
+  std::vector<std::string> device_names() const override;
+  DeviceStatus inject(const DeviceFault& fault) override;
+  std::optional<std::vector<std::int64_t>> observe(std::string_view device, std::string_view what) const override;
+
+  // ---- For tests and tools ----
+  devicenet::Scanner& scanner() { return *scanner_; }
+  const devicenet::Scanner& scanner() const { return *scanner_; }
+  devicenet::Network& network() { return *network_; }
+
+ private:
+  // Advances the network to `t` (never backwards) and re-arms the host event.
+  void sync(VirtualTime t);
+  void rearm();
+  void wake(VirtualTime t);
+  DeviceStatus inject_network(const DeviceFault& fault);
+  DeviceStatus inject_node(int address, const DeviceFault& fault);
+  std::optional<int> address_of(std::string_view device) const;
+
+  std::shared_ptr<const SdnBench> bench_;
+  int m0_words_ = 0, m1_words_ = 0;
+  std::unique_ptr<devicenet::Network> network_;
+  std::unique_ptr<devicenet::Scanner> scanner_;       // made in attach(), at power-up time
+  std::unique_ptr<devicenet::dem::DemPort> dem_;
+  std::optional<VirtualTime> wake_at_;  // time of the armed host event
+  EventQueue::EventId wake_id_ = 0;
+  bool request_block_written_ = false;  // M0:224-255 written this processor scan
+};
+
+}  // namespace softslc

@@ -38,41 +38,48 @@ inline std::vector<std::uint16_t> words_of(std::string_view bytes) {
 }
 
 // ---- bench files -------------------------------------------------------------------------------
-// The bench text is set up against a 1747-SN program with block transfers to three adapters
-// (the manual's appendix A example). A bench that sets up cleanly is run for 50 ms of virtual
-// time: whatever it describes, the runtime neither crashes nor hangs. Every diagnostic points
-// inside the bench file.
+// The bench text is set up against one example program of each module family with a bench (the
+// 1747-SN appendix A block-transfer program, the 1203-SM1 appendix B messaging program, the
+// 1747-SDN chapter 8 DEM program; each has its module in slot 1). Every diagnostic points inside
+// the bench file; a bench that sets up cleanly is run for 50 ms of virtual time: whatever it
+// describes, the runtime neither crashes nor hangs.
 struct BenchFuzzProgram {
+  std::string name;
   std::string source;
   Program program;
 };
-inline const BenchFuzzProgram& bench_fuzz_program() {
-  static const BenchFuzzProgram loaded = [] {
-    std::ifstream in(std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder/1747-sn/throughput_bt.slc", std::ios::binary);
-    std::string source(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>{});
-    auto r = load_program(source, "throughput_bt.slc");
-    if (!r.ok()) throw std::runtime_error("bench fuzz program does not load:\n" + r.render_diagnostics());
-    return BenchFuzzProgram{std::move(source), *r.program};
+inline const std::vector<BenchFuzzProgram>& bench_fuzz_programs() {
+  static const std::vector<BenchFuzzProgram> loaded = [] {
+    std::vector<BenchFuzzProgram> v;
+    for (const char* path : {"1747-sn/throughput_bt.slc", "1203-sm1/appb_messaging.slc", "1747-sdn/ch8_dem_drive_parameter.slc"}) {
+      std::ifstream in(std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder/" + path, std::ios::binary);
+      std::string source(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>{});
+      auto r = load_program(source, path);
+      if (!r.ok()) throw std::runtime_error(std::string("bench fuzz program does not load:\n") + r.render_diagnostics());
+      v.push_back({path, std::move(source), *r.program});
+    }
+    return v;
   }();
   return loaded;
 }
 
 inline std::string check_bench_property(std::string_view bytes) {
-  const auto& [source, program] = bench_fuzz_program();
-  ModuleSetup setup = load_module_setup_text(program, std::string(bytes), "fuzz.bench");
   std::size_t lines = 1;
   for (char c : bytes) lines += c == '\n';
-  for (const auto& d : setup.bench_diagnostics.items())
-    if (d.line > lines) return "diagnostic at line " + std::to_string(d.line) + " beyond the bench's " + std::to_string(lines);
-  (void)setup.render("throughput_bt.slc", source);
-  if (!setup.ok()) return {};
-  auto created = Runtime::create(program, setup.options);
-  if (!created.ok()) return "a program that compiles without a bench does not compile with this one:\n" + created.render_errors();
-  Runtime& rt = *created.runtime;
-  if (auto st = rt.set_mode(Mode::Run); !st) return {};  // refused with a message: fine
-  const VirtualTime start = rt.now();
-  rt.run_for(50 * kNsPerMs);
-  if (rt.now() < start) return "virtual time went backwards";
+  for (const auto& [name, source, program] : bench_fuzz_programs()) {
+    ModuleSetup setup = load_module_setup_text(program, std::string(bytes), "fuzz.bench");
+    for (const auto& d : setup.bench_diagnostics.items())
+      if (d.line > lines) return "diagnostic at line " + std::to_string(d.line) + " beyond the bench's " + std::to_string(lines);
+    (void)setup.render(name, source);
+    if (!setup.ok()) continue;
+    auto created = Runtime::create(program, setup.options);
+    if (!created.ok()) return name + ": compiles without a bench but not with this one:\n" + created.render_errors();
+    Runtime& rt = *created.runtime;
+    if (!rt.set_mode(Mode::Run)) continue;  // refused with a message: fine
+    const VirtualTime start = rt.now();
+    rt.run_for(50 * kNsPerMs);
+    if (rt.now() < start) return name + ": virtual time went backwards";
+  }
   return {};
 }
 

@@ -251,16 +251,18 @@ TEST(StateModules, ARangeTheModuleDoesNotRetainIsRefusedUnlessForced) {
   EXPECT_NE(forced.warnings[0].find("M1:1.4-M1:1.11 from the state file is not retained"), std::string::npos);
 }
 
-TEST(StateModules, TheRioScannerAndTheScanportModuleRetainNothing) {
+TEST(StateModules, NoBuiltInModuleFamilyRetainsMFileWords) {
   // docs/robustness.md "Module M-file words": the 1747-SN's M0 is set to its defaults on entering
   // Run or Test and its M1 is status rebuilt after power-up; the 1203-SM1's M files are message
-  // buffers (what survives is the drive's non-volatile storage).
+  // buffers (what survives is the drive's non-volatile storage); the 1747-SDN keeps its scanlist
+  // in nonvolatile memory and its M-file tables in RAM.
   auto p = load("START 1747-L532\nSLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 3\n 0 1 15\n"
-                "SLOT 2 1203-SM1 SCAN_IN 32 SCAN_OUT 32 ID_CODE 13616 G_FILE 2\n 0 0\nLADDER 2\nSOR OTE B3:0/0 EOR\n");
+                "SLOT 2 1203-SM1 SCAN_IN 32 SCAN_OUT 32 ID_CODE 13616 G_FILE 2\n 0 0\n"
+                "SLOT 3 1747-SDN SCAN_IN 32 SCAN_OUT 32\nLADDER 2\nSOR OTE B3:0/0 EOR\n");
   auto setup = setup_modules(p, nullptr);
   auto r = Runtime::create(p, setup.options);
   ASSERT_TRUE(r.ok()) << r.render_errors();
-  for (auto [slot, catalog] : {std::pair{1, "1747-SN"}, std::pair{2, "1203-SM1"}}) {
+  for (auto [slot, catalog] : {std::pair{1, "1747-SN"}, std::pair{2, "1203-SM1"}, std::pair{3, "1747-SDN"}}) {
     ASSERT_NE(r.runtime->module(slot), nullptr);
     EXPECT_EQ(r.runtime->module(slot)->catalog(), catalog);
     EXPECT_TRUE(r.runtime->module(slot)->retained_m_words().empty()) << catalog;

@@ -32,6 +32,7 @@ constexpr std::array kModules{
     ModuleCatalogEntry{"1747-BSN", "Backup Remote I/O scanner", 13608, 32, 32, 3300, 3300, true},
     ModuleCatalogEntry{"1747-SDN", "DeviceNet scanner", 0, 32, 32, 395, 395, true},
     ModuleCatalogEntry{"1203-SM1", "SLC to SCANport module", 13616, 32, 32, 800, 400, true},
+    ModuleCatalogEntry{"57C416", "AutoMax Remote I/O master (dual-port image in M0)", 0, 0, 0, 4096, 0, true},
 };
 
 }  // namespace

@@ -21,6 +21,7 @@ ModuleRegistry builtin_module_registry() {
   register_rio_scanner_family(r);
   register_sdn_scanner_family(r);
   register_scanport_family(r);
+  register_automax_family(r);
   return r;
 }
 

@@ -71,5 +71,6 @@ void register_discrete_io_family(ModuleRegistry& registry);
 void register_rio_scanner_family(ModuleRegistry& registry);
 void register_sdn_scanner_family(ModuleRegistry& registry);
 void register_scanport_family(ModuleRegistry& registry);
+void register_automax_family(ModuleRegistry& registry);
 
 }  // namespace softslc

@@ -1,5 +1,6 @@
 #include "parser/checker.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -63,8 +64,9 @@ class Checker {
   // ---- Symbols -----------------------------------------------------------------------------------------
 
   void collect_symbols() {
-    for (const auto& s : program_.symbols) {
+    for (auto& s : program_.symbols) {
       if (s.name.empty()) continue;
+      if (s.automax && !resolve_automax_def(s)) continue;
       if (find_instruction(s.name) || s.name == "SOR" || s.name == "EOR" || s.name == "BST" || s.name == "NXB" ||
           s.name == "BND") {
         error(s.pos, "symbol '" + s.name + "' spells an instruction mnemonic; choose another name");
@@ -75,6 +77,98 @@ class Checker {
                                       std::to_string(it->second->pos.line) + ")");
       check_address(s.address, s.pos, OperandKind::Source, MFileAccess::OtherM, false);
     }
+  }
+
+  // True when `a` is in the file the program's MEMDEFs of its type are allocated in.
+  bool uses_memdef_file(const Address& a) const {
+    const char suffix = a.type == FileType::Bit && a.file == kMemdefBitFile       ? '@'
+                        : a.type == FileType::Integer && a.file == kMemdefWordFile ? '%'
+                                                                                    : 0;
+    if (!suffix) return false;
+    return std::any_of(program_.symbols.begin(), program_.symbols.end(), [&](const Symbol& s) {
+      return s.automax && s.automax->kind == AutomaxDef::Kind::MemDef && s.automax->suffix == suffix;
+    });
+  }
+
+  // ---- AutoMax IODEF / RIODEF / MEMDEF (parser/automax_def.h, docs/automax.md) -------------------------
+
+  // Checks the fields of an AutoMax definition and sets the symbol's address; false (after
+  // reporting, at the offending field) when the definition names no valid point.
+  bool resolve_automax_def(Symbol& s) {
+    const AutomaxDef& d = *s.automax;
+    const std::string what = std::string(keyword_of(d.kind)) + " " + s.name + d.suffix;
+    if (d.kind == AutomaxDef::Kind::MemDef) {
+      s.address.type = d.suffix == '@' ? FileType::Bit : FileType::Integer;
+      s.address.file = static_cast<std::uint16_t>(d.suffix == '@' ? kMemdefBitFile : kMemdefWordFile);
+      s.address.element = d.suffix == '@' ? d.memdef_index / 16 : d.memdef_index;
+      if (d.suffix == '@') s.address.bit = d.memdef_index % 16;
+      return true;
+    }
+    const bool rio = d.kind == AutomaxDef::Kind::RioDef;
+    std::vector<std::string_view> keys = rio ? std::vector<std::string_view>{"MASTER_SLOT", "DROP", "SLOT", "REGISTER"}
+                                             : std::vector<std::string_view>{"SLOT", "REGISTER"};
+    if (d.suffix == '@') keys.push_back("BIT");
+    bool ok = true;
+    auto field_error = [&](const AutomaxField& f, std::string m) {
+      diags_.error(f.line, f.value_column, what + ": " + m);
+      ok = false;
+    };
+    std::set<std::string> seen;
+    for (const auto& f : d.fields) {
+      if (!seen.insert(f.key).second) {
+        diags_.error(f.line, f.column, what + ": field " + f.key + " is given twice");
+        ok = false;
+      } else if (std::find(keys.begin(), keys.end(), f.key) == keys.end()) {
+        std::string known;
+        for (auto k : keys) known += (known.empty() ? "" : ", ") + std::string(k);
+        diags_.error(f.line, f.column, what + ": unknown field " + f.key + " (a " + std::string(keyword_of(d.kind)) +
+                                           " " + (d.suffix == '@' ? "bit" : "register") + " takes " + known + ")");
+        ok = false;
+      } else if (f.value < 0) {
+        ok = false;  // not a number: reported by the loader
+      }
+    }
+    for (auto k : keys)
+      if (!d.field(k)) {
+        error(s.pos, what + ": missing field " + std::string(k) +
+                         (k == "BIT" ? " (a name ending in '@' is a bit)" : ""));
+        ok = false;
+      }
+    if (!ok) return false;
+    auto in_range = [&](std::string_view key, int lo, int hi, const char* why) {
+      const AutomaxField& f = *d.field(key);
+      if (f.value >= lo && f.value <= hi) return true;
+      field_error(f, std::string(key) + " must be " + std::to_string(lo) + "-" + std::to_string(hi) + " (" + why + ")");
+      return false;
+    };
+    const AutomaxField& master = *d.field(rio ? "MASTER_SLOT" : "SLOT");
+    if (in_range(master.key, 1, 30, "the chassis slot of the 57C416 master")) {
+      const SlotConfig* slot = slot_of(static_cast<int>(master.value));
+      if (!slot || slot->catalog != kAutomaxMasterCatalog)
+        field_error(master, "slot " + std::to_string(master.value) + " holds no AutoMax Remote I/O master (a SLOT " +
+                                std::to_string(master.value) + " " + kAutomaxMasterCatalog + " line)");
+    }
+    if (d.suffix == '@') in_range("BIT", 0, 15, "registers are 16 bits");
+    if (!rio) {
+      if (in_range("REGISTER", 0, kAutomaxAreaWords - 1, "drop 0 registers, figure 4.1"))
+        s.address.word = automax_master_word(static_cast<int>(d.field("REGISTER")->value));
+    } else {
+      const AutomaxField& drop = *d.field("DROP");
+      if (drop.value == 8 || drop.value < 1 || drop.value > 15)
+        field_error(drop, "DROP must be 1-7, or 9-F for an all-digital Shark rack (section 4.4)");
+      in_range("SLOT", 0, kAutomaxSlots - 1, "rack slots of a drop");
+      in_range("REGISTER", 0, kAutomaxSlotRegisters - 1, "registers of a slot in the drop's image area");
+      if (ok)
+        s.address.word = automax_drop_word(automax_image_area(static_cast<int>(drop.value)),
+                                           static_cast<int>(d.field("SLOT")->value),
+                                           static_cast<int>(d.field("REGISTER")->value));
+    }
+    if (!ok) return false;
+    s.address.type = FileType::M0;
+    s.address.file = 0;
+    s.address.element = static_cast<std::uint16_t>(master.value);
+    if (d.suffix == '@') s.address.bit = static_cast<int>(d.field("BIT")->value);
+    return true;
   }
 
   void resolve(Operand& op) {
@@ -213,6 +307,15 @@ class Checker {
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
       error(op.pos, "unknown symbol '" + op.symbol + "' (" + where + ")");
       return;
+    }
+    if (op.kind == Operand::Kind::Address && uses_memdef_file(op.address))
+      return error(op.pos, where + ": " + std::string(file_letter(op.address.type)) + std::to_string(op.address.file) +
+                               " holds the program's MEMDEF variables; name them instead (docs/automax.md)");
+    if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
+      const Symbol* sym = symbols_.at(op.symbol);
+      if (sym->automax && sym->automax->kind == AutomaxDef::Kind::IoDef)
+        return error(op.pos, where + ": " + op.symbol + " is an IODEF point of drop 0, and drop 0 registers are read "
+                                                        "only (AutoMax Remote I/O manual, section 4.2)");
     }
     auto expect = [&](std::string_view what) {
       error(op.pos, where + ": expected " + std::string(what) + ", found '" + op.spelling + "'");

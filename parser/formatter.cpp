@@ -172,7 +172,16 @@ std::string format_program(const Program& p) {
   for (const auto& d : p.data) format_data(d, out);
   for (const auto& f : p.forces) format_force(f, out);
   for (const auto& s : p.symbols) {
-    if (s.name.empty()) {
+    if (s.automax) {
+      out += std::string(keyword_of(s.automax->kind)) + " " + s.name + s.automax->suffix;
+      if (s.automax->kind != AutomaxDef::Kind::MemDef) {
+        std::string fields;
+        for (const auto& f : s.automax->fields) fields += (fields.empty() ? "" : ",") + f.key + "=" + f.spelling;
+        out += "[" + fields + "]";
+      }
+      if (!s.description.empty()) out += " % " + s.description + " %";
+      out += '\n';
+    } else if (s.name.empty()) {
       out += "DESC " + to_string(s.address) + " % " + s.description + " %\n";
     } else {
       out += "SYMBOL " + to_string(s.address) + " " + s.name;

@@ -233,6 +233,26 @@ struct symbol_stmt : seq<kw_symbol, ws, must<symbol_address>, ws, must<symbol_de
 struct kw_desc : TAO_PEGTL_STRING("DESC") {};
 struct desc_stmt : seq<kw_desc, ws, must<symbol_address>, ws, must<symbol_description>, opt_ws> {};
 
+// AutoMax configuration statements (docs/automax.md): IODEF NAME@[SLOT=8,REGISTER=4,BIT=2],
+// RIODEF NAME%[MASTER_SLOT=8,DROP=2,SLOT=0,REGISTER=3], MEMDEF NAME@. A value is a decimal or
+// hexadecimal number (04, 20H) or a hexadecimal drop digit (C).
+struct def_suffix : one<'@', '%'> {};
+struct def_name : seq<identifier, must<def_suffix>> {};
+struct def_key : identifier {};
+struct def_equals : one<'='> {};
+struct def_value : plus<alnum> {};
+struct def_field : seq<def_key, opt_ws, must<def_equals>, opt_ws, must<def_value>> {};
+struct def_close : one<']'> {};
+struct def_fields : seq<one<'['>, opt_ws, must<def_field>, star<opt_ws, one<','>, opt_ws, must<def_field>>, opt_ws,
+                        must<def_close>> {};
+struct kw_iodef : TAO_PEGTL_STRING("IODEF") {};
+struct kw_riodef : TAO_PEGTL_STRING("RIODEF") {};
+struct kw_memdef : TAO_PEGTL_STRING("MEMDEF") {};
+struct def_note : comment {};
+struct io_def_stmt : seq<sor<kw_iodef, kw_riodef>, ws, must<def_name>, opt_ws, must<def_fields>, opt<ws, def_note>,
+                         opt_ws> {};
+struct mem_def_stmt : seq<kw_memdef, ws, must<def_name>, opt<ws, def_note>, opt_ws> {};
+
 // A free comment line (section headings, "% Rung: 0 %" markers, rung comments).
 struct comment_stmt : seq<comment, opt_ws> {};
 
@@ -240,6 +260,7 @@ struct comment_stmt : seq<comment, opt_ws> {};
 struct statement_end : eof {};
 struct rung_stmt : seq<rung, opt_ws> {};
 struct statement : seq<opt_ws, sor<start_stmt, slot_stmt, project_stmt, ladder_stmt, rung_stmt, data_stmt,
-                                   force_stmt, symbol_stmt, desc_stmt, comment_stmt>, must<statement_end>> {};
+                                   force_stmt, symbol_stmt, desc_stmt, io_def_stmt, mem_def_stmt,
+                                   comment_stmt>, must<statement_end>> {};
 
 }  // namespace softslc::grammar

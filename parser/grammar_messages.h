@@ -54,6 +54,16 @@ template <> inline constexpr auto error_message<force_item> = "expected a hexade
 template <> inline constexpr auto error_message<symbol_address> = "expected an address";
 template <> inline constexpr auto error_message<symbol_def_name> = "expected a symbol name (letters, digits, '_')";
 template <> inline constexpr auto error_message<symbol_description> = "expected a description between '%' signs";
+template <> inline constexpr auto error_message<def_name> =
+    "expected a variable name ending in '@' (bit) or '%' (register), for example RIO_D02@";
+template <> inline constexpr auto error_message<def_suffix> =
+    "expected '@' (a bit) or '%' (a register) at the end of the variable name";
+template <> inline constexpr auto error_message<def_fields> =
+    "expected '[' and the point's fields, for example [SLOT=8,REGISTER=4,BIT=2]";
+template <> inline constexpr auto error_message<def_field> = "expected a field KEY=value (SLOT, REGISTER, BIT, ...)";
+template <> inline constexpr auto error_message<def_equals> = "expected '=' between the field name and its value";
+template <> inline constexpr auto error_message<def_value> = "expected the field's value (a number)";
+template <> inline constexpr auto error_message<def_close> = "expected ',' and another field, or ']' to close the fields";
 template <> inline constexpr auto error_message<statement_end> = "unexpected text at the end of the statement";
 
 struct error_messages {

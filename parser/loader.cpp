@@ -893,6 +893,78 @@ template <> struct action<symbol_stmt> {
 };
 template <> struct action<desc_stmt> : action<symbol_stmt> {};
 
+// ---- IODEF / RIODEF / MEMDEF (AutoMax symbol definitions) -----------------------------------------
+
+template <typename Input>
+void start_automax_def(const Input& in, LoadState& s, AutomaxDef::Kind kind) {
+  s.symbol = {};
+  s.symbol.pos = pos_of(in);
+  s.symbol.automax = AutomaxDef{};
+  s.symbol.automax->kind = kind;
+}
+template <> struct action<kw_iodef> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { start_automax_def(in, s, AutomaxDef::Kind::IoDef); }
+};
+template <> struct action<kw_riodef> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { start_automax_def(in, s, AutomaxDef::Kind::RioDef); }
+};
+template <> struct action<kw_memdef> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { start_automax_def(in, s, AutomaxDef::Kind::MemDef); }
+};
+template <> struct action<def_name> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    auto text = in.string_view();
+    s.symbol.name = std::string(text.substr(0, text.size() - 1));
+    s.symbol.automax->suffix = text.back();
+  }
+};
+template <> struct action<def_key> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    AutomaxField f;
+    f.key = in.string();
+    f.line = pos_of(in).line;
+    f.column = pos_of(in).column;
+    s.symbol.automax->fields.push_back(std::move(f));
+  }
+};
+// A value is decimal (4, 04), hexadecimal (20H, 0x20) or, as the manual writes drop numbers
+// 9-F, a single hexadecimal letter (C).
+template <> struct action<def_value> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    AutomaxField& f = s.symbol.automax->fields.back();
+    f.spelling = in.string();
+    f.value_column = pos_of(in).column;
+    NumberValue v;
+    const char c = f.spelling.size() == 1 ? static_cast<char>(std::toupper(static_cast<unsigned char>(f.spelling[0]))) : 0;
+    if (c >= 'A' && c <= 'F') {
+      f.value = c - 'A' + 10;
+    } else if (parse_number_text(f.spelling, v) && !v.is_float && v.integer <= 0x7FFFFFFF) {
+      f.value = v.integer;
+    } else {
+      f.value = -1;
+      s.diags.error(f.line, f.value_column, "field " + f.key + ": '" + f.spelling + "' is not a number");
+    }
+  }
+};
+template <> struct action<def_note> : action<symbol_description> {};
+template <> struct action<io_def_stmt> : action<symbol_stmt> {};
+template <> struct action<mem_def_stmt> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) {
+    for (const auto& other : s.program.symbols)
+      if (other.automax && other.automax->kind == AutomaxDef::Kind::MemDef &&
+          other.automax->suffix == s.symbol.automax->suffix)
+        ++s.symbol.automax->memdef_index;
+    s.program.symbols.push_back(std::move(s.symbol));
+  }
+};
+
 // ---- Statement splitting -------------------------------------------------------------------------
 
 enum class SpanKind { Keyword, Comment, Data, Rung, Other };
@@ -913,10 +985,21 @@ std::string_view first_token(std::string_view line) {
 
 bool is_statement_keyword(std::string_view t) {
   static constexpr std::string_view kKeywords[] = {"START", "SLOT", "PROJECT", "LADDER", "SOR",
-                                                   "DATA",  "FORCE", "SYMBOL", "DESC"};
+                                                   "DATA",  "FORCE", "SYMBOL", "DESC", "IODEF",
+                                                   "RIODEF", "MEMDEF"};
   for (auto k : kKeywords)
     if (k == t) return true;
   return false;
+}
+
+// True when `line` is an IODEF/RIODEF/MEMDEF whose variable name ends in '%' (a register): that
+// '%' is part of the name, not the start of a comment.
+bool defines_register_name(std::string_view line, std::string_view tok) {
+  if (tok != "IODEF" && tok != "RIODEF" && tok != "MEMDEF") return false;
+  std::size_t i = line.find(tok) + tok.size();
+  while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+  while (i < line.size() && (std::isalnum(static_cast<unsigned char>(line[i])) || line[i] == '_')) ++i;
+  return i < line.size() && line[i] == '%';
 }
 
 // Splits the text into statements: a statement starts at a line whose first token is a
@@ -941,6 +1024,7 @@ std::vector<Span> split_statements(std::string_view text) {
     auto tok = first_token(l);
     bool in_block = cur && cur->kind == SpanKind::Data;
     auto percent_count = static_cast<std::size_t>(std::count(l.begin(), l.end(), '%'));
+    if (!comment_open && defines_register_name(l, tok)) --percent_count;  // RIODEF SPD_REF%[...]
     if (comment_open) {
       // Continue the open comment whatever this line holds.
     } else if (tok.empty() && l.find('%') == std::string_view::npos) {

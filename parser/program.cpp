@@ -119,7 +119,7 @@ bool same_program(const Program& a, const Program& b, std::string* first_differe
   if (a.symbols.size() != b.symbols.size()) return c.fail("symbol count differs");
   for (std::size_t i = 0; i < a.symbols.size(); ++i)
     if (a.symbols[i].name != b.symbols[i].name || !(a.symbols[i].address == b.symbols[i].address) ||
-        a.symbols[i].description != b.symbols[i].description)
+        a.symbols[i].description != b.symbols[i].description || a.symbols[i].automax != b.symbols[i].automax)
       return c.fail("symbol " + a.symbols[i].name + " differs");
   return true;
 }

@@ -16,6 +16,7 @@
 #include "instructions/instruction_table.h"
 #include "instructions/processor.h"
 #include "parser/address.h"
+#include "parser/automax_def.h"
 
 namespace softslc {
 
@@ -122,6 +123,8 @@ struct Symbol {
   Address address;
   std::string description;
   SourcePos pos;
+  // Defined by an AutoMax IODEF/RIODEF/MEMDEF statement (the checker computes `address`).
+  std::optional<AutomaxDef> automax;
 };
 
 struct Program {

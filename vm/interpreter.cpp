@@ -59,6 +59,12 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
   s24_ = L.status_word(status::kIndex);
 }
 
+std::string Interpreter::refused(MAccess a, int slot, MFile f, int word, bool write) const {
+  std::string text = "module refused (" + std::string(to_string(a)) + ")";
+  const std::string why = chassis_.m_refusal(slot, f, word, write);
+  return why.empty() ? text : text + ": " + why;
+}
+
 void Interpreter::raise(std::uint16_t code, std::string message) {
   if (faulted_) return;
   faulted_ = true;
@@ -224,8 +230,8 @@ bool Interpreter::rd_bit_slow(std::uint32_t o) {
     charge_m(d.access_row, 1);
     const MAccess a = chassis_.read_m(r.slot, r.which, static_cast<int>(r.word), v);
     if (a != MAccess::Ok) {
-      raise(fault::module_access(r.slot), "reading " + to_string(d.address) + ": module refused (" +
-                                              std::string(to_string(a)) + ")");
+      raise(fault::module_access(r.slot), "reading " + to_string(d.address) + ": " +
+                                              refused(a, r.slot, r.which, static_cast<int>(r.word), false));
       return false;
     }
     return (v >> r.bit) & 1u;
@@ -248,8 +254,8 @@ void Interpreter::wr_bit_slow(std::uint32_t o, bool v) {
       a = chassis_.write_m(r.slot, r.which, static_cast<int>(r.word),
                            static_cast<std::uint16_t>(v ? (word | mask) : (word & ~mask)));
     if (a != MAccess::Ok)
-      raise(fault::module_access(r.slot), "writing " + to_string(d.address) + ": module refused (" +
-                                              std::string(to_string(a)) + ")");
+      raise(fault::module_access(r.slot), "writing " + to_string(d.address) + ": " +
+                                              refused(a, r.slot, r.which, static_cast<int>(r.word), true));
     return;
   }
   std::uint16_t& word = w_[r.word];
@@ -291,7 +297,7 @@ std::int64_t Interpreter::rd_int(std::uint32_t o) {
         const MAccess a = chassis_.read_m(r.slot, r.which, static_cast<int>(r.word), v);
         if (a != MAccess::Ok) {
           raise(fault::module_access(r.slot),
-                "reading " + to_string(d.address) + ": module refused (" + std::string(to_string(a)) + ")");
+                "reading " + to_string(d.address) + ": " + refused(a, r.slot, r.which, static_cast<int>(r.word), false));
           return 0;
         }
         return static_cast<std::int16_t>(v);
@@ -348,7 +354,7 @@ void Interpreter::wr_word(std::uint32_t o, std::uint16_t v) {
         const MAccess a = chassis_.write_m(r.slot, r.which, static_cast<int>(r.word), v);
         if (a != MAccess::Ok)
           raise(fault::module_access(r.slot),
-                "writing " + to_string(d.address) + ": module refused (" + std::string(to_string(a)) + ")");
+                "writing " + to_string(d.address) + ": " + refused(a, r.slot, r.which, static_cast<int>(r.word), true));
         return;
       }
       switch (d.vtype) {
@@ -493,8 +499,8 @@ std::uint16_t Interpreter::span_get(const Span& s, std::uint32_t i) {
   const MAccess a = chassis_.read_m(s.slot, s.which, static_cast<int>(s.base + i), v);
   if (a != MAccess::Ok)
     raise(fault::module_access(s.slot), "reading M" + std::to_string(static_cast<int>(s.which)) + ":" +
-                                            std::to_string(s.slot) + "." + std::to_string(s.base + i) +
-                                            ": module refused (" + std::string(to_string(a)) + ")");
+                                            std::to_string(s.slot) + "." + std::to_string(s.base + i) + ": " +
+                                            refused(a, s.slot, s.which, static_cast<int>(s.base + i), false));
   return v;
 }
 
@@ -506,8 +512,8 @@ void Interpreter::span_set(const Span& s, std::uint32_t i, std::uint16_t v) {
   const MAccess a = chassis_.write_m(s.slot, s.which, static_cast<int>(s.base + i), v);
   if (a != MAccess::Ok)
     raise(fault::module_access(s.slot), "writing M" + std::to_string(static_cast<int>(s.which)) + ":" +
-                                            std::to_string(s.slot) + "." + std::to_string(s.base + i) +
-                                            ": module refused (" + std::string(to_string(a)) + ")");
+                                            std::to_string(s.slot) + "." + std::to_string(s.base + i) + ": " +
+                                            refused(a, s.slot, s.which, static_cast<int>(s.base + i), true));
 }
 
 // ---- Specialty-module instructions ------------------------------------------------------------------
@@ -544,16 +550,16 @@ class ModuleCall final : public ModuleInstructionContext {
     const MAccess a = in_.chassis_.read_m(slot, f, word, value);
     if (a == MAccess::Ok) return true;
     in_.raise(fault::module_access(slot), std::string(spec(op_).mnemonic) + " reading M" + std::to_string(static_cast<int>(f)) +
-                                              ":" + std::to_string(slot) + "." + std::to_string(word) +
-                                              ": module refused (" + std::string(to_string(a)) + ")");
+                                              ":" + std::to_string(slot) + "." + std::to_string(word) + ": " +
+                                              in_.refused(a, slot, f, word, false));
     return false;
   }
   bool write_m(int slot, MFile f, int word, std::uint16_t value) override {
     const MAccess a = in_.chassis_.write_m(slot, f, word, value);
     if (a == MAccess::Ok) return true;
     in_.raise(fault::module_access(slot), std::string(spec(op_).mnemonic) + " writing M" + std::to_string(static_cast<int>(f)) +
-                                              ":" + std::to_string(slot) + "." + std::to_string(word) +
-                                              ": module refused (" + std::string(to_string(a)) + ")");
+                                              ":" + std::to_string(slot) + "." + std::to_string(word) + ": " +
+                                              in_.refused(a, slot, f, word, true));
     return false;
   }
   void charge(MFileAccess row, int words) override { in_.charge_m(row, words); }

@@ -52,6 +52,8 @@ class ChassisAccess {
   virtual ~ChassisAccess() = default;
   virtual MAccess read_m(int slot, MFile f, int word, std::uint16_t& value) = 0;
   virtual MAccess write_m(int slot, MFile f, int word, std::uint16_t value) = 0;
+  // The module's reason for refusing an access (Module::m_refusal); empty when it gives none.
+  virtual std::string m_refusal(int /*slot*/, MFile, int /*word*/, bool /*write*/) const { return {}; }
   // IIM: copy `count` input words of `slot` from word `first` into the I file under `mask`.
   virtual void immediate_input(int slot, int first, int count, std::uint16_t mask) = 0;
   // IOM: send `count` O-file words of `slot` from word `first` to the module under `mask`.
@@ -119,6 +121,8 @@ class Interpreter {
 
   // Fault recording: the first fault of a scan wins.
   [[gnu::noinline, gnu::cold]] void raise(std::uint16_t code, std::string message);
+  // "module refused (no such word)", plus the module's reason when it gives one.
+  [[gnu::noinline, gnu::cold]] std::string refused(MAccess a, int slot, MFile f, int word, bool write) const;
 
   // The checked run-time resolver. Returns false (and raises) when the address leaves the table.
   bool resolve(const DynOperand& d, Ref& out);

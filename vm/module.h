@@ -173,6 +173,9 @@ class Module {
   virtual int m_file_words(MFile) const { return 0; }
   virtual MAccess read_m(MFile, int /*word*/, std::uint16_t& /*value*/) { return MAccess::NoSuchWord; }
   virtual MAccess write_m(MFile, int /*word*/, std::uint16_t /*value*/) { return MAccess::NoSuchWord; }
+  // Why the module refuses that access, in its own terms (for the fault message; empty: no more
+  // to say than the MAccess status), e.g. the AutoMax master's "bus error: drop 2 slot 5 ...".
+  virtual std::string m_refusal(MFile, int /*word*/, bool /*write*/) const { return {}; }
 
   virtual void on_mode_change(Mode /*from*/, Mode /*to*/) {}
 

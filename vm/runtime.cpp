@@ -398,7 +398,11 @@ RuntimeStatus Runtime::set(const Address& a, Value v) {
       }
       r = write_m(a.element, f, a.word_in_element(), word);
     }
-    if (r != MAccess::Ok) return RuntimeStatus::failure(to_string(a) + ": module refused (" + std::string(to_string(r)) + ")");
+    if (r != MAccess::Ok) {
+      const std::string why = m_refusal(a.element, f, a.word_in_element(), true);
+      return RuntimeStatus::failure(to_string(a) + ": module refused (" + std::string(to_string(r)) + ")" +
+                                    (why.empty() ? "" : ": " + why));
+    }
     return {};
   }
   std::string error;
@@ -426,7 +430,8 @@ std::optional<Value> Runtime::get(const Address& a, std::string* error) const {
     const MAccess r = m ? m->read_m(a.type == FileType::M0 ? MFile::M0 : MFile::M1, a.word_in_element(), word)
                         : MAccess::NoSuchWord;
     if (r != MAccess::Ok) {
-      if (error) *error = to_string(a) + ": module refused (" + std::string(to_string(r)) + ")";
+      const std::string why = m_refusal(a.element, a.type == FileType::M0 ? MFile::M0 : MFile::M1, a.word_in_element(), false);
+      if (error) *error = to_string(a) + ": module refused (" + std::string(to_string(r)) + ")" + (why.empty() ? "" : ": " + why);
       return std::nullopt;
     }
     if (a.bit >= 0) return Value::bit((word >> a.bit) & 1u);
@@ -518,6 +523,11 @@ MAccess Runtime::read_m(int slot, MFile f, int word, std::uint16_t& value) {
 MAccess Runtime::write_m(int slot, MFile f, int word, std::uint16_t value) {
   Module* m = module(slot);
   return m ? m->write_m(f, word, value) : MAccess::NoSuchWord;
+}
+
+std::string Runtime::m_refusal(int slot, MFile f, int word, bool write) const {
+  const Module* m = module(slot);
+  return m ? m->m_refusal(f, word, write) : std::string();
 }
 
 void Runtime::immediate_input(int slot, int first, int count, std::uint16_t mask) {

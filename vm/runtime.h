@@ -188,6 +188,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // ChassisAccess.
   MAccess read_m(int slot, MFile f, int word, std::uint16_t& value) override;
   MAccess write_m(int slot, MFile f, int word, std::uint16_t value) override;
+  std::string m_refusal(int slot, MFile f, int word, bool write) const override;
   void immediate_input(int slot, int first, int count, std::uint16_t mask) override;
   void immediate_output(int slot, int first, int count, std::uint16_t mask) override;
   void module_instruction(int slot, ModuleInstructionContext& ctx) override;

@@ -181,7 +181,7 @@ class Predictor {
       }
       if (c.m_bits_examined.size() + c.m_words_read.size() > 1)
         h.remedies.push_back("this rung makes " + std::to_string(c.accesses) +
-                             " separate M-file accesses: read the M1 status words once with a COP into a B or N "
+                             " separate M-file accesses: read the M-file words it uses once with a COP into a B or N "
                              "file and use those bits and words instead");
       if (c.unconditioned_cop_from_m)
         h.remedies.push_back("this COP from an M file runs every scan: if it only monitors the module, condition "

@@ -355,8 +355,8 @@ TEST(StateCli, KillingDuringSavesNeverLosesTheState) {
     pid_t pid = ::fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) {
-      std::freopen("/dev/null", "w", stdout);
-      std::freopen("/dev/null", "w", stderr);
+      // A child that cannot silence its output exits (126) rather than run unsilenced.
+      if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) ::_exit(126);
       ::execl(SOFTSLC_BINARY, SOFTSLC_BINARY, "run", prog.c_str(), "--for", "60m", "--state", state.c_str(),
               "--checkpoint", "10ms", static_cast<char*>(nullptr));
       ::_exit(127);
@@ -390,7 +390,7 @@ TEST(StateCli, SigtermSavesAndExits) {
   pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
-    std::freopen("/dev/null", "w", stdout);
+    if (!std::freopen("/dev/null", "w", stdout)) ::_exit(126);
     ::execl(SOFTSLC_BINARY, SOFTSLC_BINARY, "run", prog.c_str(), "--for", "60m", "--state", state.c_str(),
             static_cast<char*>(nullptr));
     ::_exit(127);

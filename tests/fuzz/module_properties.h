@@ -40,9 +40,9 @@ inline std::vector<std::uint16_t> words_of(std::string_view bytes) {
 // ---- bench files -------------------------------------------------------------------------------
 // The bench text is set up against one example program of each module family with a bench (the
 // 1747-SN appendix A block-transfer program, the 1203-SM1 appendix B messaging program, the
-// 1747-SDN chapter 8 DEM program; each has its module in slot 1). Every diagnostic points inside
-// the bench file; a bench that sets up cleanly is run for 50 ms of virtual time: whatever it
-// describes, the runtime neither crashes nor hangs.
+// 1747-SDN chapter 8 DEM program, the AutoMax Figure 4.3 Multibus head program). Every
+// diagnostic points inside the bench file; a bench that sets up cleanly is run for 50 ms of
+// virtual time: whatever it describes, the runtime neither crashes nor hangs.
 struct BenchFuzzProgram {
   std::string name;
   std::string source;
@@ -51,7 +51,8 @@ struct BenchFuzzProgram {
 inline const std::vector<BenchFuzzProgram>& bench_fuzz_programs() {
   static const std::vector<BenchFuzzProgram> loaded = [] {
     std::vector<BenchFuzzProgram> v;
-    for (const char* path : {"1747-sn/throughput_bt.slc", "1203-sm1/appb_messaging.slc", "1747-sdn/ch8_dem_drive_parameter.slc"}) {
+    for (const char* path : {"1747-sn/throughput_bt.slc", "1203-sm1/appb_messaging.slc", "1747-sdn/ch8_dem_drive_parameter.slc",
+                             "automax/fig4_3_multibus_head.slc"}) {
       std::ifstream in(std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder/" + path, std::ios::binary);
       std::string source(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>{});
       auto r = load_program(source, path);

@@ -20,23 +20,47 @@ ensure_packages clang libclang-rt-14-dev cmake ninja-build tao-pegtl-dev libcli1
 mkdir -p "$build"
 CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSLC_FUZZ=ON \
   -DSOFTSLC_TESTS=ON -DSOFTSLC_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS=-Wno-unused-command-line-argument > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-cmake --build "$build" --target program_fuzz address_fuzz testfile_fuzz
+targets=(program address testfile bench scanport_message transaction dem)
+cmake --build "$build" --target "${targets[@]/%/_fuzz}"
 
 corpus="$build/corpus"
 rm -rf "$corpus"
-mkdir -p "$corpus/program" "$corpus/address" "$corpus/testfile"
+for target in "${targets[@]}"; do mkdir -p "$corpus/$target"; done
 find "$root/examples" -name '*.test' -exec cp {} "$corpus/testfile/" \;
 find "$root/examples" -name '*.slc' -exec cp {} "$corpus/program/" \;
+find "$root/examples" -name '*.bench' -exec cp {} "$corpus/bench/" \;
 cp "$root"/../shared/fixtures/rslogix500/*.SLC "$corpus/program/" 2>/dev/null || true
 for a in 'I:1/3' 'O:2.1/15' 'B3/62' 'T4:0.ACC' 'C5:1/OV' '#N7:10' 'N7:[N10:1]' 'N[N10:0]:5' 'B3/[N7:0]' \
          'M0:1.100/13' 'L41:0' 'ST9:0' 'F8:2' 'S:1/15'; do
   printf '%s' "$a" > "$corpus/address/$(printf '%s' "$a" | md5sum | cut -c1-12)"
 done
 
+# The message decoders start from words the manuals' own examples write (little-endian bytes):
+# SCANport Figure B.3/B.4 (read the last parameter number of the drive) and B.7 (set parameter
+# 1 to 5); a 1747-SDN Get_Attribute_Single of the drive's identity vendor ID (appendix E) with
+# TXID 1, port 0, size 6, service 0x0E to node 20; and the same as a DEM control block with a
+# 2 s timeout followed by steps that set the rung, wait, and drop it.
+words() { for w in "$@"; do printf '\\x%02x\\x%02x' $((w & 0xFF)) $((w >> 8)); done; }
+printf "$(words 0x0E 0x0F 0 2 0)" > "$corpus/scanport_message/b4-last-parameter"
+printf "$(words 0x10 0x0F 1 1 2 5)" > "$corpus/scanport_message/b7-set-parameter"
+printf "$(words 0x0101 0x0006 0x0E14 0x0001 0x0001 0x0001)" > "$corpus/transaction/get-vendor-id"
+printf "$(words 0 2 0 0 0 0 0x0001 0x0000 0x0E14 0x0001 0x0001 0x0001)" > "$corpus/dem/get-vendor-id"
+head -c $((4 * 70 - 24)) /dev/zero >> "$corpus/dem/get-vendor-id"
+printf '\x01\x31\x31\x00\x01\x00' >> "$corpus/dem/get-vendor-id"
+
 status=0
-for target in program address testfile; do
+for target in "${targets[@]}"; do
+  # The message decoders read whole buffers: let inputs reach them from the start (four 100-word
+  # SCANport buffers; four 32-word transaction blocks with their gaps; two 70-word DEM control
+  # blocks and 64 steps). Elsewhere libFuzzer's default length control applies.
+  case "$target" in
+    scanport_message) len=(-max_len=800 -len_control=20) ;;
+    transaction) len=(-max_len=264 -len_control=20) ;;
+    dem) len=(-max_len=344 -len_control=20) ;;
+    *) len=() ;;
+  esac
   echo "== fuzzing ${target}_fuzz for ${seconds}s"
   (cd "$build" && ASAN_OPTIONS=detect_leaks=1 "./tests/fuzz/${target}_fuzz" -max_total_time="$seconds" -timeout=1 -seed=1 \
-    -rss_limit_mb=2048 -print_final_stats=1 "$corpus/$target" 2>&1 | tail -15) || status=1
+    -rss_limit_mb=2048 -print_final_stats=1 "${len[@]}" "$corpus/$target" 2>&1 | tail -15) || status=1
 done
 exit $status

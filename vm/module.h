@@ -61,6 +61,13 @@ enum class MAccess : std::uint8_t {
 };
 std::string_view to_string(MAccess a);
 
+// A run of M-file words a module retains across a power loss, with their contents.
+struct RetainedMWords {
+  MFile file = MFile::M0;
+  int first = 0;  // first word
+  std::vector<std::uint16_t> words;
+};
+
 // What the runtime offers a module.
 class ModuleHost {
  public:
@@ -171,6 +178,15 @@ class Module {
   virtual std::string m_refusal(MFile, int /*word*/, bool /*write*/) const { return {}; }
 
   virtual void on_mode_change(Mode /*from*/, Mode /*to*/) {}
+
+  // M-file words the real module keeps across a power loss ("Certain specialty I/O modules retain
+  // the status of M0-M1 data after power is removed. See your specialty I/O module user's
+  // manual", 1747-SN appendix B). `softslc run --state` saves them with the data table and puts
+  // them back into the fresh module before the first scan (vm/state_file.h). Each family decides
+  // from its manual and documents it; the default retains nothing.
+  virtual std::vector<RetainedMWords> retained_m_words() const { return {}; }
+  // Called only with a range retained_m_words() lists (same file, first word and length).
+  virtual void restore_m_words(const RetainedMWords& /*saved*/) {}
 
   // Executes a specialty instruction addressed to this module (BTR/BTW to a scanner, DEM to a
   // DeviceNet scanner). The default refuses with fault 001Fh: the module has no such instruction.

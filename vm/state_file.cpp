@@ -8,6 +8,7 @@
 
 #include "parser/formatter.h"
 #include "vm/atomic_file.h"
+#include "vm/runtime.h"
 
 namespace softslc {
 
@@ -67,6 +68,11 @@ class Reader {
     v = lo | (static_cast<std::uint64_t>(hi) << 32);
     return true;
   }
+  bool skip(std::size_t n) {
+    if (n > end_ - pos_) return false;
+    pos_ += n;
+    return true;
+  }
   std::size_t pos() const { return pos_; }
   std::size_t remaining() const { return end_ - pos_; }
 
@@ -76,10 +82,45 @@ class Reader {
   std::size_t pos_ = 0;
 };
 
+// Little-endian word `index` of the words starting at byte `first_byte` (already bounds-checked).
+std::uint16_t word_at(const std::string& bytes, std::size_t first_byte, std::uint32_t index) {
+  const std::size_t at = first_byte + 2 * static_cast<std::size_t>(index);
+  return static_cast<std::uint16_t>(static_cast<std::uint8_t>(bytes[at]) | (static_cast<std::uint8_t>(bytes[at + 1]) << 8));
+}
+
 std::string hex64(std::uint64_t v) {
   char buf[20];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
   return buf;
+}
+
+struct ModuleRecord {
+  int slot = 0;
+  MFile file = MFile::M0;
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+  std::size_t first_byte = 0;
+
+  std::string name() const {
+    const std::string m = "M" + std::to_string(static_cast<int>(file)) + ":" + std::to_string(slot) + ".";
+    return m + std::to_string(first) + "-" + m + std::to_string(first + count - 1);
+  }
+};
+
+// The range of `saved` that `module` retains now, if it does (same file, first word and length).
+bool retains(const Module* module, const ModuleRecord& saved) {
+  if (!module) return false;
+  for (const auto& r : module->retained_m_words())
+    if (r.file == saved.file && r.first >= 0 && static_cast<std::uint32_t>(r.first) == saved.first &&
+        r.words.size() == saved.count)
+      return true;
+  return false;
+}
+
+Module* module_in_slot(const std::vector<Module*>& modules, int slot) {
+  for (Module* m : modules)
+    if (m && m->slot() == slot) return m;
+  return nullptr;
 }
 
 struct FileRecord {
@@ -110,7 +151,14 @@ std::uint64_t program_fingerprint(const Program& program) {
   return h;
 }
 
-std::string encode_state(const DataTable& table, std::uint64_t fingerprint) {
+std::vector<Module*> chassis_modules(const Runtime& runtime) {
+  std::vector<Module*> modules;
+  for (int slot = 0; slot < kMaxSlots; ++slot)
+    if (Module* m = runtime.module(slot)) modules.push_back(m);
+  return modules;
+}
+
+std::string encode_state(const DataTable& table, std::uint64_t fingerprint, const std::vector<Module*>& modules) {
   const auto& layout = table.layout();
   std::string out(kMagic, sizeof kMagic);
   put_u32(out, kStateFormatVersion);
@@ -128,11 +176,24 @@ std::string encode_state(const DataTable& table, std::uint64_t fingerprint) {
     put_u32(out, f.elements);
     for (std::uint32_t w = f.base; w < f.end(); ++w) put_u16(out, table.word(w));
   }
+  std::vector<std::pair<int, RetainedMWords>> retained;
+  for (const Module* m : modules)
+    for (auto& r : m->retained_m_words()) retained.emplace_back(m->slot(), std::move(r));
+  put_u32(out, static_cast<std::uint32_t>(retained.size()));
+  for (const auto& [slot, r] : retained) {
+    put_u8(out, static_cast<std::uint8_t>(slot));
+    put_u8(out, static_cast<std::uint8_t>(r.file));
+    put_u16(out, 0);
+    put_u32(out, static_cast<std::uint32_t>(r.first));
+    put_u32(out, static_cast<std::uint32_t>(r.words.size()));
+    for (std::uint16_t w : r.words) put_u16(out, w);
+  }
   put_u32(out, crc32(out.data(), out.size()));
   return out;
 }
 
-StateLoadResult decode_state(const std::string& bytes, std::uint64_t fingerprint, DataTable& table, bool force) {
+StateLoadResult decode_state(const std::string& bytes, std::uint64_t fingerprint, DataTable& table, bool force,
+                             const std::vector<Module*>& modules) {
   StateLoadResult r;
   auto refuse = [&](std::string why) {
     r.ok = false;
@@ -150,11 +211,12 @@ StateLoadResult decode_state(const std::string& bytes, std::uint64_t fingerprint
                          (static_cast<std::uint32_t>(static_cast<std::uint8_t>(bytes[body + 3])) << 24);
   std::uint32_t version = 0;
   Reader in(bytes, body);
-  for (std::size_t i = 0; i < sizeof kMagic; ++i) {
-    std::uint8_t skip;
-    in.u8(skip);
-  }
+  in.skip(sizeof kMagic);
   in.u32(version);
+  if (version == 1)
+    return refuse("state file format version 1 is no longer read: this softslc writes version 2, which also "
+                  "keeps the M-file words modules retain; remove the file (the run then starts from the "
+                  "program's data) or run it with the softslc that saved it");
   if (version != kStateFormatVersion)
     return refuse("state file format version " + std::to_string(version) + " is not supported (this softslc reads " +
                   std::to_string(kStateFormatVersion) + ")");
@@ -178,17 +240,35 @@ StateLoadResult decode_state(const std::string& bytes, std::uint64_t fingerprint
     rec.words_per_element = wpe;
     rec.first_byte = in.pos();
     std::size_t need = static_cast<std::size_t>(rec.elements) * wpe * 2;
-    if (in.remaining() < need) return refuse("state file is truncated in file " + std::to_string(number));
-    for (std::size_t k = 0; k < need; ++k) {
-      std::uint8_t skip;
-      in.u8(skip);
-    }
+    if (!in.skip(need)) return refuse("state file is truncated in file " + std::to_string(number));
     records.push_back(rec);
+  }
+  std::uint32_t module_count = 0;
+  if (!in.u32(module_count)) return refuse("state file is truncated before its modules section");
+  std::vector<ModuleRecord> module_records;
+  for (std::uint32_t i = 0; i < module_count; ++i) {
+    ModuleRecord rec;
+    std::uint8_t slot, file;
+    std::uint16_t reserved;
+    if (!in.u8(slot) || !in.u8(file) || !in.u16(reserved) || !in.u32(rec.first) || !in.u32(rec.count))
+      return refuse("state file is truncated in module record " + std::to_string(i));
+    if (slot >= kMaxSlots || file > 1 || reserved != 0 || rec.count == 0)
+      return refuse("state file has an invalid module record " + std::to_string(i));
+    rec.slot = slot;
+    rec.file = static_cast<MFile>(file);
+    rec.first_byte = in.pos();
+    if (!in.skip(static_cast<std::size_t>(rec.count) * 2))
+      return refuse("state file is truncated in the words of " + rec.name());
+    module_records.push_back(rec);
   }
   if (in.remaining() != 0) return refuse("state file has trailing bytes after its last record");
   if (saved_fingerprint != fingerprint && !force)
     return refuse("state file was saved by a different program (fingerprint " + hex64(saved_fingerprint) +
                   ", this program " + hex64(fingerprint) + "); use --force-state to restore it anyway");
+  for (const auto& rec : module_records)
+    if (!force && !retains(module_in_slot(modules, rec.slot), rec))
+      return refuse("state file holds " + rec.name() + ", which the module in slot " + std::to_string(rec.slot) +
+                    " does not retain; use --force-state to restore the rest anyway");
 
   const auto& layout = table.layout();
   for (const auto& rec : records) {
@@ -203,23 +283,31 @@ StateLoadResult decode_state(const std::string& bytes, std::uint64_t fingerprint
       r.warnings.push_back("file " + name + " has " + std::to_string(f.elements) + " elements here and " +
                            std::to_string(rec.elements) + " in the state file; restored the first " +
                            std::to_string(elements));
-    for (std::uint32_t w = 0; w < elements * f.words_per_element; ++w) {
-      std::size_t at = rec.first_byte + 2 * w;
-      auto v = static_cast<std::uint16_t>(static_cast<std::uint8_t>(bytes[at]) |
-                                          (static_cast<std::uint8_t>(bytes[at + 1]) << 8));
-      table.set_word(f.base + w, v);
+    for (std::uint32_t w = 0; w < elements * f.words_per_element; ++w)
+      table.set_word(f.base + w, word_at(bytes, rec.first_byte, w));
+  }
+  for (const auto& rec : module_records) {
+    Module* m = module_in_slot(modules, rec.slot);
+    if (!retains(m, rec)) {
+      r.warnings.push_back(rec.name() + " from the state file is not retained by the module in slot " +
+                           std::to_string(rec.slot) + " here; not restored");
+      continue;
     }
+    RetainedMWords saved{rec.file, static_cast<int>(rec.first), {}};
+    for (std::uint32_t w = 0; w < rec.count; ++w) saved.words.push_back(word_at(bytes, rec.first_byte, w));
+    m->restore_m_words(saved);
   }
   r.ok = true;
   return r;
 }
 
-std::string save_state_file(const std::string& path, const DataTable& table, std::uint64_t fingerprint) {
-  return write_file_atomically(path, encode_state(table, fingerprint));
+std::string save_state_file(const std::string& path, const DataTable& table, std::uint64_t fingerprint,
+                            const std::vector<Module*>& modules) {
+  return write_file_atomically(path, encode_state(table, fingerprint, modules));
 }
 
 StateLoadResult load_state_file(const std::string& path, std::uint64_t fingerprint, DataTable& table, bool force,
-                                bool* missing) {
+                                bool* missing, const std::vector<Module*>& modules) {
   *missing = false;
   std::ifstream in(path, std::ios::binary);
   if (!in) {
@@ -231,7 +319,7 @@ StateLoadResult load_state_file(const std::string& path, std::uint64_t fingerpri
   }
   std::ostringstream ss;
   ss << in.rdbuf();
-  auto r = decode_state(ss.str(), fingerprint, table, force);
+  auto r = decode_state(ss.str(), fingerprint, table, force, modules);
   if (!r.ok) r.error = path + ": " + r.error;
   return r;
 }

@@ -11,13 +11,20 @@
 //     unless the user forces it, in which case files are restored only where number, type and
 //     element size agree.
 //
-// Format, version 1, all integers little-endian:
+// Besides the data table, a state file carries the M-file words each module retains across a
+// power loss (Module::retained_m_words(); the 1747-SN retains none, docs/1747-sn.md). They are
+// checked with the rest and restored only into a module that retains the same range now.
+//
+// Format, version 2, all integers little-endian:
 //   magic    16 bytes  "SOFTSLC-STATE\n\0\0"
-//   version  u32       1
+//   version  u32       2 (version 1, without the modules section, is refused with a clear error)
 //   program  u64       FNV-1a 64 of the program's canonical text (parser/formatter.h)
 //   files    u32       count N, then N records:
 //              u8 file number, u8 file type (FileType), u8 words per element, u8 reserved 0,
 //              u32 element count, then elements x words-per-element u16 words
+//   modules  u32       count M, then M records, in slot order:
+//              u8 slot, u8 M file (0 = M0, 1 = M1), u16 reserved 0, u32 first word,
+//              u32 word count, then the u16 words
 //   crc      u32       CRC-32 (IEEE 802.3) of every byte before it
 #pragma once
 
@@ -27,16 +34,23 @@
 
 #include "parser/program.h"
 #include "vm/data_table.h"
+#include "vm/module.h"
 
 namespace softslc {
 
-inline constexpr std::uint32_t kStateFormatVersion = 1;
+class Runtime;
+
+inline constexpr std::uint32_t kStateFormatVersion = 2;
+
+// The chassis modules of a runtime, in slot order: what a state file saves retained words from
+// and restores them into.
+std::vector<Module*> chassis_modules(const Runtime& runtime);
 
 // The fingerprint that ties a state file to a program.
 std::uint64_t program_fingerprint(const Program& program);
 
-// Serialises the data table (every file of the layout).
-std::string encode_state(const DataTable& table, std::uint64_t fingerprint);
+// Serialises the data table (every file of the layout) and the modules' retained M-file words.
+std::string encode_state(const DataTable& table, std::uint64_t fingerprint, const std::vector<Module*>& modules = {});
 
 struct StateLoadResult {
   bool ok = false;
@@ -44,15 +58,19 @@ struct StateLoadResult {
   std::vector<std::string> warnings;  // forced restore: files skipped or truncated
 };
 
-// Checks `bytes` completely, then restores it into `table`. With `force`, a state from another
-// program is accepted and restored file by file where the layouts agree.
-StateLoadResult decode_state(const std::string& bytes, std::uint64_t fingerprint, DataTable& table, bool force);
+// Checks `bytes` completely, then restores it into `table` and `modules`. A module record whose
+// slot holds no module retaining that range (file, first word, length) is refused; with `force`,
+// a state from another program is accepted and restored file by file where the layouts agree,
+// and such module records are skipped with a warning.
+StateLoadResult decode_state(const std::string& bytes, std::uint64_t fingerprint, DataTable& table, bool force,
+                             const std::vector<Module*>& modules = {});
 
 // File helpers. save_state_file writes atomically and returns an empty string on success.
-std::string save_state_file(const std::string& path, const DataTable& table, std::uint64_t fingerprint);
+std::string save_state_file(const std::string& path, const DataTable& table, std::uint64_t fingerprint,
+                            const std::vector<Module*>& modules = {});
 // Reads and restores; a missing file is reported as `missing` (not an error: the first run).
 StateLoadResult load_state_file(const std::string& path, std::uint64_t fingerprint, DataTable& table, bool force,
-                                bool* missing);
+                                bool* missing, const std::vector<Module*>& modules = {});
 
 // CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320) of a byte string.
 std::uint32_t crc32(const void* data, std::size_t size);

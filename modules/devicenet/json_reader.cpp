@@ -22,7 +22,8 @@ std::string describe(const json& value) {
     case json::value_t::number_integer:
     case json::value_t::number_unsigned: return "an integer " + value.dump();
     case json::value_t::number_float: return "a number " + value.dump();
-    case json::value_t::string: return "a string " + value.dump();
+    // Strings from a bench file may hold any bytes: invalid UTF-8 is shown as U+FFFD, not thrown.
+    case json::value_t::string: return "a string " + value.dump(-1, ' ', false, json::error_handler_t::replace);
     case json::value_t::array: return "an array";
     case json::value_t::object: return "an object";
     default: return "an unsupported value";

@@ -1,6 +1,10 @@
 #include "modules/sn/block_transfer.h"
 
 #include <algorithm>
+#include <functional>
+#include <map>
+
+#include "instructions/instruction_table.h"
 
 namespace softslc::rio {
 
@@ -73,6 +77,45 @@ void execute_block_transfer(ModuleInstructionContext& ctx) {
   }
   for (std::uint32_t k = 0; k < 3; ++k)
     if (k != 1 && !ctx.write(0, k, cb[k])) return;
+}
+
+void check_buffer_sharing(const Program& program, int slot, DiagnosticList& diags) {
+  struct FirstUse {
+    const Instruction* instruction;
+    int file, rung;
+  };
+  std::map<int, FirstUse> users;  // buffer number -> its first BTR/BTW
+  std::function<void(const std::vector<RungElement>&, int, int)> walk = [&](const std::vector<RungElement>& elements,
+                                                                              int file, int rung) {
+    for (const auto& e : elements) {
+      if (e.kind == RungElement::Kind::Branch) {
+        for (const auto& leg : e.legs) walk(leg, file, rung);
+        continue;
+      }
+      const Instruction& in = e.instruction;
+      if ((in.opcode != Opcode::BTR && in.opcode != Opcode::BTW) || in.operands.size() < 2) continue;
+      const Operand& control = in.operands[0];
+      const Operand& buffer = in.operands[1];
+      if (!buffer.is_address() || buffer.address.element != slot) continue;
+      const int x = buffer_at(buffer.address.word);
+      if (x == 0) continue;  // not a buffer address: the checker has said so
+      auto [it, first] = users.try_emplace(x, FirstUse{&in, file, rung});
+      if (first) continue;
+      const Instruction& other = *it->second.instruction;
+      if (control.is_address() && other.operands[0].is_address() && control.address == other.operands[0].address)
+        continue;
+      diags.error(buffer.pos.line, buffer.pos.column,
+                  "block-transfer buffer " + std::to_string(x) + " of the 1747-SN in slot " + std::to_string(slot) +
+                      " (M0:" + std::to_string(slot) + "." + std::to_string(x * kBufferStride) + " and M1:" +
+                      std::to_string(slot) + "." + std::to_string(x * kBufferStride) + ") is already used by " +
+                      std::string(spec(other.opcode).mnemonic) + " " + other.operands[0].spelling + " in file " +
+                      std::to_string(it->second.file) + " rung " + std::to_string(it->second.rung) + " (line " +
+                      std::to_string(other.pos.line) + "): the scanner has 32 buffers, one per block transfer; " +
+                      "\"the next BT instruction must use another M-file buffer\" (1747-SN p. 5-6)");
+    }
+  };
+  for (const auto& f : program.files)
+    for (std::size_t r = 0; r < f.rungs.size(); ++r) walk(f.rungs[r].elements, f.number, static_cast<int>(r));
 }
 
 }  // namespace softslc::rio

@@ -26,6 +26,8 @@
 
 #include <cstdint>
 
+#include "parser/diagnostics.h"
+#include "parser/program.h"
 #include "vm/module.h"
 #include "vm/virtual_time.h"
 
@@ -89,5 +91,14 @@ constexpr int slot_of(std::uint16_t control) { return control & 1; }
 // Access times charged: the control word and count as two "any M file address" accesses, the
 // status as one "COP from M file" of 4 words, BTW data "COP to M file", BTR data "COP from M file".
 void execute_block_transfer(ModuleInstructionContext& ctx);
+
+// "A total of 32 block transfer buffers are available; you can execute a maximum of 32 different
+// block transfers", "the next BT instruction must use another M-file buffer" (1747-SN p. 5-5,
+// 5-6). Two BTR/BTW instructions of different control blocks on the same buffer of scanner
+// `slot` would overwrite each other's control word and both take the one transfer's status and
+// data, silently; so a 33rd block transfer (or any second user of a buffer) is refused at its
+// operand, naming the first. The same control block on the same buffer is the same transfer
+// (written twice in the ladder, e.g. in two subroutines) and is allowed.
+void check_buffer_sharing(const Program& program, int slot, DiagnosticList& diags);
 
 }  // namespace softslc::rio

@@ -4,6 +4,7 @@
 
 #include "instructions/module_catalog.h"
 #include "modules/module_registry.h"
+#include "modules/sn/block_transfer.h"
 #include "modules/sn/rio_bench.h"
 #include "modules/sn/rio_scanner.h"
 #include "parser/checker.h"
@@ -36,6 +37,7 @@ void check_scanner(const Program& program, const SlotConfig& slot, DiagnosticLis
     if (f.error) diags.error(slot.pos.line, slot.pos.column, std::move(m));
     else diags.warning(slot.pos.line, slot.pos.column, std::move(m));
   }
+  rio::check_buffer_sharing(program, slot.slot, diags);
 }
 
 }  // namespace

@@ -1,16 +1,5 @@
-// libFuzzer target: the standalone address parser (see properties.h for what must hold).
-#include <cstddef>
-#include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-
+// libFuzzer target: the address parser (see properties.h for what must hold).
+#include "fuzz_target.h"
 #include "properties.h"
 
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  auto broken = softslc::fuzz::check_address_property({reinterpret_cast<const char*>(data), size});
-  if (!broken.empty()) {
-    std::fprintf(stderr, "%s\n", broken.c_str());
-    std::abort();
-  }
-  return 0;
-}
+SOFTSLC_FUZZ_TARGET(softslc::fuzz::check_address_property)

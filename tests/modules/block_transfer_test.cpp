@@ -352,5 +352,68 @@ TEST(BlockTransfer, BtrInstructionChargesMFileAccessTime) {
   EXPECT_GE(bt->stats().last - idle->stats().last, microseconds(2308));
 }
 
+
+// ---- A 33rd block transfer: every buffer serves one transfer (docs/1747-sn.md) ----------------
+
+namespace buffer_check {
+
+// The SLOT lines of examples/ladder/faults/block_transfer_buffers.slc with the given rungs.
+std::string program_with(const std::string& rungs) {
+  return "START 1747-L532\nSLOT 0 1747-L532 SCAN_IN 0 SCAN_OUT 0\n"
+         "SLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 3\n 0 17 255 OPTION baud=115.2K\n"
+         "LADDER 2 MAIN\n" + rungs;
+}
+
+std::string check(const std::string& source) {
+  LoadResult lr = load_program(source, "t.slc");
+  EXPECT_TRUE(lr.ok()) << lr.render_diagnostics();
+  DiagnosticList diags;
+  check_module_configuration(*lr.program, diags);
+  return render_all(diags, "t.slc", source);
+}
+
+}  // namespace buffer_check
+
+TEST(BlockTransferCheck, ThirtyTwoTransfersOnThirtyTwoBuffersAreAccepted) {
+  // Every BTR of the faults example: buffers 1-32, control blocks N10:0 ... N10:93.
+  const std::string source = read_text(std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder/faults/block_transfer_buffers.slc");
+  EXPECT_EQ(buffer_check::check(source), "");
+}
+
+TEST(BlockTransferCheck, AThirtyThirdTransferOnAnUsedBufferIsRefusedAtItsBufferOperand) {
+  // 1747-SN p. 5-5/5-6: "A total of 32 block transfer buffers are available; you can execute a
+  // maximum of 32 different block transfers"; "the next BT instruction must use another M-file
+  // buffer (2 through 32)".
+  std::string rungs;
+  for (int k = 0; k < 32; ++k)
+    rungs += "SOR XIC B3:0/0 BTR N10:" + std::to_string(3 * k) + " M1:1." + std::to_string((k + 1) * 100) + " #N11:" +
+             std::to_string(k) + " " + std::to_string(k / 16) + " " + std::to_string(k % 16 / 2) + " " +
+             std::to_string(k % 2) + " 1 EOR\n";
+  rungs += "SOR XIC B3:0/0 BTW N10:96 M0:1.100 #N12:0 0 0 0 1 EOR\n";  // line 38, file 2 rung 32
+  const std::string out = buffer_check::check(buffer_check::program_with(rungs));
+  EXPECT_NE(out.find("t.slc:38:27: error: block-transfer buffer 1 of the 1747-SN in slot 1 (M0:1.100 and M1:1.100) is "
+                     "already used by BTR N10:0 in file 2 rung 0 (line 6)"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("the scanner has 32 buffers, one per block transfer"), std::string::npos) << out;
+}
+
+TEST(BlockTransferCheck, TheSameControlBlockOnTheSameBufferIsTheSameTransfer) {
+  // The same BTR written in two rungs (e.g. two subroutines) is one transfer, not two.
+  EXPECT_EQ(buffer_check::check(buffer_check::program_with("SOR XIC B3:0/0 BTR N10:0 M1:1.100 #N11:0 0 0 0 1 EOR\n"
+                                                           "SOR XIC B3:0/1 BTR N10:0 M1:1.100 #N11:0 0 0 0 1 EOR\n")),
+            "");
+}
+
+TEST(BlockTransferCheck, BuffersOfDifferentScannersAreIndependent) {
+  EXPECT_EQ(buffer_check::check("START 1747-L532\nSLOT 0 1747-L532 SCAN_IN 0 SCAN_OUT 0\n"
+                                "SLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 3\n 0 17 255\n"
+                                "SLOT 2 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 3\n 0 17 255\n"
+                                "LADDER 2 MAIN\n"
+                                "SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 1 EOR\n"
+                                "SOR BTR N10:3 M1:2.100 #N11:1 0 0 0 1 EOR\n"),
+            "");
+}
+
 }  // namespace
 }  // namespace softslc::test

@@ -4,6 +4,8 @@
 // state; SIGTERM saves).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <csignal>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "modules/module_setup.h"
 #include "parser/loader.h"
 #include "vm/runtime.h"
 #include "vm/state_file.h"
@@ -106,6 +109,166 @@ TEST(StateFile, ForeignProgramIsRefusedUnlessForced) {
   EXPECT_TRUE(warned_n7);
 }
 
+// ---- Module M-file words a module retains (format version 2) -----------------------------------
+
+// A specialty card whose M1 words 4-11 survive a power loss (a module that keeps totals, say) and
+// whose M0 does not; the ladder may write both files.
+class RetentiveCard final : public Module {
+ public:
+  RetentiveCard(int slot, int retained_words) : Module(slot, "TEST-RETENTIVE", 0, 0), retained_words_(retained_words) {}
+  void input_scan(std::span<std::uint16_t>) override {}
+  void output_scan(std::span<const std::uint16_t>) override {}
+  int m_file_words(MFile) const override { return 16; }
+  MAccess read_m(MFile f, int word, std::uint16_t& value) override {
+    if (word < 0 || word >= 16) return MAccess::NoSuchWord;
+    value = file(f)[static_cast<std::size_t>(word)];
+    return MAccess::Ok;
+  }
+  MAccess write_m(MFile f, int word, std::uint16_t value) override {
+    if (word < 0 || word >= 16) return MAccess::NoSuchWord;
+    file(f)[static_cast<std::size_t>(word)] = value;
+    return MAccess::Ok;
+  }
+  std::vector<RetainedMWords> retained_m_words() const override {
+    return {{MFile::M1, 4, std::vector<std::uint16_t>(m1_.begin() + 4, m1_.begin() + 4 + retained_words_)}};
+  }
+  void restore_m_words(const RetainedMWords& saved) override {
+    ++restores;
+    std::copy(saved.words.begin(), saved.words.end(), m1_.begin() + saved.first);
+  }
+  std::uint16_t m(MFile f, int word) { return file(f)[static_cast<std::size_t>(word)]; }
+  int restores = 0;
+
+ private:
+  std::array<std::uint16_t, 16>& file(MFile f) { return f == MFile::M0 ? m0_ : m1_; }
+  int retained_words_;
+  std::array<std::uint16_t, 16> m0_{}, m1_{};
+};
+
+// Counts scans into N7:0 and copies the count to M0:1.5 (not retained) and M1:1.5 (retained).
+const char* kRetentiveCardProgram =
+    "START 1747-L532\nSLOT 1 1747-SN SCAN_IN 0 SCAN_OUT 0 M0_SIZE 16 M1_SIZE 16\nLADDER 2\n"
+    "SOR ADD N7:0 1 N7:0 EOR\nSOR MOV N7:0 M0:1.5 MOV N7:0 M1:1.5 EOR\n";
+
+struct CardRuntime {
+  std::unique_ptr<Runtime> rt;
+  RetentiveCard* card = nullptr;
+};
+
+CardRuntime make_card_runtime(const Program& p, int retained_words = 8) {
+  CardRuntime c;
+  RuntimeOptions options;
+  options.module_factory = [&c, retained_words](const SlotConfig& s) -> std::unique_ptr<Module> {
+    if (s.slot != 1) return nullptr;
+    auto m = std::make_unique<RetentiveCard>(s.slot, retained_words);
+    c.card = m.get();
+    return m;
+  };
+  auto r = Runtime::create(p, options);
+  EXPECT_TRUE(r.ok()) << r.render_errors();
+  c.rt = std::move(r.runtime);
+  EXPECT_NE(c.card, nullptr);
+  return c;
+}
+
+// A saved state of the card program after 6 scans.
+std::string saved_card_state(const Program& p) {
+  auto a = make_card_runtime(p);
+  a.rt->set_mode(Mode::Run);
+  a.rt->scan(6);
+  EXPECT_EQ(a.card->m(MFile::M1, 5), 6);
+  return encode_state(a.rt->data(), program_fingerprint(p), chassis_modules(*a.rt));
+}
+
+TEST(StateModules, RetainedWordsSurviveAPowerCycleAndOthersDoNot) {
+  auto p = load(kRetentiveCardProgram);
+  const std::string bytes = saved_card_state(p);
+  auto b = make_card_runtime(p);
+  auto r = decode_state(bytes, program_fingerprint(p), b.rt->data(), false, chassis_modules(*b.rt));
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_TRUE(r.warnings.empty());
+  EXPECT_EQ(b.card->restores, 1);
+  EXPECT_EQ(b.card->m(MFile::M1, 5), 6);  // retained
+  EXPECT_EQ(b.card->m(MFile::M0, 5), 0);  // not retained: the fresh module's power-up contents
+  EXPECT_EQ(b.rt->value("N7:0").integer, 6);
+}
+
+TEST(StateModules, EveryCorruptedByteAndTruncationIsDetectedAndRestoresNothing) {
+  auto p = load(kRetentiveCardProgram);
+  const std::string good = saved_card_state(p);
+  const auto fp = program_fingerprint(p);
+  auto check_refused = [&](const std::string& bad, const std::string& what) {
+    auto target = make_card_runtime(p);
+    auto r = decode_state(bad, fp, target.rt->data(), false, chassis_modules(*target.rt));
+    EXPECT_FALSE(r.ok) << what << " was not detected";
+    EXPECT_EQ(target.card->restores, 0) << what;
+    EXPECT_EQ(target.rt->value("N7:0").integer, 0) << what;
+  };
+  // The modules section is the last record before the CRC: 4 (count) + 12 (record header) + 16 bytes.
+  const std::size_t modules_section = good.size() - 4 - (4 + 12 + 16);
+  ASSERT_EQ(static_cast<std::uint8_t>(good[modules_section]), 1);  // one module record
+  for (std::size_t i = 0; i < good.size(); ++i)
+    for (std::uint8_t flip : {0x01, 0x80, 0xFF}) {
+      std::string bad = good;
+      bad[i] = static_cast<char>(bad[i] ^ flip);
+      check_refused(bad, "byte " + std::to_string(i) + " flipped with " + std::to_string(flip));
+    }
+  for (std::size_t len = 0; len < good.size(); ++len) check_refused(good.substr(0, len), "truncation to " + std::to_string(len));
+}
+
+TEST(StateModules, AVersion1FileIsRefusedWithAClearError) {
+  auto p = load(kRetentiveCardProgram);
+  std::string v1 = saved_card_state(p);
+  // The version word follows the 16-byte magic; re-seal the CRC so only the version is wrong.
+  v1[16] = 1;
+  v1.resize(v1.size() - 4);
+  const std::uint32_t crc = crc32(v1.data(), v1.size());
+  for (int k = 0; k < 4; ++k) v1.push_back(static_cast<char>(crc >> (8 * k)));
+  auto target = make_card_runtime(p);
+  auto r = decode_state(v1, program_fingerprint(p), target.rt->data(), false, chassis_modules(*target.rt));
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.error.find("format version 1 is no longer read"), std::string::npos) << r.error;
+  EXPECT_NE(r.error.find("remove the file"), std::string::npos) << r.error;
+  EXPECT_EQ(target.card->restores, 0);
+}
+
+TEST(StateModules, ARangeTheModuleDoesNotRetainIsRefusedUnlessForced) {
+  auto p = load(kRetentiveCardProgram);
+  const std::string bytes = saved_card_state(p);
+  // The same program, but the module retains 6 words now (e.g. another softslc version).
+  auto b = make_card_runtime(p, 6);
+  auto refused = decode_state(bytes, program_fingerprint(p), b.rt->data(), false, chassis_modules(*b.rt));
+  EXPECT_FALSE(refused.ok);
+  EXPECT_NE(refused.error.find("state file holds M1:1.4-M1:1.11, which the module in slot 1 does not retain"),
+            std::string::npos)
+      << refused.error;
+  EXPECT_EQ(b.rt->value("N7:0").integer, 0);
+  auto forced = decode_state(bytes, program_fingerprint(p), b.rt->data(), true, chassis_modules(*b.rt));
+  ASSERT_TRUE(forced.ok) << forced.error;
+  EXPECT_EQ(b.card->restores, 0);
+  EXPECT_EQ(b.rt->value("N7:0").integer, 6);
+  ASSERT_EQ(forced.warnings.size(), 1u);
+  EXPECT_NE(forced.warnings[0].find("M1:1.4-M1:1.11 from the state file is not retained"), std::string::npos);
+}
+
+TEST(StateModules, NoBuiltInModuleFamilyRetainsMFileWords) {
+  // docs/robustness.md "Module M-file words": the 1747-SN's M0 is set to its defaults on entering
+  // Run or Test and its M1 is status rebuilt after power-up; the 1203-SM1's M files are message
+  // buffers (what survives is the drive's non-volatile storage); the 1747-SDN keeps its scanlist
+  // in nonvolatile memory and its M-file tables in RAM.
+  auto p = load("START 1747-L532\nSLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 3\n 0 1 15\n"
+                "SLOT 2 1203-SM1 SCAN_IN 32 SCAN_OUT 32 ID_CODE 13616 G_FILE 2\n 0 0\n"
+                "SLOT 3 1747-SDN SCAN_IN 32 SCAN_OUT 32\nLADDER 2\nSOR OTE B3:0/0 EOR\n");
+  auto setup = setup_modules(p, nullptr);
+  auto r = Runtime::create(p, setup.options);
+  ASSERT_TRUE(r.ok()) << r.render_errors();
+  for (auto [slot, catalog] : {std::pair{1, "1747-SN"}, std::pair{2, "1203-SM1"}, std::pair{3, "1747-SDN"}}) {
+    ASSERT_NE(r.runtime->module(slot), nullptr);
+    EXPECT_EQ(r.runtime->module(slot)->catalog(), catalog);
+    EXPECT_TRUE(r.runtime->module(slot)->retained_m_words().empty()) << catalog;
+  }
+}
+
 // ---- Through the command line ------------------------------------------------------------------
 
 struct Cmd {
@@ -192,8 +355,8 @@ TEST(StateCli, KillingDuringSavesNeverLosesTheState) {
     pid_t pid = ::fork();
     ASSERT_GE(pid, 0);
     if (pid == 0) {
-      std::freopen("/dev/null", "w", stdout);
-      std::freopen("/dev/null", "w", stderr);
+      // A child that cannot silence its output exits (126) rather than run unsilenced.
+      if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) ::_exit(126);
       ::execl(SOFTSLC_BINARY, SOFTSLC_BINARY, "run", prog.c_str(), "--for", "60m", "--state", state.c_str(),
               "--checkpoint", "10ms", static_cast<char*>(nullptr));
       ::_exit(127);
@@ -227,7 +390,7 @@ TEST(StateCli, SigtermSavesAndExits) {
   pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
   if (pid == 0) {
-    std::freopen("/dev/null", "w", stdout);
+    if (!std::freopen("/dev/null", "w", stdout)) ::_exit(126);
     ::execl(SOFTSLC_BINARY, SOFTSLC_BINARY, "run", prog.c_str(), "--for", "60m", "--state", state.c_str(),
             static_cast<char*>(nullptr));
     ::_exit(127);

@@ -354,7 +354,7 @@ int run_run(const RunOptions& o) {
   const std::uint64_t fingerprint = o.state.empty() ? 0 : program_fingerprint(program);
   if (!o.state.empty()) {
     bool missing = false;
-    auto loaded = load_state_file(o.state, fingerprint, rt.data(), o.force_state, &missing);
+    auto loaded = load_state_file(o.state, fingerprint, rt.data(), o.force_state, &missing, chassis_modules(rt));
     if (!loaded.ok) {
       std::cerr << "softslc run: " << loaded.error << "\n";
       return kInputError;
@@ -363,7 +363,7 @@ int run_run(const RunOptions& o) {
   }
   auto save_state = [&]() -> bool {
     if (o.state.empty()) return true;
-    if (auto err = save_state_file(o.state, rt.data(), fingerprint); !err.empty()) {
+    if (auto err = save_state_file(o.state, rt.data(), fingerprint, chassis_modules(rt)); !err.empty()) {
       std::cerr << "softslc run: cannot save state: " << err << "\n";
       return false;
     }

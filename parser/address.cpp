@@ -150,7 +150,10 @@ std::string to_string(const Address& a) {
   if (a.indirect_bit) {
     s += "/[" + to_string(*a.indirect_bit) + ']';
   } else if (a.bit >= 0) {
-    auto name = is_structured(a.type) && a.word <= 0 ? structured_bit_name(a.type, a.bit) : std::string_view{};
+    // A bit name (T4:0/DN) names a bit of the control word: not for a word chosen at run time
+    // (C0:1.[N1:5]/10 is bit 10 of whichever word N1:5 selects).
+    const bool control_word = a.word <= 0 && !a.indirect_word;
+    auto name = is_structured(a.type) && control_word ? structured_bit_name(a.type, a.bit) : std::string_view{};
     s += '/';
     s += name.empty() ? std::to_string(a.bit) : std::string(name);
   }

@@ -5,8 +5,8 @@
 #
 # Seed corpora come from examples/ and ../shared/fixtures/ (copied into a scratch corpus so the
 # tree is never written). A crash, a hang (> 1 s per input), a leak or a UB report fails the run;
-# libFuzzer leaves the input as crash-*/timeout-* in the build directory: fix the bug and add the
-# input as a regression test. The seed is fixed (-seed=1) so a run is repeatable: CI explores the
+# libFuzzer leaves the input as TARGET-crash-*/TARGET-timeout-* in the build directory (its report
+# is printed): fix the bug and add the input as a regression test. The seed is fixed (-seed=1) so a run is repeatable: CI explores the
 # same inputs a developer's run of the same length did; run longer or with another seed to explore.
 set -euo pipefail
 seconds="${1:-60}"
@@ -48,8 +48,14 @@ printf "$(words 0 2 0 0 0 0 0x0001 0x0000 0x0E14 0x0001 0x0001 0x0001)" > "$corp
 head -c $((4 * 70 - 24)) /dev/zero >> "$corpus/dem/get-vendor-id"
 printf '\x01\x31\x31\x00\x01\x00' >> "$corpus/dem/get-vendor-id"
 
-status=0
-for target in "${targets[@]}"; do
+# The targets run two at a time (one per core of the 2-core machines CI runs on); each one's
+# output is kept in its own log and printed in target order, so the log reads the same whatever
+# finishes first.
+logs="$build/fuzz-logs"
+rm -rf "$logs"
+mkdir -p "$logs"
+run_target() {
+  local target="$1" len=()
   # The message decoders read whole buffers: let inputs reach them from the start (four 100-word
   # SCANport buffers; four 32-word transaction blocks with their gaps; two 70-word DEM control
   # blocks and 64 steps). Elsewhere libFuzzer's default length control applies.
@@ -57,10 +63,28 @@ for target in "${targets[@]}"; do
     scanport_message) len=(-max_len=800 -len_control=20) ;;
     transaction) len=(-max_len=264 -len_control=20) ;;
     dem) len=(-max_len=344 -len_control=20) ;;
-    *) len=() ;;
   esac
-  echo "== fuzzing ${target}_fuzz for ${seconds}s"
-  (cd "$build" && ASAN_OPTIONS=detect_leaks=1 "./tests/fuzz/${target}_fuzz" -max_total_time="$seconds" -timeout=1 -seed=1 \
-    -rss_limit_mb=2048 -print_final_stats=1 "${len[@]}" "$corpus/$target" 2>&1 | tail -15) || status=1
+  (cd "$build" && ASAN_OPTIONS=detect_leaks=1 "./tests/fuzz/${target}_fuzz" -max_total_time="$seconds" -timeout=1 \
+    -seed=1 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/${target}-" "${len[@]}" \
+    "$corpus/$target" > "$logs/$target.log" 2>&1) && echo ok > "$logs/$target.status" || echo failed > "$logs/$target.status"
+}
+pids=()
+for target in "${targets[@]}"; do
+  run_target "$target" &
+  pids+=($!)
+  if ((${#pids[@]} == 2)); then wait "${pids[@]}"; pids=(); fi
+done
+((${#pids[@]})) && wait "${pids[@]}"
+
+status=0
+for target in "${targets[@]}"; do
+  echo "== fuzzing ${target}_fuzz for ${seconds}s: $(cat "$logs/$target.status")"
+  if [[ "$(cat "$logs/$target.status")" == ok ]]; then
+    tail -6 "$logs/$target.log"
+  else
+    # The whole report of a failing target: the finding, its stack and the input's file name.
+    grep -v -E '^#[0-9]+' "$logs/$target.log" | tail -60
+    status=1
+  fi
 done
 exit $status

@@ -63,9 +63,8 @@ nlohmann::ordered_json counts(const FileCoverage& f) {
 }
 
 std::string where(const CoverageItem& i) {
-  std::string s = "file " + std::to_string(i.file);
-  if (i.text.rfind("file ", 0) == 0) return i.text;
-  s += " rung " + std::to_string(i.rung);
+  if (i.text.rfind("file ", 0) == 0) return i.text;  // a whole file: "file 4 NEVER"
+  std::string s = "file " + std::to_string(i.file) + " rung " + std::to_string(i.rung);
   if (i.instruction >= 0) s += " instruction " + std::to_string(i.instruction) + " " + i.text;
   return s;
 }

@@ -1,21 +1,11 @@
 #include "tools/testrunner/coverage_report.h"
 
-#include <algorithm>
-
 #include <nlohmann/json.hpp>
 
 namespace softslc::testing {
 
 void CoverageCollector::add(const TestOutcome& outcome) {
-  for (const auto& [program, flags] : outcome.coverage) {
-    // (A structured binding is captured by name: clang 14, which builds the fuzzers, needs it.)
-    auto it = std::find_if(merged_.begin(), merged_.end(), [p = program](const auto& m) { return m.first == p; });
-    if (it == merged_.end()) {
-      merged_.emplace_back(program, flags);
-      continue;
-    }
-    for (std::size_t i = 0; i < it->second.size() && i < flags.size(); ++i) it->second[i] |= flags[i];
-  }
+  for (const auto& [program, flags] : outcome.coverage) merge_coverage(merged_, program, flags);
 }
 
 std::vector<CoverageReport> CoverageCollector::reports(std::string& error) const {

@@ -26,7 +26,7 @@ class CoverageCollector {
   std::vector<CoverageReport> reports(std::string& error) const;
 
  private:
-  std::vector<std::pair<const LoadedProgram*, std::vector<std::uint8_t>>> merged_;
+  ProgramCoverage merged_;
 };
 
 std::string render_coverage_text(const std::vector<CoverageReport>& reports);

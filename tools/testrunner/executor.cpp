@@ -177,14 +177,7 @@ class Session {
 
   // Folds the coverage of the current Runtime into the test's, before the Runtime is replaced.
   void harvest_coverage() {
-    if (!rt_ || !rt_->coverage() || !program_) return;
-    const auto& flags = rt_->coverage()->flags();
-    for (auto& [program, merged] : coverage_)
-      if (program == program_) {
-        for (std::size_t i = 0; i < merged.size() && i < flags.size(); ++i) merged[i] |= flags[i];
-        return;
-      }
-    coverage_.emplace_back(program_, flags);
+    if (rt_ && rt_->coverage() && program_) merge_coverage(coverage_, program_, rt_->coverage()->flags());
   }
 
   void replace_runtime(std::unique_ptr<Runtime> fresh) {
@@ -418,8 +411,9 @@ class Session {
 
   // Power off and on: a new Runtime with the old data table (battery-backed on the SLC) except
   // the bits OTE instructions write (non-retentive on power loss), the field inputs and the
-  // changes injected into bench devices as they were (the field did not change), the test's forces (kept in processor memory), in the mode the
-  // processor was in. Entering Run sets the first pass bit and zeroes S:4, as on power-up in Run.
+  // changes injected into bench devices as they were (the field did not change), the test's
+  // forces (kept in processor memory), in the mode the processor was in. Entering Run sets the
+  // first pass bit and zeroes S:4, as on power-up in Run.
   std::optional<Failure> power_cycle(const Step& s, const std::string& context) {
     if (rt_->fault() || rt_->mode() == Mode::Faulted)
       return refused(s, context,
@@ -612,7 +606,7 @@ class Session {
   const std::string& file_;
   const RuntimeOptions& options_;
   bool record_coverage_ = false;
-  std::vector<std::pair<const LoadedProgram*, std::vector<std::uint8_t>>> coverage_;
+  ProgramCoverage coverage_;
   std::unique_ptr<Runtime> rt_;
   const LoadedProgram* program_ = nullptr;
   VirtualTime time_base_ = 0;       // virtual time of the Runtimes before the last power cycle
@@ -625,6 +619,15 @@ class Session {
 };
 
 }  // namespace
+
+void merge_coverage(ProgramCoverage& into, const LoadedProgram* program, const std::vector<std::uint8_t>& flags) {
+  for (auto& [p, merged] : into)
+    if (p == program) {
+      for (std::size_t i = 0; i < merged.size() && i < flags.size(); ++i) merged[i] |= flags[i];
+      return;
+    }
+  into.emplace_back(program, flags);
+}
 
 TestOutcome run_test(const TestCase& test, const std::string& file_name, const RuntimeOptions& options,
                      bool record_coverage) {

@@ -48,11 +48,15 @@ struct Failure {
   std::string render(const std::string& indent = "    ") const;
 };
 
+// Coverage flags (vm/coverage.h) per program, in the order the programs were first seen.
+using ProgramCoverage = std::vector<std::pair<const LoadedProgram*, std::vector<std::uint8_t>>>;
+// ORs `flags` into the entry of `program`, appending one when it has none.
+void merge_coverage(ProgramCoverage& into, const LoadedProgram* program, const std::vector<std::uint8_t>& flags);
+
 struct TestOutcome {
   std::optional<Failure> failure;
-  // With coverage on: the coverage flags (vm/coverage.h) of each program the test ran, in the
-  // order the test first ran them.
-  std::vector<std::pair<const LoadedProgram*, std::vector<std::uint8_t>>> coverage;
+  // With coverage on: the coverage of each program the test ran.
+  ProgramCoverage coverage;
   VirtualTime virtual_time = 0;  // at the end of the test
   std::uint64_t scans = 0;       // program scans the test ran
   bool passed() const { return !failure.has_value(); }

@@ -17,6 +17,12 @@ const InstructionSpec* find_instruction(std::string_view mnemonic) {
   return nullptr;
 }
 
+const InstructionSpec* find_instruction_form(std::string_view mnemonic, std::size_t operand_count) {
+  for (const auto& s : kInstructionTable)
+    if (s.mnemonic == mnemonic && s.operand_count == operand_count) return &s;
+  return find_instruction(mnemonic);
+}
+
 std::string_view to_string(OperandKind k) {
   switch (k) {
     case OperandKind::Bit: return "bit address";

@@ -71,6 +71,8 @@ enum class Requirement : std::uint8_t {
   Any,               // every SLC 5/0x and MicroLogix
   BlockTransfer,     // BTR/BTW: SLC 5/03 OS302, 5/04 OS401, 5/05 OS501 and later (1747-SN p. 5-5)
   DeviceNetMessage,  // DEM: SLC 5/03-5/05 OS Series C FRN 10 or later (1747-SDN ch. 8)
+  SlcOneShot,        // the one-operand OSR: SLC 500 and MicroLogix 1000 (the 1100-1500 use ONS)
+  MicroLogix1100Class,  // MicroLogix 1100, 1200, 1400, 1500 (ONS, two-operand OSR/OSF, CPW, ...)
 };
 
 struct OperandSpec {
@@ -121,7 +123,10 @@ inline constexpr InstructionSpec kInstructionTable[] = {
   OperandSpec { OperandKind::kind, OperandAccess::access, MFileAccess::mfile, label, lo, hi }
 #define SOFTSLC_INSTRUCTION(mnemonic, role, req, ...) \
   detail::make_spec(#mnemonic, Opcode::mnemonic, Role::role, Requirement::req __VA_OPT__(, ) __VA_ARGS__),
+#define SOFTSLC_INSTRUCTION_FORM(opcode, text, role, req, ...) \
+  detail::make_spec(text, Opcode::opcode, Role::role, Requirement::req __VA_OPT__(, ) __VA_ARGS__),
 #include "instructions/instruction_table.def"
+#undef SOFTSLC_INSTRUCTION_FORM
 #undef SOFTSLC_INSTRUCTION
 #undef OPERAND
 };
@@ -131,8 +136,12 @@ inline constexpr std::size_t kInstructionCount = std::size(kInstructionTable);
 // The row for an opcode (the table is in Opcode order, checked at compile time in the .cpp).
 constexpr const InstructionSpec& spec(Opcode op) { return kInstructionTable[static_cast<std::size_t>(op)]; }
 
-// Looks a mnemonic up (exact, upper case). Returns nullptr when unknown.
+// Looks a mnemonic up (exact, upper case). Returns nullptr when unknown. For a mnemonic with
+// several forms (OSR: the SLC's one operand, the MicroLogix's two) this is the first row.
 const InstructionSpec* find_instruction(std::string_view mnemonic);
+// The form of a mnemonic that takes `operand_count` operands; the first row when none does (the
+// checker then reports the count). nullptr when the mnemonic is unknown.
+const InstructionSpec* find_instruction_form(std::string_view mnemonic, std::size_t operand_count);
 
 std::string_view to_string(OperandKind k);
 std::string_view to_string(MFileAccess a);

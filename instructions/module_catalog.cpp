@@ -12,22 +12,68 @@ namespace {
 // M1 400). ID codes: 1747-SN 13608 (chapter 4), 1203-SM1 enhanced mode 13616 (chapter 3; basic
 // mode 3516 is selected with ID_CODE); the 1747-SDN manual gives none (0).
 constexpr std::array kModules{
-    ModuleCatalogEntry{"1746-IB8", "8-input 24 VDC sink", 0, 1, 0, 0, 0, false},
-    ModuleCatalogEntry{"1746-IB16", "16-input 24 VDC sink", 0, 1, 0, 0, 0, false},
-    ModuleCatalogEntry{"1746-IB32", "32-input 24 VDC sink", 0, 2, 0, 0, 0, false},
-    ModuleCatalogEntry{"1746-IV16", "16-input 24 VDC source", 0, 1, 0, 0, 0, false},
-    ModuleCatalogEntry{"1746-IA16", "16-input 120 VAC", 0, 1, 0, 0, 0, false},
-    ModuleCatalogEntry{"1746-IA8", "8-input 120 VAC", 0, 1, 0, 0, 0, false},
-    ModuleCatalogEntry{"1746-OB8", "8-output 24 VDC source", 0, 0, 1, 0, 0, false},
-    ModuleCatalogEntry{"1746-OB16", "16-output 24 VDC source", 0, 0, 1, 0, 0, false},
-    ModuleCatalogEntry{"1746-OB32", "32-output 24 VDC source", 0, 0, 2, 0, 0, false},
-    ModuleCatalogEntry{"1746-OV16", "16-output 24 VDC sink", 0, 0, 1, 0, 0, false},
-    ModuleCatalogEntry{"1746-OW16", "16-output relay", 0, 0, 1, 0, 0, false},
-    ModuleCatalogEntry{"1746-OW8", "8-output relay", 0, 0, 1, 0, 0, false},
-    ModuleCatalogEntry{"1746-OA16", "16-output 120/240 VAC", 0, 0, 1, 0, 0, false},
-    ModuleCatalogEntry{"1746-IO12", "6-input 6-output combination", 0, 1, 1, 0, 0, false},
-    ModuleCatalogEntry{"1762-IQ16", "MicroLogix 16-input 10/30 VDC", 0, 1, 0, 0, 0, false},
-    ModuleCatalogEntry{"1762-OB16", "MicroLogix 16-output 24 VDC source", 0, 0, 1, 0, 0, false},
+    // 1746 discrete I/O: points from the catalog numbers (1746-IB8 = 8 inputs, -IO12 = 6 inputs and
+    // 6 outputs); one image word per 16 points.
+    ModuleCatalogEntry{"1746-IB8", "8-input 24 VDC sink", 0, 1, 0, 0, 0, false, 8, -1},
+    ModuleCatalogEntry{"1746-IB16", "16-input 24 VDC sink", 0, 1, 0, 0, 0, false, 16, -1},
+    ModuleCatalogEntry{"1746-IB32", "32-input 24 VDC sink", 0, 2, 0, 0, 0, false, 32, -1},
+    ModuleCatalogEntry{"1746-IV16", "16-input 24 VDC source", 0, 1, 0, 0, 0, false, 16, -1},
+    ModuleCatalogEntry{"1746-IA16", "16-input 120 VAC", 0, 1, 0, 0, 0, false, 16, -1},
+    ModuleCatalogEntry{"1746-IA8", "8-input 120 VAC", 0, 1, 0, 0, 0, false, 8, -1},
+    ModuleCatalogEntry{"1746-OB8", "8-output 24 VDC source", 0, 0, 1, 0, 0, false, -1, 8},
+    ModuleCatalogEntry{"1746-OB16", "16-output 24 VDC source", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1746-OB32", "32-output 24 VDC source", 0, 0, 2, 0, 0, false, -1, 32},
+    ModuleCatalogEntry{"1746-OV16", "16-output 24 VDC sink", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1746-OW16", "16-output relay", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1746-OW8", "8-output relay", 0, 0, 1, 0, 0, false, -1, 8},
+    ModuleCatalogEntry{"1746-OA16", "16-output 120/240 VAC", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1746-IO12", "6-input 6-output combination", 0, 1, 1, 0, 0, false, 6, 6},
+    // 1762 expansion I/O (MicroLogix 1100/1200/1400): the catalog number gives the points
+    // (IQ16 = 16 inputs, OB32T = 32 outputs, IQ8OW6 = 8 inputs and 6 relay outputs).
+    ModuleCatalogEntry{"1762-IA8", "MicroLogix 8-input 120 VAC", 0, 1, 0, 0, 0, false, 8, -1},
+    ModuleCatalogEntry{"1762-IQ8", "MicroLogix 8-input 10/30 VDC", 0, 1, 0, 0, 0, false, 8, -1},
+    ModuleCatalogEntry{"1762-IQ16", "MicroLogix 16-input 10/30 VDC", 0, 1, 0, 0, 0, false, 16, -1},
+    ModuleCatalogEntry{"1762-IQ32T", "MicroLogix 32-input 24 VDC", 0, 2, 0, 0, 0, false, 32, -1},
+    ModuleCatalogEntry{"1762-OA8", "MicroLogix 8-output 120/240 VAC", 0, 0, 1, 0, 0, false, -1, 8},
+    ModuleCatalogEntry{"1762-OB8", "MicroLogix 8-output 24 VDC source", 0, 0, 1, 0, 0, false, -1, 8},
+    ModuleCatalogEntry{"1762-OB16", "MicroLogix 16-output 24 VDC source", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1762-OB32T", "MicroLogix 32-output 24 VDC source", 0, 0, 2, 0, 0, false, -1, 32},
+    ModuleCatalogEntry{"1762-OV32T", "MicroLogix 32-output 24 VDC sink", 0, 0, 2, 0, 0, false, -1, 32},
+    ModuleCatalogEntry{"1762-OW8", "MicroLogix 8-output relay", 0, 0, 1, 0, 0, false, -1, 8},
+    ModuleCatalogEntry{"1762-OW16", "MicroLogix 16-output relay", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1762-OX6I", "MicroLogix 6-output isolated relay", 0, 0, 1, 0, 0, false, -1, 6},
+    ModuleCatalogEntry{"1762-IQ8OW6", "MicroLogix 8-input 6-output relay combination", 0, 1, 1, 0, 0, false, 8, 6},
+    // 1769 Compact I/O discrete modules (MicroLogix 1500), points likewise from the catalog number.
+    ModuleCatalogEntry{"1769-IA8I", "Compact 8-input isolated 120 VAC", 0, 1, 0, 0, 0, false, 8, -1},
+    ModuleCatalogEntry{"1769-IA16", "Compact 16-input 120 VAC", 0, 1, 0, 0, 0, false, 16, -1},
+    ModuleCatalogEntry{"1769-IM12", "Compact 12-input 240 VAC", 0, 1, 0, 0, 0, false, 12, -1},
+    ModuleCatalogEntry{"1769-IQ16", "Compact 16-input 24 VDC", 0, 1, 0, 0, 0, false, 16, -1},
+    ModuleCatalogEntry{"1769-IQ16F", "Compact 16-input 24 VDC fast", 0, 1, 0, 0, 0, false, 16, -1},
+    ModuleCatalogEntry{"1769-IQ32", "Compact 32-input 24 VDC", 0, 2, 0, 0, 0, false, 32, -1},
+    ModuleCatalogEntry{"1769-IQ32T", "Compact 32-input 24 VDC", 0, 2, 0, 0, 0, false, 32, -1},
+    ModuleCatalogEntry{"1769-OA8", "Compact 8-output 120/240 VAC", 0, 0, 1, 0, 0, false, -1, 8},
+    ModuleCatalogEntry{"1769-OA16", "Compact 16-output 120/240 VAC", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1769-OB8", "Compact 8-output 24 VDC source", 0, 0, 1, 0, 0, false, -1, 8},
+    ModuleCatalogEntry{"1769-OB16", "Compact 16-output 24 VDC source", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1769-OB16P", "Compact 16-output 24 VDC protected", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1769-OB32", "Compact 32-output 24 VDC source", 0, 0, 2, 0, 0, false, -1, 32},
+    ModuleCatalogEntry{"1769-OV16", "Compact 16-output 24 VDC sink", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1769-OW8", "Compact 8-output relay", 0, 0, 1, 0, 0, false, -1, 8},
+    ModuleCatalogEntry{"1769-OW8I", "Compact 8-output isolated relay", 0, 0, 1, 0, 0, false, -1, 8},
+    ModuleCatalogEntry{"1769-OW16", "Compact 16-output relay", 0, 0, 1, 0, 0, false, -1, 16},
+    ModuleCatalogEntry{"1769-IQ6XOW4", "Compact 6-input 4-output relay combination", 0, 1, 1, 0, 0, false, 6, 4},
+    // MicroLogix embedded I/O: slot 0 of a MicroLogix is the controller's own I/O, named by its
+    // bulletin as RSLogix 500 exports it (SLOT 0 Bul.1766). Points are those of the largest base
+    // unit of each bulletin (1761-L32, 1762-L40, 1763-L16, 1764-28 base, 1766-L32). Image words:
+    // MicroLogix 1400 I:0 8 words, O:0 6 words as RSLogix 500 exports them (59-BSGS.SLC, SLOT 0);
+    // MicroLogix 1100 I:0.4-I:0.5 embedded analog inputs; the others their digital words only
+    // (docs/program-format.md, "MicroLogix embedded I/O", says which of these are decisions).
+    ModuleCatalogEntry{"Bul.1761", "MicroLogix 1000 embedded I/O", 0, 2, 1, 0, 0, false, 20, 12, true},
+    ModuleCatalogEntry{"Bul.1762", "MicroLogix 1200 embedded I/O", 0, 2, 1, 0, 0, false, 24, 16, true},
+    ModuleCatalogEntry{"Bul.1763", "MicroLogix 1100 embedded I/O", 0, 6, 1, 0, 0, false, 10, 6, true},
+    ModuleCatalogEntry{"Bul.1764", "MicroLogix 1500 embedded I/O", 0, 1, 1, 0, 0, false, 16, 12, true},
+    ModuleCatalogEntry{"Bul.1766", "MicroLogix 1400 embedded I/O", 0, 8, 6, 0, 0, false, 20, 12, true},
+    // Specialty modules.
     ModuleCatalogEntry{"1747-SN", "Remote I/O scanner", 13608, 32, 32, 3300, 3300, true},
     ModuleCatalogEntry{"1747-BSN", "Backup Remote I/O scanner", 13608, 32, 32, 3300, 3300, true},
     ModuleCatalogEntry{"1747-SDN", "DeviceNet scanner", 0, 32, 32, 395, 395, true},
@@ -41,6 +87,18 @@ std::optional<ModuleCatalogEntry> find_module_catalog(std::string_view catalog) 
   for (const auto& m : kModules)
     if (m.catalog == catalog) return m;
   return std::nullopt;
+}
+
+std::span<const ModuleCatalogEntry> module_catalog_entries() { return kModules; }
+
+std::uint16_t catalog_point_mask(int points, int word, bool whole_words_after_points) {
+  if (points < 0) return 0xFFFF;
+  const int here = points - word * 16;
+  if (here >= 16) return 0xFFFF;
+  if (here > 0) return static_cast<std::uint16_t>((1u << here) - 1);
+  // Past the discrete points: a whole analog/status word on embedded I/O, nothing on a card.
+  const int discrete_words = (points + 15) / 16;
+  return whole_words_after_points && word >= discrete_words ? 0xFFFF : 0;
 }
 
 }  // namespace softslc

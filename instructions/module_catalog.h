@@ -26,10 +26,26 @@ struct ModuleCatalogEntry {
   int default_m0;       // M0 file words (0 = no M files)
   int default_m1;       // M1 file words
   bool specialty;       // reached through M0/M1/G files by ladder
+  // Discrete points, counted from bit 0 of the first image word (the wiring tables of the 1746,
+  // 1762 and 1769 module manuals): a 1762-IQ8OW6 has input bits 0-7 and output bits 0-5. -1
+  // means every bit of every image word (specialty and analog modules, unknown cards). These are
+  // explicit per row; nothing is derived from the description text.
+  int input_points = -1;
+  int output_points = -1;
+  // Image words after the discrete ones are whole data words (a controller's embedded analog
+  // channels and status words: MicroLogix 1400 I:0.4-I:0.7). False on plug-in cards, whose words
+  // beyond their points do not exist.
+  bool whole_words_after_points = false;
 };
+
+// The bits of image word `word` that exist on a module with `points` discrete points (-1: all).
+std::uint16_t catalog_point_mask(int points, int word, bool whole_words_after_points);
 
 // Looks a catalog number up; nullopt when softslc does not know it.
 std::optional<ModuleCatalogEntry> find_module_catalog(std::string_view catalog);
+
+// Every catalog row, in table order (for the discrete-I/O module family and the tests).
+std::span<const ModuleCatalogEntry> module_catalog_entries();
 
 }  // namespace softslc
 

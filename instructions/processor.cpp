@@ -11,6 +11,7 @@ struct CatalogRow {
   ProcessorFamily family;
   std::string_view name;
   char latest_series;
+  MicroLogixModel micrologix = MicroLogixModel::None;
 };
 
 // One row per catalog number softslc recognises.
@@ -29,11 +30,16 @@ constexpr std::array kCatalogs{
     CatalogRow{"1747-L551", ProcessorFamily::Slc505, "SLC 5/05", 'C'},
     CatalogRow{"1747-L552", ProcessorFamily::Slc505, "SLC 5/05", 'C'},
     CatalogRow{"1747-L553", ProcessorFamily::Slc505, "SLC 5/05", 'C'},
-    CatalogRow{"Bul.1761", ProcessorFamily::MicroLogix, "MicroLogix 1000", 'A'},
-    CatalogRow{"Bul.1762", ProcessorFamily::MicroLogix, "MicroLogix 1200", 'C'},
-    CatalogRow{"Bul.1763", ProcessorFamily::MicroLogix, "MicroLogix 1100", 'B'},
-    CatalogRow{"Bul.1764", ProcessorFamily::MicroLogix, "MicroLogix 1500", 'C'},
-    CatalogRow{"Bul.1766", ProcessorFamily::MicroLogix, "MicroLogix 1400", 'B'},
+    // MicroLogix: RSLogix 500 exports name the bulletin ("START Bul.1766"). A MicroLogix 1500
+    // export names the bulletin only; Bul.1764 is taken as the 1764-LRP (the processor with the
+    // second serial port and data logging), and 1764-LSP / 1764-LRP may be written to be exact.
+    CatalogRow{"Bul.1761", ProcessorFamily::MicroLogix, "MicroLogix 1000", 'A', MicroLogixModel::ML1000},
+    CatalogRow{"Bul.1762", ProcessorFamily::MicroLogix, "MicroLogix 1200", 'C', MicroLogixModel::ML1200},
+    CatalogRow{"Bul.1763", ProcessorFamily::MicroLogix, "MicroLogix 1100", 'B', MicroLogixModel::ML1100},
+    CatalogRow{"Bul.1764", ProcessorFamily::MicroLogix, "MicroLogix 1500", 'C', MicroLogixModel::ML1500LRP},
+    CatalogRow{"1764-LSP", ProcessorFamily::MicroLogix, "MicroLogix 1500 LSP", 'C', MicroLogixModel::ML1500LSP},
+    CatalogRow{"1764-LRP", ProcessorFamily::MicroLogix, "MicroLogix 1500 LRP", 'C', MicroLogixModel::ML1500LRP},
+    CatalogRow{"Bul.1766", ProcessorFamily::MicroLogix, "MicroLogix 1400", 'B', MicroLogixModel::ML1400},
 };
 
 bool is_modular_503_or_later(ProcessorFamily f) {
@@ -47,12 +53,12 @@ int ProcessorModel::max_subroutine_depth() const {
 }
 
 bool ProcessorModel::has_float_files() const {
-  return is_modular_503_or_later(family) || (family == ProcessorFamily::MicroLogix && catalog != "Bul.1761");
+  return is_modular_503_or_later(family) || (is_micrologix() && micrologix != MicroLogixModel::ML1000);
 }
 
 bool ProcessorModel::has_indirect_addressing() const {
   if (is_modular_503_or_later(family)) return series >= 'C';
-  return catalog == "Bul.1766";
+  return micrologix == MicroLogixModel::ML1400;
 }
 
 bool ProcessorModel::supports(Requirement r) const {
@@ -60,6 +66,8 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::Any: return true;
     case Requirement::BlockTransfer: return is_modular_503_or_later(family) && series >= 'C';
     case Requirement::DeviceNetMessage: return is_modular_503_or_later(family) && series >= 'C' && frn >= 10;
+    case Requirement::SlcOneShot: return !is_micrologix_1100_class();
+    case Requirement::MicroLogix1100Class: return is_micrologix_1100_class();
   }
   return false;
 }
@@ -75,6 +83,13 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::DeviceNetMessage:
       return "needs an SLC 5/03, 5/04 or 5/05 with OS Series C FRN 10 or later (1747-SDN manual ch. 8); "
              "this program's processor is " + have;
+    case Requirement::SlcOneShot:
+      return "with one operand is the SLC 500 and MicroLogix 1000 form; on " + display_name +
+             " OSR takes a storage bit and an output bit (1763-RM001 / 1766-RM001 / 1762-RM001 ch. \"Bit "
+             "Instructions\"), and the one-operand one-shot is ONS; this program's processor is " + have;
+    case Requirement::MicroLogix1100Class:
+      return "is a MicroLogix 1100, 1200, 1400 and 1500 instruction (1763-RM001, 1762-RM001, 1766-RM001); this "
+             "program's processor is " + have;
   }
   return {};
 }
@@ -85,8 +100,42 @@ std::string ProcessorModel::timing_key() const {
     case ProcessorFamily::Slc503: return "5/03";
     case ProcessorFamily::Slc504: return "5/04";
     case ProcessorFamily::Slc505: return "5/05";
+    case ProcessorFamily::MicroLogix:
+      switch (micrologix) {
+        case MicroLogixModel::ML1000: return "ML1000";
+        case MicroLogixModel::ML1100: return "ML1100";
+        case MicroLogixModel::ML1200: return "ML1200";
+        case MicroLogixModel::ML1400: return "ML1400";
+        case MicroLogixModel::ML1500LSP:
+        case MicroLogixModel::ML1500LRP: return "ML1500";
+        case MicroLogixModel::None: return {};
+      }
+      return {};
     default: return {};
   }
+}
+
+std::string ProcessorModel::embedded_io_catalog() const {
+  switch (micrologix) {
+    case MicroLogixModel::None: return {};
+    case MicroLogixModel::ML1000: return "Bul.1761";
+    case MicroLogixModel::ML1100: return "Bul.1763";
+    case MicroLogixModel::ML1200: return "Bul.1762";
+    case MicroLogixModel::ML1400: return "Bul.1766";
+    case MicroLogixModel::ML1500LSP:
+    case MicroLogixModel::ML1500LRP: return "Bul.1764";
+  }
+  return {};
+}
+
+std::optional<ProcessorModel> representative_processor(std::string_view key) {
+  static constexpr std::pair<std::string_view, std::string_view> kKeys[] = {
+      {"5/02B", "1747-L524"}, {"5/02C", "1747-L524"}, {"5/03", "1747-L532"}, {"5/04", "1747-L542"},
+      {"5/05", "1747-L552"},  {"ML1000", "Bul.1761"}, {"ML1100", "Bul.1763"}, {"ML1200", "Bul.1762"},
+      {"ML1400", "Bul.1766"}, {"ML1500", "1764-LRP"}};
+  for (const auto& [k, catalog] : kKeys)
+    if (k == key) return resolve_processor(catalog, key == "5/02B" ? std::optional<char>('B') : std::nullopt);
+  return std::nullopt;
 }
 
 std::optional<ProcessorModel> resolve_processor(std::string_view catalog, std::optional<char> series,
@@ -100,6 +149,7 @@ std::optional<ProcessorModel> resolve_processor(std::string_view catalog, std::o
     m.catalog = std::string(catalog);
     m.family = row.family;
     m.display_name = std::string(row.name);
+    m.micrologix = row.micrologix;
     m.series = series.value_or(row.latest_series);
     m.frn = frn.value_or(11);
     return m;
@@ -109,8 +159,8 @@ std::optional<ProcessorModel> resolve_processor(std::string_view catalog, std::o
 
 std::string_view known_processor_catalogs() {
   return "1747-L511 -L514 (5/01), 1747-L524 (5/02), 1747-L531 -L532 (5/03), 1747-L541 -L542 -L543 (5/04), "
-         "1747-L551 -L552 -L553 (5/05), 1747-L20x/L30x/L40x (fixed), Bul.1761 Bul.1762 Bul.1763 Bul.1764 Bul.1766 "
-         "(MicroLogix)";
+         "1747-L551 -L552 -L553 (5/05), 1747-L20x/L30x/L40x (fixed), Bul.1761 (MicroLogix 1000), Bul.1763 (1100), "
+         "Bul.1762 (1200), Bul.1766 (1400), Bul.1764 1764-LSP 1764-LRP (1500)";
 }
 
 }  // namespace softslc

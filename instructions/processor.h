@@ -24,8 +24,13 @@ enum class ProcessorFamily : std::uint8_t {
   Slc503,      // 1747-L531, -L532
   Slc504,      // 1747-L541, -L542, -L543
   Slc505,      // 1747-L551, -L552, -L553
-  MicroLogix,  // Bul.1761/1762/1763/1764/1766 (loaded so their exports can be checked and run)
+  MicroLogix,  // Bul.1761/1762/1763/1764/1766: which one is ProcessorModel::micrologix
 };
+
+// Which MicroLogix controller (None on the SLC 500 processors). The instruction set reference
+// manuals differ per controller (1761-6.3 for the 1000, 1763-RM001 for the 1100, 1762-RM001 for
+// the 1200 and 1764-RM001 for the 1500, 1766-RM001 for the 1400), and so do the rules below.
+enum class MicroLogixModel : std::uint8_t { None, ML1000, ML1100, ML1200, ML1400, ML1500LSP, ML1500LRP };
 
 struct ProcessorModel {
   std::string catalog;       // as written, e.g. "1747-L532" or "Bul.1766"
@@ -33,6 +38,17 @@ struct ProcessorModel {
   char series = 'C';         // hardware/OS series letter
   int frn = 11;              // firmware revision number
   std::string display_name;  // "SLC 5/03" etc.
+  MicroLogixModel micrologix = MicroLogixModel::None;
+
+  bool is_micrologix() const { return micrologix != MicroLogixModel::None; }
+  // MicroLogix 1100, 1200, 1400 and 1500: the controllers whose instruction set has ONS, the
+  // two-operand OSR/OSF, the 0.001 s time base, L files and the function files (RTC, HSC, ...).
+  bool is_micrologix_1100_class() const { return is_micrologix() && micrologix != MicroLogixModel::ML1000; }
+  // L (32-bit long integer) files: MicroLogix 1100, 1200, 1400, 1500 (not the 1000, not SLC).
+  bool has_long_files() const { return is_micrologix_1100_class(); }
+  // The 0.001 s timer time base: MicroLogix 1100/1200/1400/1500 (the SLC and the MicroLogix
+  // 1000 have 0.01 s and 1.0 s only).
+  bool has_millisecond_timebase() const { return is_micrologix_1100_class(); }
 
   // Subroutine nesting limit: 8 on 5/02 and later, 4 on fixed controllers and 5/01 (RM 6-4).
   int max_subroutine_depth() const;
@@ -45,9 +61,17 @@ struct ProcessorModel {
   // Why it does not, for diagnostics ("BTR needs SLC 5/03 OS302 ... ; this program's processor is ...").
   std::string requirement_text(Requirement r) const;
   // Key of this processor's column in the M0/M1 access-time tables and timing profiles:
-  // "5/02B", "5/02C", "5/03", "5/04", "5/05"; empty for processors without M files.
+  // "5/02B", "5/02C", "5/03", "5/04", "5/05", and "ML1000", "ML1100", "ML1200", "ML1400",
+  // "ML1500" for the MicroLogix controllers; empty for the fixed controllers and the 5/01.
   std::string timing_key() const;
+  // The module catalog row of this controller's embedded I/O (slot 0): "Bul.1766" etc.; empty
+  // on the SLC 500 processors, whose slot 0 holds only the processor.
+  std::string embedded_io_catalog() const;
 };
+
+// A processor that a timing key stands for (the built-in profile of that key must have a figure
+// for every instruction this processor supports). nullopt for an unknown key.
+std::optional<ProcessorModel> representative_processor(std::string_view timing_key);
 
 // Resolves a catalog number plus optional series/FRN. Returns nullopt for unknown catalogs.
 std::optional<ProcessorModel> resolve_processor(std::string_view catalog, std::optional<char> series = std::nullopt,

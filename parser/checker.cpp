@@ -17,6 +17,7 @@ class Checker {
   Checker(Program& p, DiagnosticList& d) : program_(p), diags_(d) {}
 
   void run() {
+    add_embedded_io();
     check_slots();
     collect_symbols();
     collect_file_types();
@@ -45,8 +46,31 @@ class Checker {
 
   // ---- Chassis ---------------------------------------------------------------------------------------
 
+  // A MicroLogix's slot 0 is the controller's own I/O: when the program has no SLOT 0 line, slot 0
+  // comes with the processor (its catalog row in instructions/module_catalog.cpp).
+  void add_embedded_io() {
+    const std::string catalog = program_.processor.embedded_io_catalog();
+    if (catalog.empty() || program_.find_slot(0)) return;
+    auto entry = find_module_catalog(catalog);
+    if (!entry) return;
+    SlotConfig s;
+    s.slot = 0;
+    s.catalog = catalog;
+    s.description = std::string(entry->description);
+    s.scan_in = entry->default_scan_in;
+    s.scan_out = entry->default_scan_out;
+    s.pos = program_.processor_pos;
+    s.implicit = true;
+    program_.slots.insert(program_.slots.begin(), std::move(s));
+  }
+
   void check_slots() {
+    const std::string embedded = program_.processor.embedded_io_catalog();
     for (auto& slot : program_.slots) {
+      if (!embedded.empty() && slot.slot == 0 && slot.catalog != embedded &&
+          !resolve_processor(slot.catalog))
+        error(slot.pos, "slot 0 of a " + program_.processor.display_name + " is the controller's embedded I/O (" +
+                            embedded + "), not '" + slot.catalog + "'; expansion I/O starts at slot 1");
       if (slot.slot < 0 || slot.slot > 30) error(slot.pos, "slot number must be 0-30");
       if (slot.scan_in > 255 || slot.scan_out > 255) error(slot.pos, "SCAN_IN/SCAN_OUT must be 0-255 words");
       auto entry = find_module_catalog(slot.catalog);
@@ -228,7 +252,9 @@ class Checker {
         if (a.has_bit()) error(pos, "a floating-point element has no bits");
         break;
       case FileType::Long:
-        if (proc.family != ProcessorFamily::MicroLogix) error(pos, "L (long integer) files exist on MicroLogix only");
+        if (!proc.has_long_files())
+          error(pos, "L (long integer) files exist on MicroLogix only (the 1100, 1200, 1400 and 1500, not the "
+                     "1000); this program's processor is " + proc.display_name);
         break;
       case FileType::String:
       case FileType::Ascii:
@@ -363,9 +389,18 @@ class Checker {
         break;
       }
       case OperandKind::TimeBase:
+        if (op.kind == Operand::Kind::Float && op.real == 0.001) {
+          // The 0.001 s time base exists on the MicroLogix 1100-1500 only (1763-RM001, 1766-RM001,
+          // 1762-RM001 "Timer Instructions": time base 0.001, 0.01 or 1.0 s).
+          if (!program_.processor.has_millisecond_timebase())
+            return error(op.pos, where + ": the 0.001 s time base exists on the MicroLogix 1100, 1200, 1400 and 1500 "
+                                         "only; " + program_.processor.display_name + " has 1.0 and 0.01");
+          break;
+        }
         if (!op.is_number() || !((op.kind == Operand::Kind::Float && (op.real == 1.0 || op.real == 0.01)) ||
                                  (op.kind == Operand::Kind::Integer && op.integer == 1)))
-          return expect("time base 1.0 or 0.01");
+          return expect(program_.processor.has_millisecond_timebase() ? "time base 1.0, 0.01 or 0.001"
+                                                                      : "time base 1.0 or 0.01");
         break;
       case OperandKind::Literal:
       case OperandKind::Label:
@@ -428,10 +463,12 @@ class Checker {
       error(in.pos, mnemonic_of(in) + " must be the first instruction of its rung");
     if (in.opcode == Opcode::SBR && (file_number < 3 || rung_index != 0))
       error(in.pos, "SBR belongs at the start of the first rung of a subroutine file (3-255)");
-    if (in.opcode == Opcode::OSR && in.operands.size() == 1 && in.operands[0].is_address()) {
+    const bool one_shot = in.opcode == Opcode::OSR || in.opcode == Opcode::ONS || in.opcode == Opcode::OSR_ML ||
+                          in.opcode == Opcode::OSF;
+    if (one_shot && !in.operands.empty() && in.operands[0].is_address()) {
       const auto& a = in.operands[0].address;
       if (a.type != FileType::Bit && a.type != FileType::Integer && !is_mfile(a.type))
-        error(in.operands[0].pos, "the OSR storage bit must be in a B or N file");
+        error(in.operands[0].pos, "the " + mnemonic_of(in) + " storage bit must be in a B or N file");
       osr_bits_.emplace_back(a, in.operands[0].pos);
     }
     if (in.opcode == Opcode::JSR && in.operands.size() == 1 && in.operands[0].kind == Operand::Kind::Integer)
@@ -675,5 +712,13 @@ int m1_words(const SlotConfig& slot) {
 }
 
 void check_program(Program& program, DiagnosticList& diags) { Checker(program, diags).run(); }
+
+Program retarget_program(const Program& program, const ProcessorModel& processor, DiagnosticList& diags) {
+  Program p = program;
+  p.processor = processor;
+  std::erase_if(p.slots, [](const SlotConfig& s) { return s.implicit; });
+  check_program(p, diags);
+  return p;
+}
 
 }  // namespace softslc

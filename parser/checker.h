@@ -20,6 +20,13 @@ namespace softslc {
 // Checks `program` and resolves its symbol operands in place. Adds diagnostics to `diags`.
 void check_program(Program& program, DiagnosticList& diags);
 
+// The program as it would be on another processor (`run --processor`, `scantime --processor`):
+// the same text with `processor` in place of the START line's, checked again with that
+// processor's rules, so both commands refuse exactly what the checker refuses for it (L files on
+// a 1747-L551, ONS on an SLC, ...). The embedded slot 0 follows the new processor. Problems go
+// to `diags`; the result is meaningful only when they hold no error.
+Program retarget_program(const Program& program, const ProcessorModel& processor, DiagnosticList& diags);
+
 // The number of words of the status file on this processor.
 int status_file_words(const ProcessorModel& p);
 

@@ -139,6 +139,7 @@ std::string format_program(const Program& p) {
   out += "\n\n";
   if (!p.slots.empty()) out += "% PROCESSOR RACK CONFIGURATION INFORMATION %\n% SLOT CONFIGURATION INFORMATION %\n";
   for (const auto& s : p.slots) {
+    if (s.implicit) continue;  // the controller's embedded I/O, added when the file has no SLOT 0
     out += "SLOT " + std::to_string(s.slot) + " " + s.catalog;
     if (!s.description.empty()) out += "   % " + s.description + " %";
     out += "  SCAN_IN " + std::to_string(s.scan_in) + " SCAN_OUT " + std::to_string(s.scan_out);

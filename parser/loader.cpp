@@ -661,6 +661,9 @@ template <> struct action<instruction> {
     if (!s.instruction_known) return;
     s.instruction.operands = std::move(s.operands);
     s.operands.clear();
+    // A mnemonic with several forms (OSR) takes the form its operand count names.
+    s.instruction.opcode =
+        find_instruction_form(spec(s.instruction.opcode).mnemonic, s.instruction.operands.size())->opcode;
     RungElement e;
     e.kind = RungElement::Kind::Instruction;
     e.pos = s.instruction.pos;

@@ -90,6 +90,9 @@ struct SlotConfig {
   std::optional<int> id_code;
   std::map<std::string, std::string> options;  // OPTION key=value pairs (DIP switches, module mode)
   SourcePos pos;
+  // Added by the checker, not written in the file: a MicroLogix's embedded I/O in slot 0 when the
+  // program has no SLOT 0 line. The formatter does not write it.
+  bool implicit = false;
 };
 
 // A DATA block: initial values of one data file, or an opaque MicroLogix function file.

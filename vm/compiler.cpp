@@ -102,7 +102,7 @@ class Compiler {
   bool file_type_allowed(FileType t) const {
     switch (t) {
       case FileType::Float: return proc_.has_float_files();
-      case FileType::Long: return proc_.family == ProcessorFamily::MicroLogix;
+      case FileType::Long: return proc_.has_long_files();
       case FileType::String:
       case FileType::Ascii:
         return proc_.family == ProcessorFamily::Slc503 || proc_.family == ProcessorFamily::Slc504 ||
@@ -182,6 +182,9 @@ class Compiler {
           const std::uint32_t w = wpe_of(type_of(0));
           return (words + w - 1) / w;
         }
+        return 1;
+      case Opcode::CPW:  // length counts words (MicroLogix), whatever either file's element size
+        if (i <= 1) return (len(2) + wpe_of(type_of(i)) - 1) / wpe_of(type_of(i));
         return 1;
       case Opcode::FLL: return i == 1 ? len(2) : 1;
       case Opcode::BSL:
@@ -656,6 +659,11 @@ class Compiler {
             flags |= bc::kFlagA;
           } else if (std::fabs(tb - 0.01) < 1e-9) {
             w = bc::imm(1);
+          } else if (std::fabs(tb - 0.001) < 1e-12 && proc_.has_millisecond_timebase()) {
+            // MicroLogix 1100-1500: ACC counts milliseconds (kFlagB selects the 1 ms stamp; the
+            // immediate 0 tells the disassembler which base it is).
+            w = bc::imm(0);
+            flags |= bc::kFlagB;
           } else {
             error(pos, "time base must be 1.0 or 0.01 seconds (RM 2-8), not '" + op.spelling + "'");
           }

@@ -65,7 +65,7 @@ std::string meaning(const CompiledProgram& p, Op op, const OperandSpec& os, std:
     case bc::kKFloat: return fmt_float(p.float_constants[bc::payload_of(o)]);
     case bc::kImm: {
       const std::int32_t v = bc::imm_of(o);
-      if (os.kind == OperandKind::TimeBase) return v == 100 ? "1.0" : "0.01";
+      if (os.kind == OperandKind::TimeBase) return v == 100 ? "1.0" : v == 0 ? "0.001" : "0.01";
       if (os.kind == OperandKind::SlotWord)
         return std::string(op == Op::IIM ? "I:" : "O:") + std::to_string(v / 256) + "." + std::to_string(v % 256);
       return std::to_string(v);

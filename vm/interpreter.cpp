@@ -638,8 +638,11 @@ bool Interpreter::timer(Op op, const std::uint32_t* o, std::uint32_t h, bool run
   }
   std::uint16_t ctl = t[0];
   const bool base1s = (bc::flags_of(h) & bc::kFlagA) != 0;
-  // The 10 ms tick count at this instruction's virtual time; timers keep its low byte.
-  const auto now8 = static_cast<std::uint8_t>((scan_start_ + now_in_scan) / kTick);
+  // The 10 ms tick count at this instruction's virtual time; timers keep its low byte. A 0.001 s
+  // timer (MicroLogix, kFlagB) keeps the low byte of the 1 ms count instead, so it stays exact
+  // with scans up to 255 ms (docs/semantics.md, "MicroLogix").
+  const Nanoseconds unit = (bc::flags_of(h) & bc::kFlagB) ? kNsPerMs : kTick;
+  const auto now8 = static_cast<std::uint8_t>((scan_start_ + now_in_scan) / unit);
   const auto restart = [&] { ctl = static_cast<std::uint16_t>((ctl & ~bits::kStampMask) | now8); };
   // Whole time-base units since the stamp; the remainder of a 1.0 s unit stays in the stamp.
   const auto advance = [&] {
@@ -962,6 +965,21 @@ void Interpreter::copy_file(const std::uint32_t* o) {
   charge_words(Op::COP, dst.count);
   // File instructions use the index register; it holds the last offset they used [U].
   w_[s24_] = static_cast<std::uint16_t>(len - 1);
+}
+
+// CPW (MicroLogix 1100-1500): `length` raw words, counted in words whatever the element size of
+// either file, so a long word can be split into two integers and back. The words of an L or F
+// element are taken in the data table's order, low 16 bits first (docs/semantics.md,
+// "MicroLogix"). Both ranges must lie inside their files (a fault otherwise, as COP).
+void Interpreter::copy_words(const std::uint32_t* o) {
+  const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
+  Span probe_src, probe_dst, src, dst;
+  if (!file_span(o[0], 1, probe_src, "CPW source") || !file_span(o[1], 1, probe_dst, "CPW destination")) return;
+  if (!file_span(o[0], (len + probe_src.wpe - 1) / probe_src.wpe, src, "CPW source") ||
+      !file_span(o[1], (len + probe_dst.wpe - 1) / probe_dst.wpe, dst, "CPW destination"))
+    return;
+  std::memmove(w_ + dst.base, w_ + src.base, len * sizeof(std::uint16_t));
+  charge_words(Op::CPW, len);
 }
 
 void Interpreter::fill_file(const std::uint32_t* o, std::uint32_t h) {
@@ -1300,10 +1318,19 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
       case Op::OTU:
         if (rung) wr_bit(o[0], false);
         break;
-      case Op::OSR: {
+      case Op::OSR:
+      case Op::ONS: {  // the MicroLogix 1100-1500 name of the one-operand one-shot
         const bool stored = rd_bit(o[0]);
         wr_bit(o[0], rung);
         rung = rung && !stored;
+        break;
+      }
+      // MicroLogix two-operand one-shots (1763-RM001/1766-RM001/1762-RM001 "Using Bit Instructions").
+      case Op::OSR_ML:
+      case Op::OSF: {
+        const bool stored = rd_bit(o[0]);
+        wr_bit(o[0], rung);
+        wr_bit(o[1], op == Op::OSR_ML ? (rung && !stored) : (!rung && stored));
         break;
       }
 
@@ -1357,6 +1384,11 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
         break;
       case Op::COP:
         if (rung) copy_file(o);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
+      case Op::CPW:
+        if (rung) copy_words(o);
         if (faulted_) goto fault;
         elapsed += std::exchange(extra_ns_, 0);
         break;

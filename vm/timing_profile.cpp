@@ -1,5 +1,7 @@
 #include "vm/timing_profile.h"
 
+#include "instructions/processor.h"
+
 #include <cmath>
 #include <fstream>
 
@@ -105,11 +107,15 @@ void apply_profile_json(const json& j, TimingProfile& p) {
       const InstructionSpec* spec = find_instruction(e.key());
       if (!spec) fail(path, "unknown instruction mnemonic");
       check_keys(*e, path, {"true_us", "false_us", "per_word_us", "source"});
-      auto& t = p.instructions[static_cast<std::size_t>(spec->opcode)];
+      InstructionTiming t;
       t.true_ns = us_to_ns(member(*e, "true_us", path), path + ".true_us");
       t.false_ns = us_to_ns(member(*e, "false_us", path), path + ".false_us");
       t.per_word_ns = e->contains("per_word_us") ? us_to_ns((*e)["per_word_us"], path + ".per_word_us") : 0;
       t.source = source_of(*e, path, p);
+      // A mnemonic's figure covers every form of it (OSR: the SLC's and the MicroLogix's), since a
+      // processor has only one of them.
+      for (const auto& row : kInstructionTable)
+        if (row.mnemonic == e.key()) p.instructions[static_cast<std::size_t>(row.opcode)] = t;
     }
   }
 }
@@ -119,9 +125,12 @@ TimingProfile parse_builtin(const detail::BuiltinProfileText& text) {
   json j = json::parse(text.json);
   p.processor = j.at("processor").get<std::string>();
   apply_profile_json(j, p);
-  // A built-in profile must be complete: every instruction of the table has a figure.
+  // A built-in profile must be complete: every instruction its processor has gets a figure
+  // (an SLC profile need not time ONS, a MicroLogix profile not BTR).
+  const auto proc = representative_processor(p.processor);
+  if (!proc) throw TimingProfileError(std::string("built-in profile ") + text.name + " names no known processor");
   for (std::size_t i = 0; i < kInstructionCount; ++i)
-    if (p.instructions[i].source.empty())
+    if (proc->supports(kInstructionTable[i].requires_) && p.instructions[i].source.empty())
       throw TimingProfileError(std::string("built-in profile ") + text.name + " has no figure for " +
                                std::string(kInstructionTable[i].mnemonic));
   return p;

@@ -10,38 +10,12 @@ namespace softslc {
 
 namespace {
 
-// Points per word from the catalog description: "8-input ...", "16-output ...", "6-input
-// 6-output combination". Words beyond the points are absent.
-std::vector<std::uint16_t> points_of(int words, int points) {
+// The bits of each image word that exist, from the catalog row's explicit point counts.
+std::vector<std::uint16_t> point_masks(int words, int points, bool whole_words_after_points) {
   std::vector<std::uint16_t> out(static_cast<std::size_t>(std::max(words, 0)), 0);
-  for (std::size_t w = 0; w < out.size(); ++w) {
-    const int here = std::clamp(points - static_cast<int>(w) * 16, 0, 16);
-    out[w] = static_cast<std::uint16_t>(here >= 16 ? 0xFFFF : (1u << here) - 1);
-  }
+  for (std::size_t w = 0; w < out.size(); ++w)
+    out[w] = catalog_point_mask(points, static_cast<int>(w), whole_words_after_points);
   return out;
-}
-
-int leading_number(std::string_view text) {
-  int n = 0;
-  for (char c : text) {
-    if (c < '0' || c > '9') break;
-    n = n * 10 + (c - '0');
-  }
-  return n;
-}
-
-// How many input and output points a catalog row describes.
-std::pair<int, int> catalog_points(const ModuleCatalogEntry& e) {
-  const std::string_view d = e.description;
-  if (d.find("combination") != std::string_view::npos) {
-    // "6-input 6-output combination"
-    const int in = leading_number(d);
-    const auto dash = d.find("input ");
-    const int out = dash == std::string_view::npos ? in : leading_number(d.substr(dash + 6));
-    return {in, out};
-  }
-  const int n = leading_number(d);
-  return {e.default_scan_in > 0 ? n : 0, e.default_scan_out > 0 ? n : 0};
 }
 
 bool parse_word(const std::string& t, std::uint16_t& out) {
@@ -130,19 +104,17 @@ std::optional<std::vector<std::int64_t>> DiscreteModule::observe(std::string_vie
 
 void register_discrete_io_family(ModuleRegistry& registry) {
   ModuleFamily f;
-  f.name = "1746 discrete I/O";
-  for (const char* c : {"1746-IB8", "1746-IB16", "1746-IB32", "1746-IV16", "1746-IA16", "1746-IA8", "1746-OB8",
-                        "1746-OB16", "1746-OB32", "1746-OV16", "1746-OW16", "1746-OW8", "1746-OA16", "1746-IO12",
-                        "1762-IQ16", "1762-OB16"})
-    f.catalogs.push_back(c);
+  f.name = "discrete I/O (1746, 1762, 1769, MicroLogix embedded)";
+  // Every non-specialty row of the catalog is a discrete card (or a controller's embedded I/O).
+  for (const auto& e : module_catalog_entries())
+    if (!e.specialty) f.catalogs.emplace_back(e.catalog);
   f.bench_kinds = {"io"};
   f.prepare = [](const ModulePrepareContext& ctx) -> SlotModuleBuilder {
     DiscreteModuleSpec spec;
     auto entry = find_module_catalog(ctx.slot.catalog);
     if (entry) {
-      auto [in, out] = catalog_points(*entry);
-      spec.input_points = points_of(ctx.slot.scan_in, in);
-      spec.output_points = points_of(ctx.slot.scan_out, out);
+      spec.input_points = point_masks(ctx.slot.scan_in, entry->input_points, entry->whole_words_after_points);
+      spec.output_points = point_masks(ctx.slot.scan_out, entry->output_points, entry->whole_words_after_points);
     }
     if (ctx.bench) {
       BenchReader r(*ctx.bench, ctx.bench_diagnostics);

@@ -1,6 +1,7 @@
-// 1746 discrete I/O modules in the local chassis.
+// Discrete I/O modules: 1746 cards in the local chassis, 1762/1769 MicroLogix expansion I/O and
+// a MicroLogix controller's embedded I/O in slot 0.
 //
-// Every catalog of the 1746 discrete family that instructions/module_catalog.cpp knows becomes a
+// Every non-specialty catalog that instructions/module_catalog.cpp knows becomes a
 // DiscreteModule: the generic DiscreteIoModule (vm/discrete_io.h) plus what the catalog says
 // about its terminals — how many points exist (an 8-point card has bits 0-7 of its word, the
 // 1746-IO12 six inputs and six outputs) — and, from the bench, the module's input filter and

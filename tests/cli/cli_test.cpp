@@ -241,3 +241,27 @@ TEST(Cli, ScantimeOnEveryExampleFollowsTheSchema) {
 }
 
 }  // namespace
+
+// Issue 16: the MicroLogix 1400 export has a timing profile, `--processor` applies the same checks
+// on scantime as on run (its L files are refused on a 1747-L551), and `run` reaches its 1762-IQ16.
+namespace {
+
+TEST(CliMicroLogix, ScantimePredictsTheFixtureAndRefusesWhatRunRefuses) {
+  auto own = run("scantime " + kFixture);
+  EXPECT_EQ(own.exit_code, 0) << own.out;
+  EXPECT_NE(own.out.find("timing profile \"MicroLogix 1400 (Bul.1766)\""), std::string::npos) << own.out;
+  for (const char* cmd : {"scantime", "run"}) {
+    auto r = run(std::string(cmd) + " " + kFixture + " --processor 1747-L551");
+    EXPECT_EQ(r.exit_code, 1) << cmd << ": " << r.out;
+    EXPECT_NE(r.out.find("L (long integer) files exist on MicroLogix only"), std::string::npos) << cmd << ": " << r.out;
+    EXPECT_NE(r.out.find("does not check for SLC 5/05"), std::string::npos) << cmd << ": " << r.out;
+  }
+}
+
+TEST(CliMicroLogix, RunSetsAnExpansionInput) {
+  auto r = run("run " + kFixture + " --scans 3 --set I:1.0/0=1 --print B13:1/0");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("B13:1/0 = 1"), std::string::npos) << r.out;
+}
+
+}  // namespace

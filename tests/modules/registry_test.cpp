@@ -26,7 +26,7 @@ TEST(Registry, FindsFamiliesByCatalogAndIdCode) {
   s.id_code.reset();
   EXPECT_EQ(r.find(s), nullptr);
   s.catalog = "1746-OB16";
-  EXPECT_EQ(r.find(s)->name, "1746 discrete I/O");
+  EXPECT_EQ(r.find(s)->name, "discrete I/O (1746, 1762, 1769, MicroLogix embedded)");
 }
 
 const std::string kTwoSlots =

@@ -14,6 +14,7 @@
 #include "vm/atomic_file.h"
 #include "instructions/instruction_table.h"
 #include "modules/throughput/throughput_json.h"
+#include "parser/checker.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
 #include "modules/module_setup.h"
@@ -36,6 +37,20 @@ void report(const LoadResult& r) {
   if (e > 0 || w > 0)
     std::cerr << r.source_name << ": " << e << " error" << (e == 1 ? "" : "s") << ", " << w << " warning"
               << (w == 1 ? "" : "s") << "\n";
+}
+
+// `--processor` on run and scantime: the program re-checked with that processor's rules
+// (retarget_program). Prints the errors and returns nullopt when it does not check.
+std::optional<Program> retarget(const LoadResult& r, const ProcessorModel& p, const char* command) {
+  DiagnosticList diags;
+  Program out = retarget_program(*r.program, p, diags);
+  if (!diags.has_errors()) return out;
+  diags.sort_by_position();
+  for (const auto& d : diags.items())
+    if (d.severity == Severity::Error) std::cerr << render(d, r.source_name, r.source);
+  std::cerr << "softslc " << command << ": the program does not check for " << p.display_name << " (" << p.catalog
+            << "); " << diags.error_count() << " error" << (diags.error_count() == 1 ? "" : "s") << "\n";
+  return std::nullopt;
 }
 
 }  // namespace
@@ -200,10 +215,15 @@ int run_scantime(const ScantimeOptions& o) {
     else profile = builtin_timing_profile(p.timing_key());
     if (!profile) {
       std::cerr << "softslc scantime: no timing profile for " << p.display_name << " (" << p.catalog
-                << "); profiles exist for the SLC 5/02 Series B and C, 5/03, 5/04 and 5/05\n";
+                << "); profiles exist for the SLC 5/02 Series B and C, 5/03, 5/04 and 5/05 and the MicroLogix 1000, "
+                   "1100, 1200, 1400 and 1500\n";
       return kInputError;
     }
-    results.push_back(predict_scan_time(*r.program, p, *profile));
+    // The processor named by --processor applies the same checks as `run --processor`.
+    std::optional<Program> program = r.program;
+    if (!o.processors.empty()) program = retarget(r, p, "scantime");
+    if (!program) return kInputError;
+    results.push_back(predict_scan_time(*program, p, *profile));
   }
   if (o.json) {
     if (results.size() == 1) {
@@ -247,10 +267,10 @@ int run_run(const RunOptions& o) {
   auto r = load_program_file(o.file);
   report(r);
   if (!r.ok()) return kInputError;
-  const Program& program = *r.program;
-
+  // Under --processor, the program as that processor sees it (checked with its rules).
+  std::optional<Program> retargeted;
   RuntimeOptions options;
-  ProcessorModel processor = program.processor;
+  ProcessorModel processor = r.program->processor;
   if (!o.processor.empty()) {
     std::string error;
     auto m = parse_processor_option(o.processor, error);
@@ -260,7 +280,10 @@ int run_run(const RunOptions& o) {
     }
     processor = *m;
     options.processor = *m;
+    retargeted = retarget(r, *m, "run");
+    if (!retargeted) return kInputError;
   }
+  const Program& program = retargeted ? *retargeted : *r.program;
   if (!o.timing.empty()) {
     try {
       auto user = load_timing_profile_file(o.timing);

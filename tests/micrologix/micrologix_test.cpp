@@ -1,0 +1,417 @@
+// The MicroLogix controllers (issue 16), through the public Controller API with the module
+// framework, as `softslc run` and `softslc test` use them.
+//
+// Expected values come from the catalog numbers (a 1762-IQ16 has 16 inputs), from the MicroLogix
+// instruction set reference manuals' descriptions of the instructions (cited per test), and from
+// the manuals' execution-time tables for the timing profiles. Page numbers are given where the
+// project's sources have them (slc500-facts.md, "ML"); otherwise the chapter and section.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "instructions/module_catalog.h"
+#include "instructions/processor.h"
+#include "parser/checker.h"
+#include "parser/formatter.h"
+#include "parser/loader.h"
+#include "tools/controller/controller.h"
+#include "vm/scantime.h"
+#include "vm/timing_profile.h"
+
+namespace softslc {
+namespace {
+
+const std::string kBsgs = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rslogix500/59-BSGS.SLC";
+const std::string kBsgs1001 = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rslogix500/59-BSGS-v1.0-1001-rungs.SLC";
+
+// The diagnostics of loading `text` (empty when it loads clean of errors).
+std::string load_errors(const std::string& text) {
+  LoadResult r = load_program(text, "t.slc");
+  return r.ok() ? std::string() : r.render_diagnostics();
+}
+
+// ---- Expansion and embedded I/O point counts -----------------------------------------------------------
+
+struct PointCase {
+  const char* catalog;
+  int in_words, out_words;  // image words
+  int in_points, out_points;
+};
+
+// Points from the catalog numbers: the digits after the type letters count the points (IQ16 =
+// 16 inputs, OB32T = 32 outputs, IQ8OW6 = 8 inputs + 6 outputs, IO12 = 6 + 6); one image word
+// per 16 points. Embedded I/O: 1763-L16 = 10 inputs + 6 outputs, 1766-L32 = 20 + 12, 1761-L32 =
+// 20 + 12, 1762-L40 = 24 + 16, 1764-28 base = 16 + 12.
+const std::vector<PointCase> kPointCases = {
+    {"1746-IB8", 1, 0, 8, 0},       {"1746-IB16", 1, 0, 16, 0},     {"1746-IB32", 2, 0, 32, 0},
+    {"1746-IV16", 1, 0, 16, 0},     {"1746-IA16", 1, 0, 16, 0},     {"1746-IA8", 1, 0, 8, 0},
+    {"1746-OB8", 0, 1, 0, 8},       {"1746-OB16", 0, 1, 0, 16},     {"1746-OB32", 0, 2, 0, 32},
+    {"1746-OV16", 0, 1, 0, 16},     {"1746-OW16", 0, 1, 0, 16},     {"1746-OW8", 0, 1, 0, 8},
+    {"1746-OA16", 0, 1, 0, 16},     {"1746-IO12", 1, 1, 6, 6},      {"1762-IA8", 1, 0, 8, 0},
+    {"1762-IQ8", 1, 0, 8, 0},       {"1762-IQ16", 1, 0, 16, 0},     {"1762-IQ32T", 2, 0, 32, 0},
+    {"1762-OA8", 0, 1, 0, 8},       {"1762-OB8", 0, 1, 0, 8},       {"1762-OB16", 0, 1, 0, 16},
+    {"1762-OB32T", 0, 2, 0, 32},    {"1762-OV32T", 0, 2, 0, 32},    {"1762-OW8", 0, 1, 0, 8},
+    {"1762-OW16", 0, 1, 0, 16},     {"1762-OX6I", 0, 1, 0, 6},      {"1762-IQ8OW6", 1, 1, 8, 6},
+    {"1769-IA8I", 1, 0, 8, 0},      {"1769-IA16", 1, 0, 16, 0},     {"1769-IM12", 1, 0, 12, 0},
+    {"1769-IQ16", 1, 0, 16, 0},     {"1769-IQ16F", 1, 0, 16, 0},    {"1769-IQ32", 2, 0, 32, 0},
+    {"1769-IQ32T", 2, 0, 32, 0},    {"1769-OA8", 0, 1, 0, 8},       {"1769-OA16", 0, 1, 0, 16},
+    {"1769-OB8", 0, 1, 0, 8},       {"1769-OB16", 0, 1, 0, 16},     {"1769-OB16P", 0, 1, 0, 16},
+    {"1769-OB32", 0, 2, 0, 32},     {"1769-OV16", 0, 1, 0, 16},     {"1769-OW8", 0, 1, 0, 8},
+    {"1769-OW8I", 0, 1, 0, 8},      {"1769-OW16", 0, 1, 0, 16},     {"1769-IQ6XOW4", 1, 1, 6, 4},
+};
+
+// The bits that exist in word `w` of a card with `points` points.
+std::uint16_t expected_mask(int points, int w) {
+  const int here = points - 16 * w;
+  return here >= 16 ? 0xFFFF : here <= 0 ? 0 : static_cast<std::uint16_t>((1u << here) - 1);
+}
+
+TEST(MicroLogixCatalog, EveryDiscreteRowIsListedHere) {
+  // A new non-specialty row must come with its expected counts in kPointCases (or be embedded I/O).
+  for (const auto& e : module_catalog_entries()) {
+    if (e.specialty || e.catalog.substr(0, 4) == "Bul.") continue;
+    bool listed = false;
+    for (const auto& c : kPointCases) listed |= e.catalog == c.catalog;
+    EXPECT_TRUE(listed) << e.catalog;
+  }
+}
+
+TEST(MicroLogixCatalog, EachModuleHasItsPointsAsSimulatedInputsAndOutputs) {
+  for (const auto& c : kPointCases) {
+    SCOPED_TRACE(c.catalog);
+    auto e = find_module_catalog(c.catalog);
+    ASSERT_TRUE(e.has_value());
+    EXPECT_EQ(e->default_scan_in, c.in_words);
+    EXPECT_EQ(e->default_scan_out, c.out_words);
+    // 1746 cards in an SLC 5/03 chassis, 1762 modules on a MicroLogix 1200, 1769 on a 1500.
+    const std::string family = std::string(c.catalog).substr(0, 4);
+    const char* start = family == "1746" ? "START 1747-L532\n" : family == "1762" ? "START Bul.1762\n" : "START Bul.1764\n";
+    std::string text = std::string(start) + "SLOT 1 " + c.catalog +
+                       " SCAN_IN " + std::to_string(c.in_words) + " SCAN_OUT " + std::to_string(c.out_words) +
+                       "\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n";
+    Controller plc = Controller::from_text(text);
+    for (int w = 0; w < c.in_words; ++w) {
+      for (int b = 0; b < 16; ++b) {
+        const std::string a = "I:1." + std::to_string(w) + "/" + std::to_string(b);
+        const bool exists = (expected_mask(c.in_points, w) >> b) & 1;
+        if (exists) {
+          EXPECT_NO_THROW(plc.set(a, 1)) << a;
+        } else {
+          EXPECT_THROW(plc.set(a, 1), ControllerError) << a << " does not exist on the card";
+        }
+      }
+      plc.scan(1);
+      EXPECT_EQ(plc.get_int("I:1." + std::to_string(w)) & 0xFFFF, expected_mask(c.in_points, w));
+    }
+    for (int w = 0; w < c.out_words; ++w) {
+      plc.set("O:1." + std::to_string(w), -1);
+      plc.scan(1);
+      EXPECT_EQ(*plc.runtime().module(1)->field_output(w), expected_mask(c.out_points, w)) << "output word " << w;
+    }
+  }
+}
+
+// ---- Processors --------------------------------------------------------------------------------------
+
+TEST(MicroLogixProcessor, CatalogsResolveToTheirControllers) {
+  struct Case {
+    const char* catalog;
+    const char* name;
+    const char* timing;
+    const char* embedded;
+    bool long_files;
+    bool ms_timebase;
+  };
+  for (const Case& c : {Case{"Bul.1761", "MicroLogix 1000", "ML1000", "Bul.1761", false, false},
+                        Case{"Bul.1763", "MicroLogix 1100", "ML1100", "Bul.1763", true, true},
+                        Case{"Bul.1762", "MicroLogix 1200", "ML1200", "Bul.1762", true, true},
+                        Case{"Bul.1766", "MicroLogix 1400", "ML1400", "Bul.1766", true, true},
+                        Case{"Bul.1764", "MicroLogix 1500", "ML1500", "Bul.1764", true, true},
+                        Case{"1764-LSP", "MicroLogix 1500 LSP", "ML1500", "Bul.1764", true, true},
+                        Case{"1764-LRP", "MicroLogix 1500 LRP", "ML1500", "Bul.1764", true, true},
+                        Case{"1747-L551", "SLC 5/05", "5/05", "", false, false}}) {
+    SCOPED_TRACE(c.catalog);
+    auto p = resolve_processor(c.catalog);
+    ASSERT_TRUE(p.has_value());
+    EXPECT_EQ(p->display_name, c.name);
+    EXPECT_EQ(p->timing_key(), c.timing);
+    EXPECT_EQ(p->embedded_io_catalog(), c.embedded);
+    EXPECT_EQ(p->has_long_files(), c.long_files);
+    EXPECT_EQ(p->has_millisecond_timebase(), c.ms_timebase);
+  }
+  EXPECT_EQ(resolve_processor("Bul.1763", 'A')->series, 'A');
+}
+
+TEST(MicroLogixProcessor, EmbeddedIoComesWithTheProcessor) {
+  // No SLOT line at all: slot 0 is the MicroLogix 1100's own 10 inputs and 6 outputs.
+  const std::string text = "START Bul.1763\nLADDER 2\nSOR XIC I:0/0 OTE O:0/5 EOR\n";
+  Controller plc = Controller::from_text(text);
+  plc.set("I:0.0/0", 1);
+  plc.scan(2);
+  EXPECT_TRUE(plc.get_bit("O:0.0/5"));
+  EXPECT_EQ(*plc.runtime().module(0)->field_output(0), 0x0020);
+  EXPECT_NO_THROW(plc.set("I:0.0/9", 1));
+  EXPECT_THROW(plc.set("I:0.0/10", 1), ControllerError) << "the 1763-L16 has inputs 0-9";
+  // The analog inputs I:0.4 and I:0.5 are whole words.
+  EXPECT_NO_THROW(plc.set("I:0.4", 1234));
+  plc.scan(1);
+  EXPECT_EQ(plc.get_int("I:0.4"), 1234);
+  // fmt does not write the slot the processor brings.
+  LoadResult r = load_program(text, "t.slc");
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(format_program(*r.program).find("SLOT 0"), std::string::npos);
+}
+
+TEST(MicroLogixProcessor, SlotZeroOfAMicroLogixIsItsEmbeddedIo) {
+  EXPECT_NE(load_errors("START Bul.1766\nSLOT 0 1762-IQ16 SCAN_IN 1 SCAN_OUT 0\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n")
+                .find("embedded I/O"),
+            std::string::npos);
+}
+
+// ---- The checker refuses what the processor does not have, naming it --------------------------------------
+
+TEST(MicroLogixChecks, EachProcessorRefusesWhatItLacks) {
+  struct Case {
+    const char* processor;
+    const char* rung;
+    const char* expect;  // "" = loads
+  };
+  for (const Case& c : {
+           Case{"1747-L532", "SOR XIC B3:0/0 ONS B3:0/1 OTE B3:0/2 EOR", "ONS is a MicroLogix 1100, 1200, 1400 and 1500"},
+           Case{"Bul.1761", "SOR XIC B3:0/0 ONS B3:0/1 OTE B3:0/2 EOR", "ONS is a MicroLogix 1100"},
+           Case{"Bul.1763", "SOR XIC B3:0/0 ONS B3:0/1 OTE B3:0/2 EOR", ""},
+           Case{"1747-L532", "SOR XIC B3:0/0 OSR B3:0/1 B3:0/2 EOR", "OSR is a MicroLogix 1100"},
+           Case{"Bul.1766", "SOR XIC B3:0/0 OSR B3:0/1 B3:0/2 EOR", ""},
+           Case{"Bul.1766", "SOR XIC B3:0/0 OSR B3:0/1 OTE B3:0/2 EOR", "OSR with one operand is the SLC 500"},
+           Case{"Bul.1761", "SOR XIC B3:0/0 OSR B3:0/1 OTE B3:0/2 EOR", ""},
+           Case{"1747-L532", "SOR XIC B3:0/0 OSF B3:0/1 B3:0/2 EOR", "OSF is a MicroLogix"},
+           Case{"1747-L532", "SOR XIC B3:0/0 TON T4:0 0.001 100 0 EOR", "0.001 s time base"},
+           Case{"Bul.1761", "SOR XIC B3:0/0 TON T4:0 0.001 100 0 EOR", "0.001 s time base"},
+           Case{"Bul.1762", "SOR XIC B3:0/0 TON T4:0 0.001 100 0 EOR", ""},
+           Case{"1747-L551", "SOR XIC B3:0/0 ADD L9:0 1 L9:0 EOR", "L (long integer) files"},
+           Case{"Bul.1761", "SOR XIC B3:0/0 ADD L9:0 1 L9:0 EOR", "L (long integer) files"},
+           Case{"Bul.1766", "SOR XIC B3:0/0 ADD L9:0 1 L9:0 EOR", ""},
+       }) {
+    SCOPED_TRACE(std::string(c.processor) + ": " + c.rung);
+    const std::string errors = load_errors(std::string("START ") + c.processor + "\nLADDER 2\n" + c.rung + "\n");
+    if (*c.expect == 0) {
+      EXPECT_EQ(errors, "");
+    } else {
+      EXPECT_NE(errors.find(c.expect), std::string::npos) << errors;
+    }
+  }
+}
+
+TEST(MicroLogixChecks, RetargetingTheBsgsExportToAnSlcRefusesItsLFiles) {
+  LoadResult r = load_program_file(kBsgs);
+  ASSERT_TRUE(r.ok()) << r.render_diagnostics();
+  DiagnosticList d;
+  retarget_program(*r.program, *resolve_processor("1747-L551"), d);
+  ASSERT_TRUE(d.has_errors());
+  EXPECT_NE(render_all(d, "x", r.source).find("L (long integer) files exist on MicroLogix only"), std::string::npos);
+  DiagnosticList ok;
+  retarget_program(*r.program, *resolve_processor("Bul.1763"), ok);
+  EXPECT_FALSE(ok.has_errors()) << render_all(ok, "x", r.source);
+}
+
+// ---- One-shots (1763-RM001, 1766-RM001, 1762-RM001, chapter "Using Bit Instructions") -----------------------
+
+// ONS: "the ONS instruction is a retentive input instruction that triggers an event to occur one
+// time": true for the one scan in which its rung-in goes false-to-true; the storage bit keeps the
+// rung-in of the last scan.
+TEST(MicroLogixOneShots, OnsPassesTheRungForOneScanPerRisingEdge) {
+  Controller plc = Controller::from_text(
+      "START Bul.1763\nLADDER 2\nSOR XIC I:0/0 ONS B3:0/0 ADD N7:0 1 N7:0 EOR\n");
+  plc.scan(3);
+  EXPECT_EQ(plc.get_int("N7:0"), 0);
+  plc.set("I:0.0/0", 1);
+  plc.scan(5);
+  EXPECT_EQ(plc.get_int("N7:0"), 1) << "one count for one rising edge, though the input stays on 5 scans";
+  EXPECT_TRUE(plc.get_bit("B3:0/0"));
+  plc.set("I:0.0/0", 0);
+  plc.scan(2);
+  EXPECT_FALSE(plc.get_bit("B3:0/0"));
+  plc.set("I:0.0/0", 1);
+  plc.scan(2);
+  EXPECT_EQ(plc.get_int("N7:0"), 2);
+}
+
+// OSR (MicroLogix form): an output instruction with a storage bit and an output bit; "when the
+// rung goes from false to true, the OSR sets the output bit for one scan"; it is reset on the
+// next scan. OSF sets it for one scan when the rung goes from true to false.
+TEST(MicroLogixOneShots, OsrAndOsfSetTheirOutputBitForOneScan) {
+  Controller plc = Controller::from_text(
+      "START Bul.1766\nLADDER 2\n"
+      "SOR XIC I:0/0 BST OSR B3:0/0 B3:0/1 NXB OSF B3:0/2 B3:0/3 BND EOR\n"
+      "SOR XIC B3:0/1 ADD N7:0 1 N7:0 EOR\n"
+      "SOR XIC B3:0/3 ADD N7:1 1 N7:1 EOR\n");
+  plc.scan(2);
+  EXPECT_FALSE(plc.get_bit("B3:0/1"));
+  EXPECT_FALSE(plc.get_bit("B3:0/3"));
+  plc.set("I:0.0/0", 1);
+  plc.scan(1);
+  EXPECT_TRUE(plc.get_bit("B3:0/1")) << "OSR output bit on in the scan of the rising edge";
+  EXPECT_TRUE(plc.get_bit("B3:0/0")) << "storage bit holds the rung state";
+  plc.scan(1);
+  EXPECT_FALSE(plc.get_bit("B3:0/1")) << "and off on the next scan";
+  plc.scan(3);
+  EXPECT_EQ(plc.get_int("N7:0"), 1);
+  EXPECT_EQ(plc.get_int("N7:1"), 0);
+  plc.set("I:0.0/0", 0);
+  plc.scan(1);
+  EXPECT_TRUE(plc.get_bit("B3:0/3")) << "OSF output bit on in the scan of the falling edge";
+  plc.scan(1);
+  EXPECT_FALSE(plc.get_bit("B3:0/3"));
+  plc.scan(3);
+  EXPECT_EQ(plc.get_int("N7:0"), 1);
+  EXPECT_EQ(plc.get_int("N7:1"), 1);
+}
+
+TEST(MicroLogixOneShots, TheMicroLogix1000KeepsTheSlcOneOperandOsr) {
+  // MicroLogix 1000 User Manual (1761-6.3) ch. 6: OSR is an input instruction with one bit.
+  Controller plc = Controller::from_text("START Bul.1761\nLADDER 2\nSOR XIC I:0/0 OSR B3:0/0 ADD N7:0 1 N7:0 EOR\n");
+  plc.set("I:0.0/0", 1);
+  plc.scan(4);
+  EXPECT_EQ(plc.get_int("N7:0"), 1);
+}
+
+// ---- The 0.001 s time base (1763-RM001/1766-RM001/1762-RM001 "Using Timer and Counter
+// Instructions": time base 0.001, 0.01 or 1.0 s; ACC counts time-base units) -----------------------
+
+TEST(MicroLogixTimers, MillisecondTimerCountsMilliseconds) {
+  Controller plc = Controller::from_text("START Bul.1763\nLADDER 2\nSOR XIC I:0/0 TON T4:0 0.001 250 0 EOR\n");
+  plc.set("I:0.0/0", 1);
+  plc.scan(2);  // the input scan sees the input; the timer starts
+  const VirtualTime start = plc.now();
+  ASSERT_TRUE(plc.get_bit("T4:0/EN"));
+  ASSERT_TRUE(plc.run_until([](const Controller& c) { return c.get_bit("T4:0/DN"); }, milliseconds(400)));
+  const Nanoseconds took = plc.now() - start;
+  EXPECT_EQ(plc.get_int("T4:0.ACC"), 250);
+  // 250 counts of 1 ms: DN at 0.25 s after the timer started, within the last scan.
+  EXPECT_GE(took, milliseconds(249));
+  EXPECT_LE(took, milliseconds(262));
+}
+
+// ---- L-file math (1762-RM001 / 1766-RM001 "Math Instructions": long-word operands are 32-bit,
+// -2,147,483,648 to 2,147,483,647; overflow clamps to the limit with S:0/1 set when S:2/14 = 0) --------
+
+TEST(MicroLogixMath, LongWordOperandsAre32Bit) {
+  Controller plc = Controller::from_text(
+      "START Bul.1766\nLADDER 2\n"
+      "SOR MUL N7:0 N7:1 L9:0 ADD L9:1 L9:2 L9:3 MOV L9:3 L9:4 EOR\n"
+      "SOR GEQ L9:3 L9:0 OTE B3:0/0 EOR\n"
+      "SOR ADD L9:5 1 L9:6 EOR\n"
+      "DATA N7:0\n300 400\n"
+      "DATA L9:0\n0 100000 200000 0 0 2147483647 0\n");
+  plc.scan(1);
+  EXPECT_EQ(plc.get_int("L9:0"), 120000) << "300 x 400 fits a long word (the 59-BSGS MUL N37:0 N7:0 L41:0 idiom)";
+  EXPECT_EQ(plc.get_int("L9:3"), 300000);
+  EXPECT_EQ(plc.get_int("L9:4"), 300000);
+  EXPECT_TRUE(plc.get_bit("B3:0/0"));
+  EXPECT_EQ(plc.get_int("L9:6"), 2147483647) << "overflow clamps at the long-word limit";
+  EXPECT_TRUE(plc.get_bit("S:0/1")) << "and sets V";
+}
+
+// CPW ("Using File Instructions"): length counts 16-bit words whatever the files' element sizes,
+// so a long word splits into two integer words and back; COP on the same operands counts
+// destination elements. The word order inside a long word (low 16 bits first) is softslc's
+// decision (docs/semantics.md "MicroLogix"), not the manual's.
+TEST(MicroLogixFile, CpwCopiesWordsAcrossFileTypes) {
+  Controller plc = Controller::from_text(
+      "START Bul.1762\nLADDER 2\n"
+      "SOR CPW #L9:0 #N7:0 2 CPW #N7:4 #L9:1 2 EOR\n"
+      "DATA N7:0\n0 0 0 0 5 1\n"
+      "DATA L9:0\n131073 0\n");
+  plc.scan(1);
+  EXPECT_EQ(plc.get_int("N7:0"), 1);
+  EXPECT_EQ(plc.get_int("N7:1"), 2);
+  EXPECT_EQ(plc.get_int("L9:1"), 65536 + 5);
+  EXPECT_NE(load_errors("START 1747-L532\nLADDER 2\nSOR CPW #N7:0 #N7:5 2 EOR\n").find("CPW is a MicroLogix"),
+            std::string::npos);
+}
+
+// ---- The two 59-BSGS exports with their own I/O ----------------------------------------------------------
+
+TEST(MicroLogixFixtures, BsgsRespondsToAnExpansionInputAndTakesEmbeddedInputs) {
+  Controller plc = Controller::load(kBsgs);
+  plc.scan(2);
+  ASSERT_FALSE(plc.fault().has_value());
+  // LADDER 5 rung 0: SOR XIC I:1.0/0 OTE B13:1/0 EOR (slot 1 is a 1762-IQ16).
+  plc.set("I:1.0/0", 1);
+  plc.set("I:1.0/15", 1);
+  plc.scan(2);
+  EXPECT_TRUE(plc.get_bit("B13:1/0"));
+  EXPECT_TRUE(plc.get_bit("I:1.0/15"));
+  // The embedded inputs (slot 0, the 1766-L32's 20 inputs) reach the input file.
+  plc.set("I:0.0/3", 1);
+  plc.set("I:0.1/3", 1);
+  plc.scan(2);
+  EXPECT_TRUE(plc.get_bit("I:0.0/3"));
+  EXPECT_TRUE(plc.get_bit("I:0.1/3"));
+  EXPECT_THROW(plc.set("I:0.1/4", 1), ControllerError) << "inputs 0-19 only";
+  plc.run_for(seconds(10));
+  EXPECT_FALSE(plc.fault().has_value());
+}
+
+TEST(MicroLogixFixtures, Bsgs1001RungsRespondsToEmbeddedAndExpansionInputs) {
+  Controller plc = Controller::load(kBsgs1001);
+  plc.scan(2);
+  ASSERT_FALSE(plc.fault().has_value());
+  EXPECT_FALSE(plc.get_bit("B13:3/0"));
+  EXPECT_FALSE(plc.get_bit("B13:1/2"));
+  // SOR XIC I:0.0/0 OTE B13:3/0 EOR (embedded) and SOR XIC I:1.0/2 OTE B13:1/2 EOR (1762-IQ16).
+  plc.set("I:0.0/0", 1);
+  plc.set("I:1.0/2", 1);
+  plc.scan(2);
+  EXPECT_TRUE(plc.get_bit("B13:3/0"));
+  EXPECT_TRUE(plc.get_bit("B13:1/2"));
+  plc.run_for(seconds(10));
+  EXPECT_FALSE(plc.fault().has_value());
+}
+
+// ---- Timing profiles (the manuals' execution-time tables) ---------------------------------------------------
+
+TEST(MicroLogixTiming, ProfilesCarryThePublishedFigures) {
+  for (const char* key : {"ML1000", "ML1100", "ML1200", "ML1400", "ML1500"})
+    EXPECT_TRUE(builtin_timing_profile(key).has_value()) << key;
+  // MicroLogix 1000 User Manual (1761-6.3) p. 6-4: XIC 1.54 us true, 1.72 us false.
+  auto p1000 = *builtin_timing_profile("ML1000");
+  EXPECT_EQ(p1000.instruction(Opcode::XIC).true_ns, 1540);
+  EXPECT_EQ(p1000.instruction(Opcode::XIC).false_ns, 1720);
+  EXPECT_FALSE(p1000.is_estimate(p1000.instruction(Opcode::XIC).source));
+  EXPECT_EQ(p1000.housekeeping.ns, 210'000) << "p. B-26 worksheet: 210 us";
+  // 1763-RM001 p. 171: TON 4.06 us true (DN = 0), 2.59 us false.
+  auto p1100 = *builtin_timing_profile("ML1100");
+  EXPECT_EQ(p1100.instruction(Opcode::TON).true_ns, 4060);
+  EXPECT_EQ(p1100.instruction(Opcode::TON).false_ns, 2590);
+  // 1762-RM001 Table A.1: ADD 2.7 us true, 0.0 false; AND 2.2 us true.
+  auto p1200 = *builtin_timing_profile("ML1200");
+  EXPECT_EQ(p1200.instruction(Opcode::ADD).true_ns, 2700);
+  EXPECT_EQ(p1200.instruction(Opcode::ADD).false_ns, 0);
+  EXPECT_EQ(p1200.instruction(Opcode::AND).true_ns, 2200);
+  // 1762-RM001 p. B-6: MicroLogix 1500 housekeeping 240 us.
+  EXPECT_EQ(builtin_timing_profile("ML1500")->housekeeping.ns, 240'000);
+  // Everything else is marked as an estimate.
+  auto p1400 = *builtin_timing_profile("ML1400");
+  EXPECT_TRUE(p1400.is_estimate(p1400.instruction(Opcode::XIC).source));
+  EXPECT_TRUE(p1400.is_estimate(p1400.housekeeping.source));
+}
+
+TEST(MicroLogixTiming, ScantimePredictsBothBsgsExports) {
+  for (const std::string& file : {kBsgs, kBsgs1001}) {
+    LoadResult r = load_program_file(file);
+    ASSERT_TRUE(r.ok()) << r.render_diagnostics();
+    const ProcessorModel& p = r.program->processor;
+    auto profile = builtin_timing_profile(p.timing_key());
+    ASSERT_TRUE(profile.has_value());
+    ScanTimePrediction t = predict_scan_time(*r.program, p, *profile);
+    EXPECT_EQ(t.processor, "ML1400");
+    EXPECT_TRUE(t.uses_estimates);
+    EXPECT_GT(t.total_best, t.housekeeping);
+    EXPECT_GT(t.total_worst, t.total_best);
+  }
+}
+
+}  // namespace
+}  // namespace softslc

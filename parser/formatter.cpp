@@ -1,5 +1,7 @@
 #include "parser/formatter.h"
 
+#include <algorithm>
+
 #include <charconv>
 #include <cstdio>
 
@@ -137,7 +139,9 @@ std::string format_program(const Program& p) {
   if (p.frn_given) out += " FRN " + std::to_string(*p.frn_given);
   if (!p.processor_description.empty()) out += "    % " + p.processor_description + " %";
   out += "\n\n";
-  if (!p.slots.empty()) out += "% PROCESSOR RACK CONFIGURATION INFORMATION %\n% SLOT CONFIGURATION INFORMATION %\n";
+  // The embedded I/O a MicroLogix brings (an implicit slot 0) is not written, nor a header for it.
+  if (std::any_of(p.slots.begin(), p.slots.end(), [](const SlotConfig& s) { return !s.implicit; }))
+    out += "% PROCESSOR RACK CONFIGURATION INFORMATION %\n% SLOT CONFIGURATION INFORMATION %\n";
   for (const auto& s : p.slots) {
     if (s.implicit) continue;  // the controller's embedded I/O, added when the file has no SLOT 0
     out += "SLOT " + std::to_string(s.slot) + " " + s.catalog;

@@ -160,7 +160,12 @@ TEST(MicroLogixProcessor, EmbeddedIoComesWithTheProcessor) {
   // fmt does not write the slot the processor brings.
   LoadResult r = load_program(text, "t.slc");
   ASSERT_TRUE(r.ok());
-  EXPECT_EQ(format_program(*r.program).find("SLOT 0"), std::string::npos);
+  const std::string formatted = format_program(*r.program);
+  EXPECT_EQ(formatted.find("SLOT 0"), std::string::npos);
+  EXPECT_EQ(formatted.find("PROCESSOR RACK CONFIGURATION"), std::string::npos);
+  LoadResult again = load_program(formatted, "again.slc");
+  ASSERT_TRUE(again.ok()) << again.render_diagnostics();
+  EXPECT_TRUE(same_program(*r.program, *again.program));
 }
 
 TEST(MicroLogixProcessor, SlotZeroOfAMicroLogixIsItsEmbeddedIo) {
@@ -333,10 +338,16 @@ TEST(MicroLogixFile, CpwCopiesWordsAcrossFileTypes) {
 
 // ---- The two 59-BSGS exports with their own I/O ----------------------------------------------------------
 
-TEST(MicroLogixFixtures, BsgsRespondsToAnExpansionInputAndTakesEmbeddedInputs) {
-  Controller plc = Controller::load(kBsgs);
+// Loads an export and runs its first scans (no fault expected).
+Controller running(const std::string& file) {
+  Controller plc = Controller::load(file);
   plc.scan(2);
-  ASSERT_FALSE(plc.fault().has_value());
+  EXPECT_FALSE(plc.fault().has_value());
+  return plc;
+}
+
+TEST(MicroLogixFixtures, BsgsRespondsToAnExpansionInputAndTakesEmbeddedInputs) {
+  Controller plc = running(kBsgs);
   // LADDER 5 rung 0: SOR XIC I:1.0/0 OTE B13:1/0 EOR (slot 1 is a 1762-IQ16).
   plc.set("I:1.0/0", 1);
   plc.set("I:1.0/15", 1);
@@ -355,9 +366,7 @@ TEST(MicroLogixFixtures, BsgsRespondsToAnExpansionInputAndTakesEmbeddedInputs) {
 }
 
 TEST(MicroLogixFixtures, Bsgs1001RungsRespondsToEmbeddedAndExpansionInputs) {
-  Controller plc = Controller::load(kBsgs1001);
-  plc.scan(2);
-  ASSERT_FALSE(plc.fault().has_value());
+  Controller plc = running(kBsgs1001);
   EXPECT_FALSE(plc.get_bit("B13:3/0"));
   EXPECT_FALSE(plc.get_bit("B13:1/2"));
   // SOR XIC I:0.0/0 OTE B13:3/0 EOR (embedded) and SOR XIC I:1.0/2 OTE B13:1/2 EOR (1762-IQ16).

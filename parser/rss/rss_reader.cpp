@@ -487,9 +487,11 @@ ReadResult read_project(std::string_view bytes, std::string_view source_name) {
     auto proc = c.object_data("PROCESSOR");
     auto prog = c.object_data("PROGRAM FILES");
     if (!proc || !prog) throw DecodeError("not an RSLogix project file: no PROCESSOR or PROGRAM FILES stream");
-    std::string text = "% Converted from the RSLogix project file " + std::string(source_name) + " by softslc %\n";
-    for (char& ch : text)
-      if (static_cast<unsigned char>(ch) < 0x20 && ch != '\n') ch = ' ';
+    // The file name only (not the path), so the converted text does not depend on where it was read.
+    std::string base(source_name.substr(source_name.find_last_of("/\\") == std::string_view::npos ? 0 : source_name.find_last_of("/\\") + 1));
+    for (char& ch : base)
+      if (static_cast<unsigned char>(ch) < 0x20 || ch == '%' || static_cast<unsigned char>(ch) >= 0x7F) ch = '_';
+    std::string text = "% Converted from the RSLogix project file " + base + " by softslc %\n";
     text += decode_processor(payload(*proc, "PROCESSOR"));
     std::string program = payload(*prog, "PROGRAM FILES");
     Archive a(program, "PROGRAM FILES");

@@ -75,12 +75,19 @@ void drop(libolecf_error_t* e) {
 class Container {
  public:
   explicit Container(std::string_view bytes) : bytes_(bytes) {
+    // Debian's libbfio (20170123) copies a whole sector from a memory range even when the range
+    // ends inside it (found by fuzzing truncated files under ASan). An OLE2 file is a whole
+    // number of 512-byte sectors, so the range is rounded up to one (a truncated file then reads
+    // as zeros, which libolecf rejects as damaged) and the buffer has slack beyond it for any
+    // read that starts inside the range.
+    std::size_t range = (bytes.size() + 511) / 512 * 512;
+    padded_.assign(range + kReadSlack, '\0');
+    std::memcpy(padded_.data(), bytes.data(), bytes.size());
     libbfio_handle_t* h = nullptr;
     if (libbfio_memory_range_initialize(&h, nullptr) != 1) throw DecodeError("out of memory");
     io_.reset(h);
-    // libbfio takes a non-const pointer but only reads through it when the file is opened read-only.
-    auto* start = reinterpret_cast<std::uint8_t*>(const_cast<char*>(bytes_.data()));
-    if (libbfio_memory_range_set(io_.get(), start, bytes_.size(), nullptr) != 1) throw DecodeError("out of memory");
+    auto* start = reinterpret_cast<std::uint8_t*>(padded_.data());
+    if (libbfio_memory_range_set(io_.get(), start, range, nullptr) != 1) throw DecodeError("out of memory");
     libolecf_file_t* f = nullptr;
     if (libolecf_file_initialize(&f, nullptr) != 1) throw DecodeError("out of memory");
     libolecf_error_t* err = nullptr;
@@ -132,7 +139,9 @@ class Container {
     return ItemPtr(out);
   }
 
+  static constexpr std::size_t kReadSlack = 64u << 10;  // larger than any sector (4096 in OLE2 v4)
   std::string_view bytes_;
+  std::string padded_;  // declared before io_: the handle points into it and is freed first
   std::unique_ptr<libbfio_handle_t, BfioDeleter> io_;
   std::unique_ptr<libolecf_file_t, OlecfFileDeleter> file_;
 };
@@ -225,7 +234,10 @@ class Archive {
       u16();  // schema
       std::uint16_t len = u16();
       if (len == 0 || len > 64) fail("bad class name length", at);
-      classes_.emplace_back(next_index_++, std::string(bytes(len)));
+      std::string name(bytes(len));
+      for (char c : name)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') fail("class name with characters other than letters and digits", at);
+      classes_.emplace_back(next_index_++, std::move(name));
       ++next_index_;  // the object itself
       return classes_.back().second;
     }

@@ -19,6 +19,9 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
+#include "parser/formatter.h"
 #include "parser/loader.h"
 #include "parser/rss/rss_reader.h"
 
@@ -255,4 +258,37 @@ TEST(RssReader, DiagnosticsNameTheProgramFileAndRung) {
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.render_diagnostics().find("program file 2 rung 0: instruction STS is not supported by softslc yet"), std::string::npos)
       << r.render_diagnostics();
+}
+
+// `import` then `check` of the .slc says exactly what `check` of the .RSS says (only the program
+// file/rung prefix differs); where a project loads, both give the same program, and the
+// formatter's text of it loads back to the same program (the fmt round trip).
+TEST(RssReader, ConvertedTextChecksAndLoadsLikeTheProject) {
+  auto all = fixtures();
+  if (all.empty()) GTEST_SKIP() << "no fixtures at " << kFixtures;
+  fs::path dir = fs::temp_directory_path() / ("softslc_rss_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  for (const auto& f : all) {
+    SCOPED_TRACE(f.filename().string());
+    auto rr = read_project(slurp(f), f.filename().string());
+    ASSERT_TRUE(rr.text) << rr.error;
+    fs::path slc = dir / (f.stem().string() + ".slc");
+    std::ofstream(slc, std::ios::binary) << *rr.text;
+    auto from_rss = softslc::load_program_file(f);
+    auto from_slc = softslc::load_program_file(slc);
+    std::vector<std::string> a, b;
+    static const std::regex prefix(R"(^program file \d+ rung \d+: )");
+    for (const auto& d : from_rss.diagnostics.items()) a.push_back(std::regex_replace(d.message, prefix, ""));
+    for (const auto& d : from_slc.diagnostics.items()) b.push_back(d.message);
+    EXPECT_EQ(a, b);
+    EXPECT_EQ(from_rss.ok(), from_slc.ok());
+    if (from_rss.ok() && from_slc.ok()) {
+      std::string diff;
+      EXPECT_TRUE(softslc::same_program(*from_rss.program, *from_slc.program, &diff)) << diff;
+      auto again = softslc::load_program(softslc::format_program(*from_rss.program), "fmt.slc");
+      ASSERT_TRUE(again.ok()) << again.render_diagnostics();
+      EXPECT_TRUE(softslc::same_program(*from_rss.program, *again.program, &diff)) << diff;
+    }
+  }
+  fs::remove_all(dir);
 }

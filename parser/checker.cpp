@@ -5,6 +5,7 @@
 #include <set>
 
 #include "instructions/module_catalog.h"
+#include "parser/rss/rss_reader.h"
 
 namespace softslc {
 
@@ -447,7 +448,10 @@ class Checker {
       if (in.operands.size() > s.operand_count) {
         auto& extra = in.operands[s.operand_count];
         if (extra.kind == Operand::Kind::Symbol && !symbols_.count(extra.symbol)) {
-          error(extra.pos, "unknown instruction '" + extra.symbol + "'");
+          if (rss::is_known_rslogix_mnemonic(extra.symbol))
+            error(extra.pos, "instruction " + extra.symbol + " is not supported by softslc yet");
+          else
+            error(extra.pos, "unknown instruction '" + extra.symbol + "'");
           return;
         }
       }

@@ -16,6 +16,7 @@
 #include "parser/checker.h"
 #include "parser/grammar.h"
 #include "parser/grammar_messages.h"
+#include "parser/rss/rss_reader.h"
 
 namespace softslc {
 
@@ -650,7 +651,11 @@ template <> struct action<mnemonic> {
     if (spec) {
       s.instruction.opcode = spec->opcode;
     } else {
-      s.diags.error(s.instruction.pos.line, s.instruction.pos.column, "unknown instruction '" + std::string(m) + "'");
+      // An RSLogix instruction softslc lacks is named as such, not reported like a typo.
+      if (rss::is_known_rslogix_mnemonic(m))
+        s.diags.error(s.instruction.pos.line, s.instruction.pos.column, "instruction " + std::string(m) + " is not supported by softslc yet");
+      else
+        s.diags.error(s.instruction.pos.line, s.instruction.pos.column, "unknown instruction '" + std::string(m) + "'");
     }
   }
 };
@@ -1128,9 +1133,53 @@ LoadResult load_program_file(const std::filesystem::path& path) {
     r.diagnostics.error(0, 0, "cannot open file");
     return r;
   }
+  // Refuse absurd sizes before reading: no program text or project file comes near this.
+  std::error_code ec;
+  auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > rss::kMaxFileBytes) {
+    LoadResult r;
+    r.source_name = path.string();
+    r.diagnostics.error(0, 0, "file larger than " + std::to_string(rss::kMaxFileBytes >> 20) + " MiB");
+    return r;
+  }
   std::ostringstream ss;
   ss << f.rdbuf();
-  return load_program(ss.str(), path.string());
+  return load_program_bytes(ss.str(), path.string());
+}
+
+LoadResult load_program_bytes(std::string bytes, std::string source_name) {
+  if (rss::looks_like_ole2(bytes)) {
+    rss::ReadResult rr = rss::read_project(bytes, source_name);
+    if (!rr.text) {
+      LoadResult r;
+      r.source_name = std::move(source_name);
+      r.diagnostics.error(0, 0, rr.error);
+      return r;
+    }
+    LoadResult r = load_program(std::move(*rr.text), std::move(source_name));
+    // Diagnostics point into the converted text; name the program file and rung as well, since
+    // the user knows the project by its rungs, not by the lines of a text they never saw.
+    DiagnosticList named;
+    for (const auto& d : r.diagnostics.items()) {
+      std::string msg = d.message;
+      for (const auto& o : rr.origins)
+        if (o.line == d.line) msg = "program file " + std::to_string(o.file) + " rung " + std::to_string(o.rung) + ": " + msg;
+      if (d.severity == Severity::Error) named.error(d.line, d.column, msg);
+      else if (d.severity == Severity::Warning) named.warning(d.line, d.column, msg);
+      else named.note(d.line, d.column, msg);
+    }
+    r.diagnostics = std::move(named);
+    return r;
+  }
+  // A NUL byte never occurs in export text; other binary files are refused here rather than
+  // parsed, so their bytes are never echoed to the terminal in a diagnostic excerpt.
+  if (bytes.find('\0') != std::string::npos) {
+    LoadResult r;
+    r.source_name = std::move(source_name);
+    r.diagnostics.error(0, 0, "not an RSLogix 500 export text or project file (binary content)");
+    return r;
+  }
+  return load_program(std::move(bytes), std::move(source_name));
 }
 
 namespace {

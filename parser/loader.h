@@ -28,7 +28,12 @@ struct LoadResult {
 // Parses and checks program text. `source_name` is used in diagnostics.
 LoadResult load_program(std::string text, std::string source_name);
 // Reads and loads a file; an unreadable file is reported as a diagnostic, not an exception.
+// The format is told by content, not by name: an RSLogix project file (.RSS, an OLE2 compound
+// document) is decoded by parser/rss and loaded as the export text it converts to; other
+// binary content is refused without echoing it; anything else is export text.
 LoadResult load_program_file(const std::filesystem::path& path);
+// The same for a file's bytes already in memory (the test runner, the C++ API, the fuzzer).
+LoadResult load_program_bytes(std::string bytes, std::string source_name);
 
 // Parses the syntax only (no semantic checks): for tests of the grammar and for tools that
 // want the tree of a program with semantic errors.

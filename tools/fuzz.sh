@@ -15,12 +15,12 @@ build="${SOFTSLC_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 
 source "$root/tools/lib/ensure-packages.sh"
 ensure_packages clang libclang-rt-14-dev cmake ninja-build tao-pegtl-dev libcli11-dev libspdlog-dev libgtest-dev \
-  libgmock-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev
+  libgmock-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libolecf-dev libbfio-dev zlib1g-dev
 
 mkdir -p "$build"
 CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSLC_FUZZ=ON \
   -DSOFTSLC_TESTS=ON -DSOFTSLC_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS=-Wno-unused-command-line-argument > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-targets=(program address testfile bench scanport_message transaction dem)
+targets=(program address testfile bench scanport_message transaction dem rss)
 cmake --build "$build" --target "${targets[@]/%/_fuzz}"
 
 corpus="$build/corpus"
@@ -30,6 +30,7 @@ find "$root/examples" -name '*.test' -exec cp {} "$corpus/testfile/" \;
 find "$root/examples" -name '*.slc' -exec cp {} "$corpus/program/" \;
 find "$root/examples" -name '*.bench' -exec cp {} "$corpus/bench/" \;
 cp "$root"/../shared/fixtures/rslogix500/*.SLC "$corpus/program/" 2>/dev/null || true
+find "$root"/../shared/fixtures/rss -name '*.RSS' -exec cp {} "$corpus/rss/" \; 2>/dev/null || true
 for a in 'I:1/3' 'O:2.1/15' 'B3/62' 'T4:0.ACC' 'C5:1/OV' '#N7:10' 'N7:[N10:1]' 'N[N10:0]:5' 'B3/[N7:0]' \
          'M0:1.100/13' 'L41:0' 'ST9:0' 'F8:2' 'S:1/15'; do
   printf '%s' "$a" > "$corpus/address/$(printf '%s' "$a" | md5sum | cut -c1-12)"
@@ -63,8 +64,12 @@ run_target() {
     scanport_message) len=(-max_len=800 -len_control=20) ;;
     transaction) len=(-max_len=264 -len_control=20) ;;
     dem) len=(-max_len=344 -len_control=20) ;;
+    # Project files are 38-131 KiB; mutations must be able to keep a whole one.
+    rss) len=(-max_len=140000) ;;
   esac
-  (cd "$build" && ASAN_OPTIONS=detect_leaks=1 "./tests/fuzz/${target}_fuzz" -max_total_time="$seconds" -timeout=1 \
+  local lsan="${LSAN_OPTIONS:-}"
+  [ "$target" = rss ] && lsan="suppressions=$root/tests/fuzz/rss_lsan.supp"
+  (cd "$build" && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS="$lsan" "./tests/fuzz/${target}_fuzz" -max_total_time="$seconds" -timeout=1 \
     -seed=1 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/${target}-" "${len[@]}" \
     "$corpus/$target" > "$logs/$target.log" 2>&1) && echo ok > "$logs/$target.status" || echo failed > "$logs/$target.status"
 }

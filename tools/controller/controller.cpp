@@ -38,7 +38,7 @@ Controller Controller::load(const std::filesystem::path& program, const std::opt
 
 Controller Controller::from_text(std::string program_text, std::string bench_text, std::string name,
                                  std::string bench_name) {
-  LoadResult lr = load_program(std::move(program_text), name);
+  LoadResult lr = load_program_bytes(std::move(program_text), name);  // .SLC text or .RSS project
   if (!lr.ok()) throw ControllerError(lr.render_diagnostics());
   ModuleSetup setup = bench_text.empty() ? load_module_setup(*lr.program, std::nullopt)
                                          : load_module_setup_text(*lr.program, std::move(bench_text), bench_name);

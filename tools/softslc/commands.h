@@ -22,6 +22,13 @@ struct FmtOptions {
 };
 int run_fmt(const FmtOptions& o);
 
+// softslc import FILE.RSS [-o FILE.slc] (cmd_import.cpp).
+struct ImportOptions {
+  std::string file;
+  std::string output;  // empty = stdout
+};
+int run_import(const ImportOptions& o);
+
 struct ThroughputOptions {
   std::string config;
   bool json = false;

@@ -20,6 +20,10 @@ int main(int argc, char** argv) {
                                                 "exit 0 clean or warnings only, 1 errors");
   check_cmd->add_option("FILE", check.file, "program file")->required();
 
+  ImportOptions import_opts;
+  auto* import_cmd = app.add_subcommand("import", "Convert an RSLogix 500 / Micro project file (.RSS) to export text");
+  import_cmd->add_option("FILE", import_opts.file, "project file (.RSS)")->required();
+  import_cmd->add_option("-o,--output", import_opts.output, "write to this file (atomically) instead of stdout");
   FmtOptions fmt;
   auto* fmt_cmd = app.add_subcommand("fmt", "Print a program as canonical export text");
   fmt_cmd->add_option("FILE", fmt.file, "program file")->required();
@@ -92,6 +96,7 @@ int main(int argc, char** argv) {
   }
   if (*check_cmd) return run_check(check);
   if (*fmt_cmd) return run_fmt(fmt);
+  if (*import_cmd) return run_import(import_opts);
   if (*throughput_cmd) return run_throughput(throughput);
   if (*instructions_cmd) return run_instructions();
   if (*test_cmd) return softslc::testing::run_test_command(test, std::cout, std::cerr);

@@ -389,7 +389,7 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
     e.errors = display + ": error: cannot open the program file\n";
     return e;
   }
-  softslc::LoadResult lr = load_program(std::move(*text), display);
+  softslc::LoadResult lr = load_program_bytes(std::move(*text), display);  // .SLC text or .RSS project
   if (!lr.ok()) {
     e.errors = lr.render_diagnostics();
     return e;

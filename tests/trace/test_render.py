@@ -73,5 +73,24 @@ for name, produce in cases():
                 break
         else:
             print("  the outputs differ in length")
+# The JSON form is the same layout as data: rung 0 of seal_in.slc is
+# BST XIC START_PB NXB XIC MOTOR BND XIO STOP_PB XIO OL_TRIPPED OTE MOTOR, in that (code) order,
+# the OTE against the right rail; after START was pressed every instruction of it is true.
+import json  # noqa: E402
+
+if not UPDATE:
+    seal = os.path.join(EXAMPLES, "ladder", "seal_in", "seal_in.slc")
+    with tempfile.TemporaryDirectory() as tmp:
+        state = os.path.join(tmp, "s.state")
+        subprocess.run([SOFTSLC, "run", seal, "--set", "START_PB=1", "--scans", "3", "--state", state],
+                       check=True, capture_output=True)
+        layout = json.loads(render(seal, "--rung", "0", "--state", state, "--json"))
+    blocks = layout["files"][0]["rungs"][0]["blocks"]
+    got = [(b["mnemonic"], b["above"][-2], b["index"], b["true"]) for b in blocks]
+    want = [("XIC", "START_PB", 0, True), ("XIC", "MOTOR", 1, True), ("XIO", "STOP_PB", 2, True),
+            ("XIO", "OL_TRIPPED", 3, True), ("OTE", "MOTOR", 4, True)]
+    if got != want or blocks[-1]["x"] + blocks[-1]["w"] != layout["width"] - 1:
+        failures += 1
+        print("JSON layout of seal_in rung 0: got %s" % got)
 print("%d golden files, %d differ" % (seen, failures))
 sys.exit(1 if failures else 0)

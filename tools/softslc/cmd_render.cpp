@@ -68,7 +68,8 @@ CLI::App* add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--file", o.program_file, "only this program file (2 = main)");
   cmd->add_option("--rung", o.rungs, "only rung N, or rungs N..M");
   cmd->add_option("--svg", o.svg, "write an SVG drawing to OUT (atomically)")->type_name("OUT");
-  cmd->add_flag("--text", o.text, "print the text drawing (the default without --svg)");
+  auto* text = cmd->add_flag("--text", o.text, "print the text drawing (the default without --svg)");
+  cmd->add_flag("--json", o.json, "print the layout as JSON (blocks and wires in cell coordinates) instead")->excludes(text);
   auto* state = cmd->add_option("--state", o.state, "show values and power flow from a state file (softslc run --state)");
   cmd->add_option("--after-scans", o.after_scans, "show values and power flow after running N scans in Run mode")
       ->check(CLI::PositiveNumber)
@@ -141,7 +142,8 @@ int run_render(const RenderOptions& o) {
       return kInputError;
     }
   }
-  if (o.svg.empty() || o.text) std::cout << ladder::render_text(layout);
+  if (o.json) std::cout << ladder::render_json(layout);
+  else if (o.svg.empty() || o.text) std::cout << ladder::render_text(layout);
   return kOk;
 }
 

@@ -16,6 +16,7 @@ struct RenderOptions {
   std::string rungs;         // --rung N or N..M; empty = all
   std::string svg;           // --svg OUT; empty = text on stdout
   bool text = false;         // --text: text on stdout (also with --svg)
+  bool json = false;         // --json: the layout as JSON on stdout
   std::string state;         // --state STATEFILE
   int after_scans = -1;      // --after-scans N; -1 = not given
   std::string bench;         // simulated field devices for the scans

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cctype>
 
+#include <nlohmann/json.hpp>
+
 namespace softslc::ladder {
 
 namespace {
@@ -504,7 +506,7 @@ std::string render_text(const LadderLayout& layout) {
 }
 
 std::string render_svg(const LadderLayout& layout, const std::string& title) {
-  int rows = 2;
+  int rows = 3;  // the title, and a margin under the last rung
   for (const auto& f : layout.files) {
     rows += 1;
     for (const auto& r : f.rungs) rows += r.top + r.height;
@@ -614,6 +616,44 @@ std::string render_svg(const LadderLayout& layout, const std::string& title) {
   }
   o += "</svg>\n";
   return o;
+}
+
+std::string render_json(const LadderLayout& layout) {
+  nlohmann::ordered_json j;
+  j["width"] = layout.width;
+  j["has_state"] = layout.has_state;
+  j["files"] = nlohmann::ordered_json::array();
+  for (const auto& f : layout.files) {
+    nlohmann::ordered_json jf{{"number", f.number}, {"name", f.name}, {"total_rungs", f.total_rungs}};
+    jf["rungs"] = nlohmann::ordered_json::array();
+    for (const auto& r : f.rungs) {
+      nlohmann::ordered_json jr{{"number", r.number}, {"end_rung", r.end_rung}, {"comment", r.comment},
+                                {"top", r.top},       {"height", r.height},     {"rail", r.rail}};
+      jr["blocks"] = nlohmann::ordered_json::array();
+      for (const auto& b : r.blocks) {
+        nlohmann::ordered_json jb{{"mnemonic", b.mnemonic},
+                                  {"shape", b.shape == Shape::Contact ? "contact" : b.shape == Shape::Coil ? "coil" : "box"},
+                                  {"index", b.index}, {"line", b.line}, {"x", b.x}, {"y", b.y}, {"w", b.w}, {"h", b.h},
+                                  {"rail", b.rail}, {"glyph", b.glyph}, {"above", b.above}};
+        jb["rows"] = nlohmann::ordered_json::array();
+        for (const auto& [label, text] : b.rows) jb["rows"].push_back({label, text});
+        if (b.has_state) {
+          jb["powered"] = b.powered;
+          jb["true"] = b.truth;
+        }
+        jr["blocks"].push_back(std::move(jb));
+      }
+      jr["wires"] = nlohmann::ordered_json::array();
+      for (const auto& w : r.wires) {
+        nlohmann::ordered_json jw{{"x0", w.x0}, {"y0", w.y0}, {"x1", w.x1}, {"y1", w.y1}};
+        if (layout.has_state) jw["powered"] = w.powered;
+        jr["wires"].push_back(std::move(jw));
+      }
+      jf["rungs"].push_back(std::move(jr));
+    }
+    j["files"].push_back(std::move(jf));
+  }
+  return j.dump(1) + "\n";
 }
 
 }  // namespace softslc::ladder

@@ -114,5 +114,8 @@ std::string render_text(const LadderLayout& layout);
 inline constexpr int kCellW = 8;
 inline constexpr int kCellH = 16;
 std::string render_svg(const LadderLayout& layout, const std::string& title);
+// The layout itself as JSON (files, rungs, blocks, wires in cell coordinates): the data a web page
+// draws from, so a browser view needs no second layout.
+std::string render_json(const LadderLayout& layout);
 
 }  // namespace softslc::ladder

@@ -95,6 +95,17 @@ int run_render(const RenderOptions& o) {
     std::cerr << "softslc render: --rung " << o.rungs << ": write N or N..M (rung numbers from 0, N <= M)\n";
     return kUsage;
   }
+  if (!o.rungs.empty()) {
+    // A range that starts past the END rung of every chosen file would draw nothing: say so.
+    bool any = false;
+    for (const auto& f : program.files)
+      if ((!lo.file || *lo.file == f.number) && lo.first_rung <= static_cast<int>(f.rungs.size())) any = true;
+    if (!any) {
+      std::cerr << "softslc render: --rung " << o.rungs << ": no such rung (rungs are numbered from 0; the END rung "
+                << "is the last)\n";
+      return kUsage;
+    }
+  }
   // The state: a runtime holding the values, and what the last scan says of input instructions.
   std::unique_ptr<Runtime> rt;
   ladder::LadderState state;

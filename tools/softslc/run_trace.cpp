@@ -31,11 +31,12 @@ std::unique_ptr<trace::TraceRecorder> start_run_trace(const RunOptions& o, const
   }
   if (o.trace_signals.empty() && !o.trace_all_outputs) signals = trace::program_signals(program, false);
   auto recorder = std::make_unique<trace::TraceRecorder>(std::move(signals), limit);
-  if (auto why = recorder->attach(rt); !why.empty()) {
+  if (auto why = recorder->check(rt); !why.empty()) {
     err << "softslc run: --signals: " << why << "\n";
     exit_code = kUsage;
     return nullptr;
   }
+  recorder->attach(rt);
   return recorder;
 }
 

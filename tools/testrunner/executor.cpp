@@ -200,7 +200,7 @@ class Session {
     if (!trace_) trace_ = std::make_unique<trace::TraceRecorder>(trace::program_signals(program.program, false), kTraceLimit);
     if (from_start) trace_->reset();
     trace_->set_time_base(time_base_);
-    (void)trace_->attach(*rt_);  // an unreadable signal reads as 0; the trace is a debugging aid
+    trace_->attach(*rt_);  // an unreadable signal records 0: the trace is a debugging aid
   }
 
   // ---- Time and scans across power cycles ----

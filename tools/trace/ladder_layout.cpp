@@ -1,5 +1,7 @@
 #include "tools/trace/ladder_layout.h"
 
+#include "tools/trace/trace.h"
+
 #include <algorithm>
 #include <cctype>
 
@@ -428,19 +430,7 @@ std::string file_header(const FileLayout& f) {
          " --- Total Rungs in File = " + std::to_string(f.total_rungs);
 }
 
-std::string xml(const std::string& s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      default: r += c;
-    }
-  }
-  return r;
-}
+std::string xml(const std::string& s) { return trace::xml_escape(s); }
 
 }  // namespace
 

@@ -123,19 +123,6 @@ std::string vcd_name(std::string s) {
   return s;
 }
 
-std::string xml_escape(const std::string& s) {
-  std::string r;
-  for (char c : s) {
-    switch (c) {
-      case '&': r += "&amp;"; break;
-      case '<': r += "&lt;"; break;
-      case '>': r += "&gt;"; break;
-      case '"': r += "&quot;"; break;
-      default: r += c;
-    }
-  }
-  return r;
-}
 
 std::string value_text(const Signal& s, const SampleValue& v) {
   if (s.kind == Signal::Kind::Real) {
@@ -166,6 +153,20 @@ std::int64_t nice_step(std::int64_t span, int target) {
 }
 
 }  // namespace
+
+std::string xml_escape(std::string_view s) {
+  std::string r;
+  for (char c : s) {
+    switch (c) {
+      case '&': r += "&amp;"; break;
+      case '<': r += "&lt;"; break;
+      case '>': r += "&gt;"; break;
+      case '"': r += "&quot;"; break;
+      default: r += c;
+    }
+  }
+  return r;
+}
 
 bool parse_signal_list(const Program& program, const std::string& list, std::vector<Signal>& out, std::string& error) {
   std::set<std::string> seen;
@@ -207,17 +208,20 @@ std::vector<Signal> program_signals(const Program& program, bool outputs_only) {
 TraceRecorder::TraceRecorder(std::vector<Signal> signals, std::size_t limit_bytes)
     : signals_(std::move(signals)), changes_(signals_.size()), limit_(limit_bytes) {}
 
-std::string TraceRecorder::attach(Runtime& runtime) {
+std::string TraceRecorder::check(const Runtime& runtime) const {
   for (const auto& s : signals_) {
     std::string error;
     if (!runtime.get(s.address, &error)) return s.name + ": " + error;
   }
+  return {};
+}
+
+void TraceRecorder::attach(Runtime& runtime) {
   sample(runtime);
   runtime.set_scan_observer([this](const Runtime& rt) {
     ++scan_count_;
     sample(rt);
   });
-  return {};
 }
 
 void TraceRecorder::detach(Runtime& runtime) { runtime.set_scan_observer({}); }

@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "parser/program.h"
@@ -62,10 +63,12 @@ class TraceRecorder {
  public:
   TraceRecorder(std::vector<Signal> signals, std::size_t limit_bytes);
 
+  // An empty string, or why a signal cannot be read in `runtime` (an M-file word of an empty
+  // slot, a file the program lacks); such a signal records 0.
+  std::string check(const Runtime& runtime) const;
   // Installs this recorder as the runtime's scan observer and takes the first sample now. The
-  // recorder must outlive the attachment (detach() or the runtime's end). Returns an empty string,
-  // or why a signal cannot be read (an M-file word of an empty slot, a file the program lacks).
-  std::string attach(Runtime& runtime);
+  // recorder must outlive the attachment (detach() or the runtime's end).
+  void attach(Runtime& runtime);
   void detach(Runtime& runtime);
   // Records the signals' values at runtime.now() (the observer calls this).
   void sample(const Runtime& runtime);
@@ -107,6 +110,9 @@ std::string write_timing_svg(const TraceRecorder& trace, const std::string& titl
 // empty string or the reason it failed.
 std::string save_trace(const TraceRecorder& trace, const std::string& path, const std::string& title,
                        const std::string& module, const std::string& version);
+
+// Text for SVG/XML character data and attribute values: & < > " escaped.
+std::string xml_escape(std::string_view s);
 
 // Parses a size such as 1000000, 64k, 10M (bytes). Returns false for anything else or zero.
 bool parse_size(const std::string& text, std::size_t& out);

@@ -296,6 +296,7 @@ void Runtime::scan_once(bool single_scan_step) {
   // Every scan takes some time, so run_for and run_until always make progress.
   used = std::max<Nanoseconds>(used, kNsPerUs);
   events_.run_until(start + used);
+  if (scan_observer_) [[unlikely]] scan_observer_(*this);
 }
 
 int Runtime::scan(int n) {

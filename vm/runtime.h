@@ -155,6 +155,14 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // The recorder, or nullptr when coverage is off.
   const CoverageRecorder* coverage() const { return coverage_.get(); }
 
+  // ---- Scan observer (signal traces, tools/trace/) ----
+  // Called at the end of every scan cycle, after the clock has advanced and the module events due
+  // by then have run, so an observer sees the data table as the scan left it, stamped with now().
+  // Sampling at scan boundaries keeps tracing out of the interpreter: with no observer the cost
+  // is one test per scan. An empty function detaches.
+  using ScanObserver = std::function<void(const Runtime&)>;
+  void set_scan_observer(ScanObserver observer) { scan_observer_ = std::move(observer); }
+
   // ---- Access for tools and tests ----
   Module* module(int slot) const;
   EventQueue& events() { return events_; }
@@ -202,6 +210,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::array<Module*, kMaxSlots> modules_{};
   std::unique_ptr<Interpreter> interp_;
   std::unique_ptr<CoverageRecorder> coverage_;
+  ScanObserver scan_observer_;
 
   Mode mode_ = Mode::Program;
   bool first_pass_ = false;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vm/atomic_file.h"
+#include "run_trace.h"
 #include "instructions/instruction_table.h"
 #include "modules/throughput/throughput_json.h"
 #include "parser/checker.h"
@@ -401,6 +402,9 @@ int run_run(const RunOptions& o) {
     std::cerr << "softslc run: " << st.message << "\n";
     return kInputError;
   }
+  int trace_rc = kOk;
+  auto recorder = start_run_trace(o, program, rt, std::cerr, trace_rc);
+  if (trace_rc != kOk) return trace_rc;
 
   // Virtual time is the simulation's only clock; --realtime merely waits for the wall clock to
   // catch up after each scan, for interactive use.
@@ -433,6 +437,7 @@ int run_run(const RunOptions& o) {
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   saved_ok &= save_state();
+  saved_ok &= finish_run_trace(o, program, rt, recorder.get(), std::cerr);
 
   const auto& fault = rt.fault();
   if (o.json) {

@@ -60,6 +60,11 @@ struct RunOptions {
   bool force_state = false;              // accept a state file saved by another program
   std::string checkpoint;                // also save every this much virtual time
   std::string bench;                     // simulated field devices (docs/bench-format.md)
+  // Signal trace (docs/traces.md): FILE.vcd or FILE.svg; empty = none.
+  std::string trace;
+  std::string trace_signals;             // ADDR,... ; empty = every address the ladder names
+  bool trace_all_outputs = false;        // only what output instructions write
+  std::string trace_limit = "64M";       // bytes of VCD value changes
 };
 int run_run(const RunOptions& o);
 

@@ -6,6 +6,7 @@
 
 #include <iostream>
 
+#include "cmd_render.h"
 #include "commands.h"
 #include "tools/testrunner/test_command.h"
 
@@ -52,6 +53,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--bench", run.bench, "bench file of simulated field devices (docs/bench-format.md)");
   run_cmd->add_flag("--force-state", run.force_state, "restore a state file saved by a different program");
   run_cmd->add_option("--checkpoint", run.checkpoint, "with --state: also save every DURATION of virtual time");
+  run_cmd->add_option("--trace", run.trace, "record a signal trace: FILE.vcd (GTKWave) or FILE.svg (timing diagram)");
+  run_cmd->add_option("--signals", run.trace_signals, "ADDR,... to trace (default: every address the ladder names)");
+  run_cmd->add_flag("--all-outputs", run.trace_all_outputs, "trace what the output instructions write");
+  run_cmd->add_option("--trace-limit", run.trace_limit, "largest trace, bytes of value changes (default 64M)");
 
   DisasmOptions disasm;
   auto* disasm_cmd = app.add_subcommand("disasm", "Print the compiled bytecode with file/rung/branch structure");
@@ -84,6 +89,12 @@ int main(int argc, char** argv) {
                      "both ways, outputs energized, subroutines called");
   test_cmd->add_option("--coverage-json", test.coverage_json, "also write the coverage report as JSON to FILE")
       ->type_name("FILE");
+  test_cmd->add_option("--trace-dir", test.trace_dir, "write a VCD signal trace of every failing test into DIR")
+      ->type_name("DIR");
+  test_cmd->add_flag("--trace-all", test.trace_all, "with --trace-dir: a trace of every test, passed or not");
+
+  RenderOptions render;
+  auto* render_cmd = add_render_command(app, render);
 
   auto* instructions_cmd =
       app.add_subcommand("instructions", "List the instruction table: operands in text order, kinds, ranges");
@@ -103,5 +114,6 @@ int main(int argc, char** argv) {
   if (*scantime_cmd) return run_scantime(scantime);
   if (*run_cmd) return run_run(run);
   if (*disasm_cmd) return run_disasm(disasm);
+  if (*render_cmd) return run_render(render);
   return kUsage;
 }

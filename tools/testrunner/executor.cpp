@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "tools/testrunner/test_loader.h"
+#include "tools/trace/trace.h"
 #include "vm/runtime.h"
 
 namespace softslc::testing {
@@ -145,8 +146,8 @@ void collect_ote_bits(const std::vector<RungElement>& elements, std::vector<Addr
 
 class Session {
  public:
-  Session(const std::string& file, const RuntimeOptions& options, bool record_coverage)
-      : file_(file), options_(options), record_coverage_(record_coverage) {}
+  Session(const std::string& file, const RuntimeOptions& options, bool record_coverage, bool record_trace)
+      : file_(file), options_(options), record_coverage_(record_coverage), record_trace_(record_trace) {}
 
   TestOutcome run(const TestCase& tc) {
     TestOutcome out;
@@ -169,6 +170,10 @@ class Session {
     out.scans = rt_ ? scans() : 0;
     harvest_coverage();
     out.coverage = std::move(coverage_);
+    if (trace_) {
+      if (rt_) trace_->detach(*rt_);
+      out.trace_vcd = trace::write_vcd(*trace_, file_ + ": " + tc.name, tc.program->program.project, "softslc test");
+    }
     return out;
   }
 
@@ -184,6 +189,18 @@ class Session {
     harvest_coverage();
     rt_ = std::move(fresh);
     if (record_coverage_) rt_->enable_coverage();
+  }
+
+  // ---- Trace ----
+
+  // Attaches the test's trace to the current Runtime; `from_start` forgets what was recorded (a
+  // fresh start or a restore, whose replay begins at time 0).
+  void attach_trace(const LoadedProgram& program, bool from_start) {
+    if (!record_trace_) return;
+    if (!trace_) trace_ = std::make_unique<trace::TraceRecorder>(trace::program_signals(program.program, false), kTraceLimit);
+    if (from_start) trace_->reset();
+    trace_->set_time_base(time_base_);
+    trace_->attach(*rt_);  // an unreadable signal records 0: the trace is a debugging aid
   }
 
   // ---- Time and scans across power cycles ----
@@ -242,6 +259,7 @@ class Session {
     forces_cleared_ = false;
     forces_.clear();
     injected_.clear();
+    attach_trace(program, true);
     if (mode != Mode::Program) {
       if (auto st = rt_->set_mode(mode); !st) {
         Failure f = failure_at(loc, what, {});
@@ -445,6 +463,7 @@ class Session {
     time_base_ += rt_->now();
     scan_base_ += rt_->stats().scans;
     replace_runtime(std::move(r.runtime));
+    attach_trace(*program_, false);
     // The field devices did not lose power with the processor: what the test injected into them
     // (an adapter off line, a module's data) still holds, so it is applied to the new modules.
     for (const Step* d : injected_)
@@ -608,6 +627,9 @@ class Session {
   bool record_coverage_ = false;
   ProgramCoverage coverage_;
   std::unique_ptr<Runtime> rt_;
+  bool record_trace_ = false;
+  std::unique_ptr<trace::TraceRecorder> trace_;
+  static constexpr std::size_t kTraceLimit = 64u << 20;
   const LoadedProgram* program_ = nullptr;
   VirtualTime time_base_ = 0;       // virtual time of the Runtimes before the last power cycle
   std::uint64_t scan_base_ = 0;     // their program scans
@@ -630,8 +652,8 @@ void merge_coverage(ProgramCoverage& into, const LoadedProgram* program, const s
 }
 
 TestOutcome run_test(const TestCase& test, const std::string& file_name, const RuntimeOptions& options,
-                     bool record_coverage) {
-  Session session(file_name, options, record_coverage);
+                     bool record_coverage, bool record_trace) {
+  Session session(file_name, options, record_coverage, record_trace);
   return session.run(test);
 }
 

@@ -57,6 +57,8 @@ struct TestOutcome {
   std::optional<Failure> failure;
   // With coverage on: the coverage of each program the test ran.
   ProgramCoverage coverage;
+  // With tracing on: the test's signal trace as VCD text (tools/trace/trace.h).
+  std::string trace_vcd;
   VirtualTime virtual_time = 0;  // at the end of the test
   std::uint64_t scans = 0;       // program scans the test ran
   bool passed() const { return !failure.has_value(); }
@@ -67,7 +69,9 @@ struct TestOutcome {
 // factory); the default is the runtime's own. Never throws: an unexpected exception from the
 // runtime becomes a failure at the step that raised it.
 // With `record_coverage`, every Runtime records ladder coverage and the outcome carries it.
+// With `record_trace`, every address the program's ladder names is traced over the test (from its
+// start, or from the last `restore`, which replays the snapshot) and the outcome carries the VCD.
 TestOutcome run_test(const TestCase& test, const std::string& file_name, const RuntimeOptions& options = {},
-                     bool record_coverage = false);
+                     bool record_coverage = false, bool record_trace = false);
 
 }  // namespace softslc::testing

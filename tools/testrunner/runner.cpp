@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -78,6 +79,13 @@ bool glob_match(std::string_view pattern, std::string_view text) {
   return p == pattern.size();
 }
 
+std::string trace_file_name(const std::string& test_file, const std::string& test_name) {
+  std::string name = std::filesystem::path(test_file).stem().string() + "." + test_name;
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '.') c = '_';
+  return name + ".vcd";
+}
+
 namespace {
 
 struct Selected {
@@ -90,10 +98,13 @@ struct Result {
   std::int64_t host_ns = 0;
 };
 
-Result run_one(const Selected& s, const RuntimeOptions& options, bool coverage) {
+Result run_one(const Selected& s, const RuntimeOptions& options, bool coverage, bool trace, bool trace_all) {
   const auto t0 = std::chrono::steady_clock::now();
   Result r;
-  r.outcome = run_test(*s.test, s.file->name, options, coverage);
+  r.outcome = run_test(*s.test, s.file->name, options, coverage, trace);
+  // Only failing tests' traces are kept unless all were asked for: a passing test's VCD is dropped
+  // at once, so memory holds only what will be written.
+  if (r.outcome.passed() && !trace_all) r.outcome.trace_vcd.clear();
   r.host_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }
@@ -171,7 +182,7 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i = next++; i < n; i = next++) {
-      Result r = run_one(selected[i], options.runtime, coverage);
+      Result r = run_one(selected[i], options.runtime, coverage, !options.trace_dir.empty(), options.trace_all);
       {
         std::lock_guard<std::mutex> lock(mutex);
         results[i] = std::move(r);
@@ -186,6 +197,16 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
     worker();  // one job: run on this thread, which keeps stack traces and debuggers simple
 
   std::size_t passed = 0, failed = 0;
+  bool output_error = false;
+  std::set<std::string> trace_names;
+  if (!options.trace_dir.empty()) {
+    std::error_code ec;
+    std::filesystem::create_directories(options.trace_dir, ec);
+    if (ec) {
+      err << "error: --trace-dir " << options.trace_dir << ": " << ec.message() << "\n";
+      output_error = true;
+    }
+  }
   std::vector<JUnitCase> report;
   CoverageCollector covered;
   for (std::size_t i = 0; i < n; ++i) {
@@ -197,12 +218,22 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
     out << format_result(selected[i].file->name, selected[i].test->name, r.outcome, r.host_ns, options.host_times);
     out.flush();
     (r.outcome.passed() ? passed : failed) += 1;
+    if (!r.outcome.trace_vcd.empty() && !output_error) {
+      // Two tests whose names differ only in replaced characters get -2, -3, ... in file order.
+      std::string name = trace_file_name(selected[i].file->name, selected[i].test->name);
+      for (int k = 2; !trace_names.insert(name).second; ++k)
+        name = trace_file_name(selected[i].file->name, selected[i].test->name + "-" + std::to_string(k));
+      const auto path = std::filesystem::path(options.trace_dir) / name;
+      if (auto e = write_file_atomically(path, r.outcome.trace_vcd); !e.empty()) {
+        err << "error: cannot write the trace: " << e << "\n";
+        output_error = true;
+      }
+    }
     covered.add(r.outcome);
     report.push_back({selected[i].file->name, selected[i].test->name, selected[i].test->loc.line, r.host_ns,
                       r.outcome.virtual_time, r.outcome.scans, r.outcome.failure});
   }
   for (auto& t : threads) t.join();
-  bool output_error = false;
   if (coverage) {
     // The coverage report comes before the summary, which stays the run's last line.
     std::string error;

@@ -43,6 +43,8 @@ struct RunOptions {
   bool coverage = false;           // report ladder coverage (before the summary line)
   std::string coverage_json;       // also write it as JSON here (implies coverage); empty = none
   RuntimeOptions runtime;          // for every Runtime a test creates (tests fix the scan-time model)
+  std::string trace_dir;           // write a VCD per failing test here; empty = none
+  bool trace_all = false;          // with trace_dir: a VCD for every test, passed or not
 };
 
 struct TestFileRef {
@@ -61,6 +63,10 @@ bool glob_match(std::string_view pattern, std::string_view text);
 // failure (executor.h), each line ending in '\n'.
 std::string format_result(const std::string& file, const std::string& name, const TestOutcome& outcome,
                           std::int64_t host_ns, bool host_times);
+
+// The file name of a test's trace: the test file's stem and the test's name, every character other
+// than a letter, digit, '-' or '.' replaced by '_', then ".vcd".
+std::string trace_file_name(const std::string& test_file, const std::string& test_name);
 
 // Runs the whole command: discovery, loading, running and reporting. Test results and the summary
 // go to `out`, diagnostics and usage errors to `err`. Returns an ExitCode.

@@ -13,6 +13,8 @@ int run_test_command(const TestCommandOptions& options, std::ostream& out, std::
   run.jobs = options.jobs;
   run.coverage = options.coverage;
   run.coverage_json = options.coverage_json;
+  run.trace_dir = options.trace_dir;
+  run.trace_all = options.trace_all;
   return run_tests(run, out, err);
 }
 

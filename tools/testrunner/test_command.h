@@ -24,6 +24,8 @@ struct TestCommandOptions {
   int jobs = 0;                    // parallel tests; 0 = one per hardware thread
   bool coverage = false;           // print ladder coverage
   std::string coverage_json;       // write ladder coverage as JSON here; empty = none
+  std::string trace_dir;           // write a VCD per failing test here (docs/traces.md); empty = none
+  bool trace_all = false;          // with trace_dir: every test's VCD
 };
 
 int run_test_command(const TestCommandOptions& options, std::ostream& out, std::ostream& err);

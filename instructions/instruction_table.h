@@ -35,7 +35,15 @@ enum class OperandKind : std::uint8_t {
   Buffer,          // an M0/M1 block-transfer buffer address M0:e.x00 / M1:e.x00
   ControlBlock3,   // a 3-word integer control block (BTR, BTW)
   ControlBlock70,  // a 70-word integer control block (DEM)
+  // Like Source and Dest, but the instruction works on integer words only: an F address or a
+  // floating-point constant is refused by `check` (the bitwise instructions, SCL, DDV, TOD, ...).
+  WordSource,      // an integer word address or an integer constant
+  WordDest,        // an integer word address written by the instruction
+  Expression,      // a CPT expression (parser/expression.h)
 };
+
+// Whether an operand kind is written as a destination word (never a constant).
+constexpr bool is_dest_kind(OperandKind k) { return k == OperandKind::Dest || k == OperandKind::WordDest; }
 
 // Whether the instruction reads the operand, writes it, or both.
 enum class OperandAccess : std::uint8_t { Read, Write, ReadWrite };
@@ -73,6 +81,8 @@ enum class Requirement : std::uint8_t {
   DeviceNetMessage,  // DEM: SLC 5/03-5/05 OS Series C FRN 10 or later (1747-SDN ch. 8)
   SlcOneShot,        // the one-operand OSR: SLC 500 and MicroLogix 1000 (the 1100-1500 use ONS)
   MicroLogix1100Class,  // MicroLogix 1100, 1200, 1400, 1500 (ONS, two-operand OSR/OSF, CPW, ...)
+  Slc502Up,          // SLC 5/02 and later modular processors (RM001 "SLC 5/02" column: SQR, SCL, ENC)
+  Os302,             // SLC 5/03 OS302, 5/04 OS401, 5/05 (RM001 4-13: SCP, ABS, CPT, trig, logs, XPY)
 };
 
 struct OperandSpec {

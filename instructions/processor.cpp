@@ -68,6 +68,13 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::DeviceNetMessage: return is_modular_503_or_later(family) && series >= 'C' && frn >= 10;
     case Requirement::SlcOneShot: return !is_micrologix_1100_class();
     case Requirement::MicroLogix1100Class: return is_micrologix_1100_class();
+    // RM001 marks these with the 5/02 column and later. The MicroLogix controllers have them too
+    // (their own reference manuals); issue 16 owns the MicroLogix rows in detail.
+    case Requirement::Slc502Up: return family != ProcessorFamily::Fixed && family != ProcessorFamily::Slc501;
+    // RM001 4-13 (SCP) and the other 5/03-only rows: OS302 is the Series C operating system, the
+    // same condition as BTR/BTW. The MicroLogix 1000 has no floating point, so none of them.
+    case Requirement::Os302:
+      return (is_modular_503_or_later(family) && series >= 'C') || is_micrologix_1100_class();
   }
   return false;
 }
@@ -90,6 +97,23 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::MicroLogix1100Class:
       return "is a MicroLogix 1100, 1200, 1400 and 1500 instruction (1763-RM001, 1762-RM001, 1766-RM001); this "
              "program's processor is " + have;
+    case Requirement::Slc502Up:
+    case Requirement::Os302:
+      return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
+             " (1747-RM001)";
+  }
+  return {};
+}
+
+std::string_view requirement_processors(Requirement r) {
+  switch (r) {
+    case Requirement::Any: return "all SLC 500 processors";
+    case Requirement::BlockTransfer: return "SLC 5/03 OS302, SLC 5/04 OS401, SLC 5/05 OS501 (Series C) or later";
+    case Requirement::DeviceNetMessage: return "SLC 5/03, 5/04, 5/05 OS Series C FRN 10 or later";
+    case Requirement::Slc502Up: return "SLC 5/02, 5/03, 5/04, 5/05, MicroLogix";
+    case Requirement::Os302: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05, MicroLogix 1100/1200/1400/1500";
+    case Requirement::SlcOneShot: return "SLC 500 processors, MicroLogix 1000";
+    case Requirement::MicroLogix1100Class: return "MicroLogix 1100, 1200, 1400, 1500";
   }
   return {};
 }

@@ -77,6 +77,9 @@ std::optional<ProcessorModel> representative_processor(std::string_view timing_k
 std::optional<ProcessorModel> resolve_processor(std::string_view catalog, std::optional<char> series = std::nullopt,
                                                 std::optional<int> frn = std::nullopt);
 
+// Which processors have an instruction row's Requirement, in words (`softslc instructions`, diagnostics).
+std::string_view requirement_processors(Requirement r);
+
 // The catalog numbers accepted, for help texts and diagnostics.
 std::string_view known_processor_catalogs();
 

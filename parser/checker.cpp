@@ -6,6 +6,8 @@
 
 #include "instructions/module_catalog.h"
 #include "parser/rss/rss_reader.h"
+#include "parser/expression.h"
+#include "parser/loader.h"
 
 namespace softslc {
 
@@ -353,6 +355,11 @@ class Checker {
         if (!op.address.has_bit()) return expect("a bit address (for example B3:0/1 or T4:0/DN)");
         break;
       case OperandKind::Source:
+      case OperandKind::WordSource:
+        if (os.kind == OperandKind::WordSource && op.kind == Operand::Kind::Float)
+          return error(op.pos, where + ": " + mnemonic_of(in) + " works on integer words; a floating-point constant is not allowed");
+        if (os.kind == OperandKind::WordSource && op.is_address() && op.address.type == FileType::Float)
+          return error(op.pos, where + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
         if (op.kind == Operand::Kind::Float && !program_.processor.has_float_files())
           return error(op.pos, "floating-point constants need SLC 5/03 OS301 or later");
         if (op.is_number()) {
@@ -366,7 +373,10 @@ class Checker {
           return expect("a word of the element (.PRE, .ACC, .LEN or .POS)");
         break;
       case OperandKind::Dest:
+      case OperandKind::WordDest:
         if (!op.is_address()) return expect("a destination word address");
+        if (os.kind == OperandKind::WordDest && op.address.type == FileType::Float)
+          return error(op.pos, where + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
         if (op.address.has_bit()) return expect("a word address, not a bit");
         if (is_structured(op.address.type) && op.address.word < 0)
           return expect("a word of the element (.PRE, .ACC, .LEN or .POS)");
@@ -425,6 +435,10 @@ class Checker {
                         ":e.x00 with buffer x = 1-32 (1747-SN manual p. 5-6)");
         break;
       }
+      case OperandKind::Expression:
+        // Only the CPT rule of the grammar makes an expression operand; check_cpt reads it.
+        if (op.kind != Operand::Kind::Expression) return expect("a CPT expression");
+        return;
       case OperandKind::ControlBlock3:
       case OperandKind::ControlBlock70: {
         int len = os.kind == OperandKind::ControlBlock3 ? 3 : 70;
@@ -477,6 +491,65 @@ class Checker {
     }
     if (in.opcode == Opcode::JSR && in.operands.size() == 1 && in.operands[0].kind == Operand::Kind::Integer)
       jsr_targets_.emplace_back(static_cast<int>(in.operands[0].integer), in.operands[0].pos);
+    if (in.opcode == Opcode::CPT && in.operands.size() == 2 && in.operands[1].kind == Operand::Kind::Expression)
+      check_cpt(in);
+  }
+
+  // CPT: the expression parses, every operand is a word address or constant that could stand as
+  // a Source operand, and bitwise operations (AND OR XOR NOT, TOD FRD) are not mixed with floating
+  // point (the WordSource rule of the table, applied inside the expression).
+  void check_cpt(const Instruction& in) {
+    const Operand& e = in.operands[1];
+    auto at = [&](std::size_t column) {
+      return SourcePos{e.pos.line, e.pos.column + static_cast<std::uint32_t>(column)};
+    };
+    ExpressionError err;
+    auto items = parse_expression(e.spelling, err);
+    if (!items) return error(at(err.column), "CPT expression: " + err.message);
+    bool is_float = in.operands[0].is_address() && in.operands[0].address.type == FileType::Float;
+    std::string float_reason = is_float ? "the destination " + in.operands[0].spelling + " is F" : "";
+    const ExprItem* bitwise = nullptr;
+    for (const auto& it : *items) {
+      if (it.code != ExprCode::Push) {
+        if (!bitwise && (expr_is_bitwise(it.code) || it.code == ExprCode::Tod || it.code == ExprCode::Frd))
+          bitwise = &it;
+        if (float_reason.empty() && expr_is_float_function(it.code))
+          float_reason = std::string(to_string(it.code)) + " computes in floating point";
+        continue;
+      }
+      NumberValue v;
+      if (parse_number_text(it.text, v)) {
+        if (v.is_float && float_reason.empty()) float_reason = "the constant " + it.text + " is floating point";
+        if (v.is_float && !program_.processor.has_float_files())
+          error(at(it.column), "floating-point constants need SLC 5/03 OS301 or later");
+        continue;
+      }
+      std::string why;
+      auto a = parse_address(it.text, &why);
+      if (!a) {
+        error(at(it.column), "CPT expression: '" + it.text + "' is not an address or a constant");
+        continue;
+      }
+      if (a->has_bit()) {
+        error(at(it.column), "CPT expression: " + it.text + " is a bit; the expression takes words and constants");
+        continue;
+      }
+      if (is_structured(a->type) && a->word < 0) {
+        error(at(it.column), "CPT expression: " + it.text + " is a whole element; name a word (.PRE, .ACC, .LEN or .POS)");
+        continue;
+      }
+      if (uses_memdef_file(*a)) {
+        error(at(it.column), "CPT expression: " + std::string(file_letter(a->type)) + std::to_string(a->file) +
+                                 " holds the program's MEMDEF variables; name them instead (docs/automax.md)");
+        continue;
+      }
+      check_address(*a, at(it.column), OperandKind::Source, MFileAccess::OtherM);
+      if (a->type == FileType::Float && float_reason.empty()) float_reason = it.text + " is F";
+    }
+    if (bitwise && !float_reason.empty())
+      error(at(bitwise->column), "CPT expression: " + std::string(to_string(bitwise->code)) +
+                                     " works on integer words, but this expression computes in floating point (" +
+                                     float_reason + ")");
   }
 
   // ---- Rung structure ----------------------------------------------------------------------------------

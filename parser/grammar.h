@@ -138,7 +138,22 @@ struct symbol_name : seq<identifier, token_end> {};
 struct operand : sor<address, number, symbol_name> {};
 struct operand_token : seq<not_at<eof>, not_at<structure_keyword>, not_at<known_mnemonic>, must<operand>> {};
 struct mnemonic : seq<identifier, token_end> {};
-struct instruction : seq<mnemonic, star<ws, operand_token>> {};
+// CPT (issue 15): its expression runs from after the destination to the end of the instruction:
+// EOR, a branch keyword, or the next mnemonic that is not also an expression word (AND, OR, XOR,
+// NOT and the functions are both). parser/expression.h parses the text itself.
+struct expression_word
+    : seq<sor<TAO_PEGTL_STRING("AND"), TAO_PEGTL_STRING("OR"), TAO_PEGTL_STRING("XOR"), TAO_PEGTL_STRING("NOT"),
+              TAO_PEGTL_STRING("SQR"), TAO_PEGTL_STRING("ABS"), TAO_PEGTL_STRING("LN"), TAO_PEGTL_STRING("LOG"),
+              TAO_PEGTL_STRING("SIN"), TAO_PEGTL_STRING("COS"), TAO_PEGTL_STRING("TAN"), TAO_PEGTL_STRING("ASN"),
+              TAO_PEGTL_STRING("ACS"), TAO_PEGTL_STRING("ATN"), TAO_PEGTL_STRING("DEG"), TAO_PEGTL_STRING("RAD"),
+              TAO_PEGTL_STRING("TOD"), TAO_PEGTL_STRING("FRD")>,
+          token_end> {};
+struct expression_stop : sor<eof, structure_keyword, seq<not_at<expression_word>, known_mnemonic>> {};
+struct expression_piece : plus<not_one<' ', '\t', '\r', '\n', '\f', '\v', '%', '"'>> {};
+struct cpt_expression : seq<expression_piece, star<ws, not_at<expression_stop>, expression_piece>> {};
+struct kw_cpt : seq<TAO_PEGTL_STRING("CPT"), token_end> {};
+struct cpt_instruction : seq<at<kw_cpt>, mnemonic, ws, operand_token, ws, not_at<expression_stop>, cpt_expression> {};
+struct instruction : sor<cpt_instruction, seq<mnemonic, star<ws, operand_token>>> {};
 
 struct rung_element;
 struct leg : star<rung_element, opt_ws> {};

@@ -437,6 +437,22 @@ template <> struct action<number> {
   }
 };
 
+template <> struct action<cpt_expression> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    Operand op;
+    op.kind = Operand::Kind::Expression;
+    // A statement may continue over lines: keep the expression on one line, blanks collapsed.
+    for (char c : in.string_view()) {
+      const bool blank = c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+      if (!blank) op.spelling += c;
+      else if (op.spelling.empty() || op.spelling.back() != ' ') op.spelling += ' ';
+    }
+    op.pos = pos_of(in);
+    s.operands.push_back(std::move(op));
+  }
+};
+
 template <> struct action<symbol_name> {
   template <typename Input>
   static void apply(const Input& in, OperandBuilder& ob) {

@@ -29,13 +29,13 @@ struct SourcePos {
 
 // One operand of an instruction as written.
 struct Operand {
-  enum class Kind : std::uint8_t { Address, Integer, Float, Symbol };
+  enum class Kind : std::uint8_t { Address, Integer, Float, Symbol, Expression };
   Kind kind = Kind::Integer;
   Address address;             // Kind::Address, and Kind::Symbol once resolved
   std::int64_t integer = 0;    // Kind::Integer
   double real = 0.0;           // Kind::Float
   std::string symbol;          // Kind::Symbol: the name as written
-  std::string spelling;        // the text as written, for diagnostics
+  std::string spelling;        // the text as written, for diagnostics (Kind::Expression: the CPT expression)
   SourcePos pos;
   bool resolved = false;       // Kind::Symbol: address holds the symbol's address
 

@@ -86,6 +86,7 @@
 //   TND                       if rung then end the program scan
 //   MCR                       A: close the zone; else open a zone whose state is rung
 //   IIM IOM slot mask n       if rung then immediate input / output of n slot words under mask
+//   CPT     d, IMM(expr)      if rung then d := the expression exprs[expr] (RPN on a fixed stack)
 //   BTR BTW DEM ...           module instructions: operands resolved, then executed by the
 //                             module in slot aux (Module::execute); DYN is always set
 #pragma once
@@ -98,6 +99,7 @@
 
 #include "instructions/instruction_table.h"
 #include "instructions/processor.h"
+#include "parser/expression.h"
 #include "parser/program.h"
 #include "vm/data_table.h"
 #include "vm/module.h"
@@ -204,6 +206,20 @@ struct DynOperand {
   MFileAccess access_row = MFileAccess::OtherM;
 };
 
+// A compiled CPT expression: the RPN list of parser/expression.h with each operand compiled to an
+// ordinary operand word. The CPT instruction's second operand is IMM(index into `exprs`).
+struct CompiledExprStep {
+  ExprCode code = ExprCode::Push;
+  std::uint32_t operand = 0;  // Push: the operand word
+};
+// The interpreter evaluates on a fixed stack of this many values; kMaxExpressionLength bounds an
+// expression to at most 128 operands, so its stack never needs more.
+inline constexpr int kMaxExprStack = 128;
+struct CompiledExpr {
+  std::vector<CompiledExprStep> steps;
+  bool float_mode = false;  // computes in single precision (an F operand, float constant or function)
+};
+
 struct CompiledRung {
   std::uint32_t offset = 0;  // code index of its SOR
   SourcePos pos;
@@ -225,6 +241,7 @@ struct CompiledProgram {
   std::vector<DynOperand> dyn;
   std::vector<std::int64_t> int_constants;
   std::vector<float> float_constants;
+  std::vector<CompiledExpr> exprs;  // CPT expressions
   std::shared_ptr<const DataTableLayout> layout;
   std::vector<std::uint16_t> initial_words;  // the data table at download (DATA blocks, literals)
   std::vector<SlotConfig> slots;

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "parser/checker.h"
+#include "parser/loader.h"
 
 namespace softslc {
 
@@ -218,8 +219,19 @@ class Compiler {
       for (std::size_t i = 0; i < in.operands.size(); ++i) {
         const auto& op = in.operands[i];
         if (op.is_address()) note_address(op.address, extent(in, i), op.pos);
+        if (op.kind == Operand::Kind::Expression) note_expression(op);
       }
     }
+  }
+
+  // The addresses inside a CPT expression size their files like any operand.
+  void note_expression(const Operand& op) {
+    ExpressionError err;
+    auto items = parse_expression(op.spelling, err);
+    if (!items) return;  // reported when the instruction is compiled
+    for (const auto& it : *items)
+      if (it.code == ExprCode::Push)
+        if (auto a = parse_address(it.text)) note_address(*a, 1, op.pos);
   }
 
   void size_files() {
@@ -509,6 +521,50 @@ class Compiler {
     return 0;
   }
 
+  // CPT: compiles the expression's operands and records it in out_.exprs; the instruction's
+  // operand is IMM(index). The expression computes in floating point when the destination
+  // (`is_float` on entry), an operand or a constant is F, or it uses a float-only function.
+  std::uint32_t expression_operand(const Operand& op, bool is_float, std::uint32_t& flags, SourcePos pos) {
+    ExpressionError err;
+    auto items = parse_expression(op.spelling, err);
+    if (!items) {
+      error(pos, "CPT expression: " + err.message);
+      return 0;
+    }
+    if (expr_stack_depth(*items) > kMaxExprStack) {
+      error(pos, "CPT expression needs too deep an evaluation stack");
+      return 0;
+    }
+    CompiledExpr ce;
+    for (const auto& it : *items) {
+      CompiledExprStep step{it.code, 0};
+      if (it.code == ExprCode::Push) {
+        Operand atom;
+        atom.spelling = it.text;
+        NumberValue v;
+        if (parse_number_text(it.text, v)) {
+          atom.kind = v.is_float ? Operand::Kind::Float : Operand::Kind::Integer;
+          atom.integer = v.integer;
+          atom.real = v.real;
+        } else if (auto a = parse_address(it.text)) {
+          atom.kind = Operand::Kind::Address;
+          atom.address = *a;
+        } else {
+          error(pos, "CPT expression: '" + it.text + "' is not an address or a constant");
+          return 0;
+        }
+        step.operand = value_operand(atom, false, false, is_float, pos);
+        if (bc::mode_of(step.operand) == bc::kDyn) flags |= bc::kFlagDyn;
+      } else if (expr_is_float_function(it.code)) {
+        is_float = true;
+      }
+      ce.steps.push_back(step);
+    }
+    ce.float_mode = is_float;
+    out_.exprs.push_back(std::move(ce));
+    return bc::imm(static_cast<std::int32_t>(out_.exprs.size() - 1));
+  }
+
   std::uint32_t bit_operand(const Operand& op, SourcePos pos) {
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
       error(pos, "unknown symbol '" + op.symbol + "'");
@@ -637,10 +693,15 @@ class Compiler {
         case OperandKind::Bit: w = bit_operand(op, pos); break;
         case OperandKind::Source:
         case OperandKind::Dest:
+        case OperandKind::WordSource:
+        case OperandKind::WordDest:
         case OperandKind::File: {
           bool f = false;
-          w = value_operand(op, os.kind == OperandKind::Dest, os.kind == OperandKind::File, f, pos);
+          w = value_operand(op, is_dest_kind(os.kind), os.kind == OperandKind::File, f, pos);
           any_float = any_float || f;
+          // The checker refuses these first; this keeps an unchecked program from running one.
+          if (f && (os.kind == OperandKind::WordSource || os.kind == OperandKind::WordDest))
+            error(pos, std::string(sp.mnemonic) + " works on integer words; it takes no float operands");
           const bool is_long = bc::mode_of(w) == bc::kLong ||
                                (bc::mode_of(w) == bc::kDyn && out_.dyn[bc::payload_of(w)].vtype == ValueType::Int32);
           if (f || is_long) bad_int_operand = true;
@@ -682,6 +743,7 @@ class Compiler {
           }
           break;
         case OperandKind::SlotWord: w = slot_word_operand(in, op, pos); break;
+        case OperandKind::Expression: w = expression_operand(op, any_float, flags, pos); break;
         case OperandKind::Buffer:
         case OperandKind::ControlBlock3:
         case OperandKind::ControlBlock70:
@@ -701,14 +763,6 @@ class Compiler {
 
     // Operand-type rules that depend on the instruction.
     switch (in.opcode) {
-      case Opcode::AND:
-      case Opcode::OR:
-      case Opcode::XOR:
-      case Opcode::NOT:
-      case Opcode::MVM:
-      case Opcode::MEQ:
-        if (any_float) error(in.pos, std::string(sp.mnemonic) + " is a bitwise instruction; it takes no float operands");
-        break;
       case Opcode::BSL:
       case Opcode::BSR:
       case Opcode::SQO:

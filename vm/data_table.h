@@ -80,6 +80,8 @@ inline constexpr std::uint16_t kMajorHalt = 1u << 13;
 inline constexpr std::uint16_t kFirstPass = 1u << 15;
 inline constexpr std::uint16_t kOverflowSelect = 1u << 14;
 inline constexpr std::uint16_t kOverflowTrap = 1u << 0;
+// S:5/2: control register error, set with a sequencer's ER bit (PT1 24-8).
+inline constexpr std::uint16_t kControlRegisterError = 1u << 2;
 inline constexpr std::uint16_t kScanIn1ms = 1u << 13;
 }  // namespace status
 

@@ -5,8 +5,10 @@
 #include "vm/compiler.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <utility>
 
 namespace softslc {
@@ -776,6 +778,60 @@ void Interpreter::reset(const std::uint32_t* o, std::uint32_t h) {
 
 // ---- Compare, math, logical, move ----------------------------------------------------------------------------
 
+namespace {
+
+// The integer quotient a / b (b != 0) with DIV's rounding: a remainder of one half or more rounds
+// away from zero (RM 4-10: 11/2 -> 6; the negative side is docs/semantics.md's decision). DIV,
+// DDV, SCL and CPT's | share it.
+std::int64_t rounded_quotient(std::int64_t a, std::int64_t b) {
+  const std::int64_t q = a / b, rem = a % b;
+  if (2 * (rem < 0 ? -rem : rem) >= (b < 0 ? -b : b)) return q + (((a < 0) != (b < 0)) ? -1 : 1);
+  return q;
+}
+
+// The single-precision functions of the float instructions and of CPT. An input the function does
+// not take (LN or LOG of 0 or less, ASN or ACS outside -1..1) gives NaN, which the store reports
+// as V (RM ASN/ACS: "sets if ... an unsupported input is detected").
+float float_function(ExprCode c, float x) {
+  constexpr float kPi = 3.14159265358979f;
+  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+  switch (c) {
+    case ExprCode::Sqr: return std::sqrt(std::fabs(x));  // RM 4-12: the root of the absolute value
+    case ExprCode::Abs: return std::fabs(x);
+    case ExprCode::Ln: return x > 0.0f ? std::log(x) : kNaN;
+    case ExprCode::Log: return x > 0.0f ? std::log10(x) : kNaN;
+    case ExprCode::Sin: return std::sin(x);
+    case ExprCode::Cos: return std::cos(x);
+    case ExprCode::Tan: return std::tan(x);
+    case ExprCode::Asn: return std::fabs(x) <= 1.0f ? std::asin(x) : kNaN;
+    case ExprCode::Acs: return std::fabs(x) <= 1.0f ? std::acos(x) : kNaN;
+    case ExprCode::Atn: return std::atan(x);
+    case ExprCode::Deg: return x * (180.0f / kPi);
+    case ExprCode::Rad: return x * (kPi / 180.0f);
+    default: return x;
+  }
+}
+
+// Binary-coded decimal helpers shared by TOD/FRD and the CPT functions of the same names.
+std::uint32_t to_bcd(std::uint32_t m) {
+  std::uint32_t bcd = 0;
+  for (int shift = 0; shift < 20; shift += 4, m /= 10) bcd |= (m % 10) << shift;
+  return bcd;
+}
+// Returns false when a digit is above 9.
+bool from_bcd(std::uint32_t bcd, std::uint32_t& value) {
+  value = 0;
+  bool ok = true;
+  for (int shift = 16; shift >= 0; shift -= 4) {
+    const std::uint32_t d = (bcd >> shift) & 0xF;
+    ok = ok && d <= 9;
+    value = value * 10 + d;
+  }
+  return ok;
+}
+
+}  // namespace
+
 bool Interpreter::compare(Op op, const std::uint32_t* o, std::uint32_t h) {
   if (op == Op::MEQ) {
     const std::uint16_t mask = rd_word(o[1]);
@@ -864,8 +920,7 @@ void Interpreter::math(Op op, const std::uint32_t* o, std::uint32_t h) {
       const std::int64_t rem = a % b;
       // RM 4-10: dest gets the rounded quotient (11/2 -> 6), S:14 the unrounded quotient and
       // S:13 the remainder. Halves round away from zero (-11/2 -> -6) [U: symmetric].
-      r = q;
-      if (2 * (rem < 0 ? -rem : rem) >= (b < 0 ? -b : b)) r += ((a < 0) != (b < 0)) ? -1 : 1;
+      r = rounded_quotient(a, b);
       w_[s14_] = static_cast<std::uint16_t>(q);
       w_[s13_] = static_cast<std::uint16_t>(rem);
       break;
@@ -893,8 +948,8 @@ void Interpreter::unary(Op op, const std::uint32_t* o, std::uint32_t h) {
   }
   const std::int64_t a = rd_int(o[0]);
   const std::int64_t stored = st_int(o[1], -a, overflow);
-  // C: 0 - a borrows whenever a is not zero [U].
-  set_flags(a != 0, overflow, stored == 0, stored < 0);
+  // C: "cleared if 0 or overflow, otherwise set" (PT1 20-10): NEG of -32768 overflows, so C = 0.
+  set_flags(a != 0 && !overflow, overflow, stored == 0, stored < 0);
 }
 
 void Interpreter::logical(Op op, const std::uint32_t* o) {
@@ -909,6 +964,253 @@ void Interpreter::logical(Op op, const std::uint32_t* o) {
   }
   const std::int64_t stored = st_bits(dest, r);
   set_flags(false, false, stored == 0, stored < 0);
+}
+
+// ---- Issue 15: DDV, SQR, ABS, float functions, SCL, SCP, BCD and bit encode/decode ---------------------------
+
+void Interpreter::double_divide(const std::uint32_t* o) {
+  // RM 4-11 (table 4.9): the 32-bit math register S:14 (high) : S:13 (low) is the dividend. The
+  // quotient is rounded (a remainder of one half or more rounds away from zero, as DIV); division
+  // by zero or a quotient outside -32768..32767 sets V (and S:5/0) and puts 32767 in dest whatever
+  // S:2/14 says. C always resets.
+  const auto dividend = static_cast<std::int32_t>((static_cast<std::uint32_t>(w_[s14_]) << 16) | w_[s13_]);
+  const std::int64_t b = rd_int(o[0]);
+  if (b == 0) {
+    const std::int64_t stored = st_bits(o[1], INT16_MAX);
+    set_flags(false, true, stored == 0, stored < 0);
+    return;
+  }
+  const std::int64_t q = dividend / b;
+  const std::int64_t rem = dividend % b;
+  const std::int64_t r = rounded_quotient(dividend, b);
+  if (r > INT16_MAX || r < INT16_MIN) {
+    // The math register keeps the dividend: an unrounded quotient that does not fit has no 16-bit
+    // home [U, docs/semantics.md].
+    const std::int64_t stored = st_bits(o[1], INT16_MAX);
+    set_flags(false, true, stored == 0, stored < 0);
+    return;
+  }
+  w_[s14_] = static_cast<std::uint16_t>(q);
+  w_[s13_] = static_cast<std::uint16_t>(rem);
+  const std::int64_t stored = st_bits(o[1], r);
+  set_flags(false, false, stored == 0, stored < 0);
+}
+
+void Interpreter::function(Op op, const std::uint32_t* o, std::uint32_t h) {
+  bool overflow = false;
+  if (op == Op::ABS && !(bc::flags_of(h) & bc::kFlagFloat)) {
+    // Integer ABS: |-32768| does not fit and follows the S:2/14 overflow rule like NEG.
+    const std::int64_t a = rd_int(o[0]);
+    const std::int64_t stored = st_int(o[1], a < 0 ? -a : a, overflow);
+    set_flags(false, overflow, stored == 0, stored < 0);
+    return;
+  }
+  // Everything else computes in single precision, as the processor's float unit does. An integer
+  // source converts exactly; an integer destination gets the result rounded to nearest (half to
+  // even) and saturated, with V (ML1400 RM p.204). NaN or infinity sets V and S:5/0.
+  const float x = rd_flt(o[0]);
+  float r = 0.0f;
+  std::uint32_t dest = o[1];
+  switch (op) {
+    case Op::SQR: r = float_function(ExprCode::Sqr, x); break;
+    case Op::ABS: r = float_function(ExprCode::Abs, x); break;
+    case Op::LN: r = float_function(ExprCode::Ln, x); break;
+    case Op::LOG: r = float_function(ExprCode::Log, x); break;
+    case Op::SIN: r = float_function(ExprCode::Sin, x); break;
+    case Op::COS: r = float_function(ExprCode::Cos, x); break;
+    case Op::TAN: r = float_function(ExprCode::Tan, x); break;
+    case Op::ASN: r = float_function(ExprCode::Asn, x); break;
+    case Op::ACS: r = float_function(ExprCode::Acs, x); break;
+    case Op::ATN: r = float_function(ExprCode::Atn, x); break;
+    case Op::DEG: r = float_function(ExprCode::Deg, x); break;
+    case Op::RAD: r = float_function(ExprCode::Rad, x); break;
+    case Op::XPY:
+      r = std::pow(x, rd_flt(o[1]));
+      dest = o[2];
+      break;
+    default: return;
+  }
+  const double stored = st_flt(dest, r, overflow);
+  set_flags(false, overflow, stored == 0.0, std::signbit(stored) && stored != 0.0);
+}
+
+void Interpreter::scale(Op op, const std::uint32_t* o, std::uint32_t h) {
+  bool overflow = false;
+  if (op == Op::SCP) {
+    // RM 4-13: y = m x + b with m = (scaled max - scaled min) / (input max - input min) and
+    // b = scaled min - input min * m, in single precision; the output is not clamped to the scaled
+    // range. Input max = input min gives an infinite or undefined slope: V.
+    (void)h;
+    const float x = rd_flt(o[0]), in_min = rd_flt(o[1]), in_max = rd_flt(o[2]);
+    const float s_min = rd_flt(o[3]), s_max = rd_flt(o[4]);
+    const float m = (s_max - s_min) / (in_max - in_min);
+    const float b = s_min - in_min * m;
+    const double stored = st_flt(o[5], m * x + b, overflow);
+    set_flags(false, overflow, stored == 0.0, std::signbit(stored) && stored != 0.0);
+    return;
+  }
+  // SCL (PT1 20-22): source * rate / 10000, rounded, plus offset. V is checked before and after
+  // the offset: an overflow of the product puts +32767 or -32768 in dest whatever the offset is.
+  // C is reserved (left as it was). Halves round away from zero, as DIV [U].
+  const std::int64_t q = rounded_quotient(rd_int(o[0]) * rd_int(o[1]), 10000);
+  std::int64_t r = q;
+  if (q > INT16_MAX || q < INT16_MIN) {
+    overflow = true;
+  } else {
+    r = q + rd_int(o[2]);
+    overflow = r > INT16_MAX || r < INT16_MIN;
+  }
+  if (overflow) r = r > 0 ? INT16_MAX : INT16_MIN;
+  const std::int64_t stored = st_bits(o[3], r);
+  set_flags((w_[s0_] & status::kCarry) != 0, overflow, stored == 0, stored < 0);
+}
+
+void Interpreter::convert(Op op, const std::uint32_t* o) {
+  // The math register as an operand: a direct S:13 word address (RM 5-2 / 5-4).
+  auto is_math_register = [&](std::uint32_t w) { return bc::mode_of(w) == bc::kWord && bc::payload_of(w) == s13_; };
+  switch (op) {
+    case Op::TOD: {
+      // RM 5-2, table 5.2: the absolute value is converted; V (and S:5/0) when the BCD result is
+      // above 9999; S is the sign of the source. Into S:13 the five digits fill S:13 and S:14 and
+      // are valid at overflow; into a word the low four digits are stored [U].
+      const std::int64_t a = rd_int(o[0]);
+      const std::uint32_t bcd = to_bcd(static_cast<std::uint32_t>(a < 0 ? -a : a));
+      const bool over = bcd > 0x9999;
+      std::uint16_t stored = static_cast<std::uint16_t>(bcd & 0xFFFF);
+      if (is_math_register(o[1])) {
+        w_[s13_] = stored;
+        w_[s14_] = static_cast<std::uint16_t>(bcd >> 16);
+      } else {
+        st_bits(o[1], stored);
+      }
+      set_flags(false, over, bcd == 0, a < 0);
+      return;
+    }
+    case Op::FRD: {
+      // RM 5-4: the BCD source (S:13 reads the five digits of S:14:S:13) to an integer. A digit above
+      // 9, or a value above 32767, is not a valid source: V and S:5/0, dest unchanged [U].
+      const std::uint32_t bcd = is_math_register(o[0])
+                              ? ((static_cast<std::uint32_t>(w_[s14_] & 0xF) << 16) | w_[s13_])
+                              : rd_word(o[0]);
+      std::uint32_t value = 0;
+      const bool bad = !from_bcd(bcd, value);
+      if (bad || value > 32767) {
+        set_flags(false, true, false, false);
+        return;
+      }
+      const std::int64_t stored = st_bits(o[1], value);
+      set_flags(false, false, stored == 0, false);
+      return;
+    }
+    case Op::DCD:
+      // RM 5-10: the low four bits of the source select the one bit set in dest. The arithmetic
+      // status bits are not changed [U].
+      st_bits(o[1], std::int64_t{1} << (rd_word(o[0]) & 0xF));
+      return;
+    case Op::ENC: {
+      // RM 5-12, table 5.6: the lowest set bit wins; V when more than one bit is set, but the
+      // overflow trap S:5/0 is NOT set, so the flags are written here rather than by set_flags.
+      const std::uint16_t s = rd_word(o[0]);
+      const int n = s == 0 ? 0 : std::countr_zero(s);
+      const bool many = std::popcount(s) > 1;
+      st_bits(o[1], n);
+      w_[s0_] = static_cast<std::uint16_t>((w_[s0_] & ~kStatusBits) | (many ? status::kOverflow : 0) |
+                                           (n == 0 ? status::kZero : 0));
+      return;
+    }
+    default: return;
+  }
+}
+
+void Interpreter::compute(const std::uint32_t* o) {
+  // CPT (docs/semantics.md, "CPT"): the RPN steps run on a fixed local stack. Integer mode keeps
+  // 64-bit intermediates and stores with the S:2/14 rule; | rounds like DIV and a zero divisor
+  // sets V with 32767. Float mode computes in single precision like the float instructions. V
+  // from any step is reported with the result; C always resets.
+  const CompiledExpr& e = prog_.exprs[static_cast<std::size_t>(bc::imm_of(o[1]))];
+  bool overflow = false;
+  int sp = 0;
+  if (e.float_mode) {
+    std::array<float, kMaxExprStack> st{};
+    for (const auto& step : e.steps) {
+      if (step.code == ExprCode::Push) {
+        st[static_cast<std::size_t>(sp++)] = rd_flt(step.operand);
+        continue;
+      }
+      const bool binary = step.code >= ExprCode::Add && step.code <= ExprCode::Xor;
+      const float b = binary ? st[static_cast<std::size_t>(--sp)] : 0.0f;
+      float& x = st[static_cast<std::size_t>(sp - 1)];
+      switch (step.code) {
+        case ExprCode::Neg: x = -x; break;
+        case ExprCode::Add: x = x + b; break;
+        case ExprCode::Sub: x = x - b; break;
+        case ExprCode::Mul: x = x * b; break;
+        case ExprCode::Div: x = x / b; break;
+        case ExprCode::Pow: x = std::pow(x, b); break;
+        // Bitwise operations and TOD/FRD are refused in float mode by check; the rest are functions.
+        default: x = float_function(step.code, x); break;
+      }
+      if (!std::isfinite(x)) overflow = true;
+    }
+    const double stored = st_flt(o[0], st[0], overflow);
+    set_flags(false, overflow, stored == 0.0, std::signbit(stored) && stored != 0.0);
+    return;
+  }
+  std::array<std::int64_t, kMaxExprStack> st{};
+  // Intermediates are kept within 32 bits, so nothing below can overflow the 64-bit arithmetic.
+  auto clamp32 = [&](std::int64_t v) {
+    if (v > INT32_MAX || v < INT32_MIN) {
+      overflow = true;
+      return v > 0 ? std::int64_t{INT32_MAX} : std::int64_t{INT32_MIN};
+    }
+    return v;
+  };
+  for (const auto& step : e.steps) {
+    if (step.code == ExprCode::Push) {
+      st[static_cast<std::size_t>(sp++)] = rd_int(step.operand);
+      continue;
+    }
+    const bool binary = step.code >= ExprCode::Add && step.code <= ExprCode::Xor;
+    const std::int64_t b = binary ? st[static_cast<std::size_t>(--sp)] : 0;
+    std::int64_t& x = st[static_cast<std::size_t>(sp - 1)];
+    switch (step.code) {
+      case ExprCode::Neg: x = -x; break;
+      case ExprCode::Not: x = ~x; break;
+      case ExprCode::Add: x = x + b; break;
+      case ExprCode::Sub: x = x - b; break;
+      case ExprCode::Mul: x = x * b; break;
+      case ExprCode::Div: {
+        if (b == 0) {
+          overflow = true;
+          x = INT16_MAX;
+          break;
+        }
+        x = rounded_quotient(x, b);
+        break;
+      }
+      case ExprCode::And: x = x & b; break;
+      case ExprCode::Or: x = x | b; break;
+      case ExprCode::Xor: x = x ^ b; break;
+      case ExprCode::Sqr: x = std::llround(std::sqrt(static_cast<double>(x < 0 ? -x : x))); break;
+      case ExprCode::Abs: x = x < 0 ? -x : x; break;
+      case ExprCode::Tod: {
+        const std::uint32_t bcd = to_bcd(static_cast<std::uint32_t>(std::min<std::int64_t>(x < 0 ? -x : x, 99999)));
+        overflow = overflow || bcd > 0x9999;
+        x = static_cast<std::int16_t>(bcd & 0xFFFF);
+        break;
+      }
+      case ExprCode::Frd: {
+        std::uint32_t v = 0;
+        if (!from_bcd(static_cast<std::uint16_t>(x), v)) overflow = true;
+        x = v;
+        break;
+      }
+      default: break;  // float-only functions force float mode at compile time
+    }
+    x = clamp32(x);
+  }
+  const std::int64_t stored = st_int(o[0], st[0], overflow);
+  set_flags(false, overflow, stored == 0, stored < 0);
 }
 
 void Interpreter::move(Op op, const std::uint32_t* o, std::uint32_t h) {
@@ -1063,7 +1365,11 @@ void Interpreter::sequencer(Op op, const std::uint32_t* o, bool rung) {
   const int len = static_cast<std::int16_t>(r[1]);
   int pos = static_cast<std::int16_t>(r[2]);
   if (len <= 0 || pos < 0 || pos > len) {
+    // PT1 24-8: ER "results in a major error if not cleared before the END or TND instruction is
+    // executed. Use an OTU with address S:5/2 to avoid a CPU fault": ER comes with the minor
+    // error bit S:5/2, which the end of the program scan checks like S:5/0.
     r[0] |= bits::kER;
+    w_[s5_] |= status::kControlRegisterError;
     return;
   }
   Span f;
@@ -1115,6 +1421,7 @@ void Interpreter::stack(Op op, const std::uint32_t* o, bool rung) {
   if (!file_span(load ? o[1] : o[0], static_cast<std::uint32_t>(len), f, mnemonic(op))) return;
   r[0] &= static_cast<std::uint16_t>(~bits::kER);
   std::uint16_t* s = w_ + f.base;
+  const int entry_pos = pos;
   if (load) {
     if (pos < len) s[pos++] = rd_word(o[0]);  // a full stack ignores the load (DN stays set)
   } else if (pos > 0) {
@@ -1135,7 +1442,9 @@ void Interpreter::stack(Op op, const std::uint32_t* o, bool rung) {
   r[2] = static_cast<std::uint16_t>(pos);
   r[0] = static_cast<std::uint16_t>(pos >= len ? (r[0] | bits::kDN) : (r[0] & ~bits::kDN));
   r[0] = static_cast<std::uint16_t>(pos == 0 ? (r[0] | bits::kEM) : (r[0] & ~bits::kEM));
-  w_[s24_] = static_cast<std::uint16_t>(pos);
+  // PT1 23-7 and 23-9: "For the FFL [LFL], the position value determined at instruction entry is
+  // placed in S:24. For the FFU [LFU], the position value determined at instruction exit".
+  w_[s24_] = static_cast<std::uint16_t>(load ? entry_pos : pos);
 }
 
 // ---- The dispatch loop -----------------------------------------------------------------------------------------
@@ -1377,6 +1686,39 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
         if (rung) logical(op, o);
         break;
 
+      // ---- Issue 15: math, floating point, data handling ----
+      case Op::DDV:
+        if (rung) double_divide(o);
+        break;
+      case Op::SQR:
+      case Op::ABS:
+      case Op::LN:
+      case Op::LOG:
+      case Op::XPY:
+      case Op::SIN:
+      case Op::COS:
+      case Op::TAN:
+      case Op::ASN:
+      case Op::ACS:
+      case Op::ATN:
+      case Op::DEG:
+      case Op::RAD:
+        if (rung) function(op, o, h);
+        break;
+      case Op::SCL:
+      case Op::SCP:
+        if (rung) scale(op, o, h);
+        break;
+      case Op::TOD:
+      case Op::FRD:
+      case Op::DCD:
+      case Op::ENC:
+        if (rung) convert(op, o);
+        break;
+      case Op::CPT:
+        if (rung) compute(o);
+        break;
+
       // ---- Move and file ----
       case Op::MOV:
       case Op::MVM:
@@ -1509,6 +1851,12 @@ end_of_scan:
   // PT1 20-2: the overflow trap still set at END or TND is major fault 0020h.
   if (w_[s5_] & status::kOverflowTrap) {
     raise(fault::kMinorErrorAtEnd, "math overflow trap S:5/0 still set at the end of the program scan");
+    goto fault;
+  }
+  // PT1 24-8: a sequencer error (ER, with S:5/2) not cleared before END or TND is a major error.
+  if (w_[s5_] & status::kControlRegisterError) {
+    raise(fault::kMinorErrorAtEnd,
+          "control register error S:5/2 (a sequencer's ER) still set at the end of the program scan");
     goto fault;
   }
   res.elapsed = elapsed;

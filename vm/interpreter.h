@@ -160,6 +160,12 @@ class Interpreter {
   SOFTSLC_HANDLER void math(Op op, const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void unary(Op op, const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void logical(Op op, const std::uint32_t* o);
+  // Issue 15: DDV; SQR, ABS and the float functions (LN ... RAD, XPY); SCL and SCP; TOD, FRD, DCD, ENC.
+  SOFTSLC_HANDLER void double_divide(const std::uint32_t* o);
+  SOFTSLC_HANDLER void function(Op op, const std::uint32_t* o, std::uint32_t h);
+  SOFTSLC_HANDLER void scale(Op op, const std::uint32_t* o, std::uint32_t h);
+  SOFTSLC_HANDLER void convert(Op op, const std::uint32_t* o);
+  SOFTSLC_HANDLER void compute(const std::uint32_t* o);
   SOFTSLC_HANDLER void move(Op op, const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void copy_file(const std::uint32_t* o);
   SOFTSLC_HANDLER void copy_words(const std::uint32_t* o);

@@ -265,3 +265,27 @@ TEST(CliMicroLogix, RunSetsAnExpansionInput) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 15: `softslc instructions` lists every row with the processors that have it, and an
+// instruction the program's processor lacks is a check error naming the processor.
+TEST(Cli, InstructionsListProcessors) {
+  auto r = run("instructions");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("SCP input input min input max scaled min scaled max output\n    processors: SLC 5/03 OS302"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("XIC bit\n    processors: all SLC 500 processors"), std::string::npos);
+  EXPECT_NE(r.out.find("SQR source dest\n    processors: SLC 5/02, 5/03, 5/04, 5/05"), std::string::npos);
+  EXPECT_NE(r.out.find("CPT dest expression"), std::string::npos);
+}
+
+TEST(Cli, CheckNamesTheProcessorAnInstructionIsMissingOn) {
+  auto f = temp_file("scp502.slc", "START 1747-L524\nLADDER 2\nSOR SCP N7:0 0 100 0 10 N7:1 EOR\n");
+  auto r = run("check " + f.string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.out.find("scp502.slc:3:5: error: SCP is not available on the SLC 5/02"), std::string::npos) << r.out;
+}
+
+}  // namespace

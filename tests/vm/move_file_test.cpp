@@ -245,13 +245,24 @@ TEST(Sequencer, SqcAndSql) {
   EXPECT_FALSE(plc.b("R6:2/FD")) << "step 2 holds 6";
 }
 
-TEST(Sequencer, InvalidLengthSetsEr) {
-  Plc plc("SOR XIC B3:0/0 SQO #N7:0 0xFFFF N7:9 R6:0 3 0 EOR");
+TEST(Sequencer, InvalidLengthSetsErAndFaultsAtEndUnlessCleared) {
+  // PT1 24-8: ER "is set when the processor detects a negative position value, or a negative or
+  // zero length value. This results in a major error if not cleared before the END or TND
+  // instruction is executed. Use an OTU with address S:5/2 to avoid a CPU fault."
+  Plc plc("SOR XIC B3:0/0 SQO #N7:0 0xFFFF N7:9 R6:0 3 0 EOR\nSOR XIC B3:0/1 OTU S:5/2 EOR");
   plc.set("R6:0.LEN", -1);
   plc.set("B3:0/0", 1);
+  plc.set("B3:0/1", 1);
   plc.run_scans(1);
   EXPECT_TRUE(plc.b("R6:0/ER"));
-  EXPECT_FALSE(plc->fault().has_value());
+  EXPECT_FALSE(plc->fault().has_value()) << "OTU S:5/2 before END avoids the fault";
+
+  Plc plc2("SOR XIC B3:0/0 SQO #N7:0 0xFFFF N7:9 R6:0 3 0 EOR\nSOR TND EOR\nSOR OTE B3:0/2 EOR");
+  plc2.set("R6:0.LEN", 0);
+  plc2.set("B3:0/0", 1);
+  plc2.run_scans(1);
+  EXPECT_TRUE(plc2.b("R6:0/ER"));
+  EXPECT_EQ(plc2.fault_code(), 0x0020) << "ER (S:5/2) still set at TND";
 }
 
 TEST(Sequencer, RangePastTheFileFaults002A) {

@@ -80,4 +80,14 @@ struct Plc {
   std::uint16_t fault_code() const { return rt->fault() ? rt->fault()->code : 0; }
 };
 
+// The S:0 arithmetic flags C (1), V (2), Z (4), S (8).
+inline int arith_flags(Plc& plc) { return static_cast<int>(plc.i("S:0") & 0xF); }
+
+// `rungs` followed by a rung that samples the overflow trap S:5/0 into B3:1/0 and one that clears
+// it, so an intended overflow is visible to the test and does not end in major fault 0020h
+// (PT1 20-2).
+inline std::string with_trap_sample(std::string_view rungs) {
+  return std::string(rungs) + "\nSOR XIC S:5/0 OTE B3:1/0 EOR\nSOR OTU S:5/0 EOR";
+}
+
 }  // namespace softslc::test

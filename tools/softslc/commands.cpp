@@ -14,6 +14,7 @@
 #include "vm/atomic_file.h"
 #include "run_trace.h"
 #include "instructions/instruction_table.h"
+#include "instructions/processor.h"
 #include "modules/throughput/throughput_json.h"
 #include "parser/checker.h"
 #include "parser/formatter.h"
@@ -491,7 +492,7 @@ int run_instructions() {
   for (const auto& s : kInstructionTable) {
     std::cout << s.mnemonic;
     for (const auto& o : s.operand_specs()) std::cout << ' ' << o.label;
-    std::cout << "\n";
+    std::cout << "\n    processors: " << requirement_processors(s.requires_) << "\n";
     for (const auto& o : s.operand_specs()) {
       std::cout << "    " << o.label << ": " << to_string(o.kind);
       bool constant = o.kind == OperandKind::Literal || o.kind == OperandKind::Label ||

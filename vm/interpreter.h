@@ -34,6 +34,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "vm/bytecode.h"
@@ -77,6 +78,7 @@ inline constexpr int kMaxCallDepth = 16;
 
 class ModuleCall;
 class CoverageRecorder;
+class FusedProgram;
 
 class Interpreter {
  public:
@@ -91,6 +93,10 @@ class Interpreter {
   // its bit-logic fast path and reports every instruction (vm/coverage.h); without one nothing
   // is recorded and the fast path is unchanged.
   void set_coverage(CoverageRecorder* recorder) { coverage_ = recorder; }
+
+  // Fused rungs (vm/fused.h) are on by default; off, every rung takes the general path. The
+  // result is the same either way; tests compare the two.
+  void set_fusion(bool on) { fusion_ = on; }
 
   // The cost table (ns) indexed by op * 2 + rung-in.
   const std::vector<Nanoseconds>& costs() const { return cost_; }
@@ -192,6 +198,9 @@ class Interpreter {
   int max_depth_;
   std::uint32_t s0_, s2_, s5_, s13_, s14_, s24_;
   CoverageRecorder* coverage_ = nullptr;
+  // Whole rungs of direct-bit logic, built once from the program and the cost table.
+  std::shared_ptr<const FusedProgram> fused_;
+  bool fusion_ = true;
 
   // Per-scan state used by the handlers.
   VirtualTime scan_start_ = 0;

@@ -16,6 +16,11 @@
 // the general switch alone kept the rung condition in memory and ran about 6 ns per bit
 // instruction; with the fast path about 2.4 ns (docs/bytecode.md, "Performance").
 //
+// Fused rungs. Runs of rungs that are pure contact networks are not dispatched instruction by
+// instruction at all: at such a run's first SOR the general switch hands it to a FusedProgram
+// (vm/fused.h), built once at construction, which executes the whole run as gathered bits and
+// table lookups with the same results, scan time and counts. Coverage keeps the general path.
+//
 // Run-time addresses (indexed, indirect, M0/M1) go through resolve(), the one checked path: it
 // either yields an index inside the data table (or a module word) or records a major fault
 // (0029h/002Ah/xx55h) and yields a harmless scratch location. Instructions with such operands

@@ -105,9 +105,11 @@ std::optional<Location> DataTableLayout::locate(const Address& a, std::string* e
 }
 
 int DataTableLayout::file_containing(std::uint32_t word) const {
+  // Files lie in file-number order (see the layout in data_table.h), so the first present file
+  // that ends after `word` is the only one that can hold it.
   for (int f = 0; f < 256; ++f) {
     const auto& fl = files[static_cast<std::size_t>(f)];
-    if (fl.present && word >= fl.base && word < fl.end()) return f;
+    if (fl.present && word < fl.end()) return word >= fl.base ? f : -1;
   }
   return -1;
 }

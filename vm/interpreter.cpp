@@ -1,6 +1,7 @@
 #include "vm/interpreter.h"
 
 #include "vm/coverage.h"
+#include "vm/fused.h"
 
 #include "vm/compiler.h"
 
@@ -59,6 +60,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
   s13_ = L.status_word(status::kMathLow);
   s14_ = L.status_word(status::kMathHigh);
   s24_ = L.status_word(status::kIndex);
+  fused_ = std::make_shared<const FusedProgram>(program, cost_);
 }
 
 std::string Interpreter::refused(MAccess a, int slot, MFile f, int word, bool write) const {
@@ -1572,6 +1574,19 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
           goto fault;
         }
         rung = !mcr_off || (bc::flags_of(h) & bc::kFlagA);
+        // A run of fused rungs (vm/fused.h) starting here executes in one call; coverage keeps
+        // the general path so it sees every instruction.
+        if (!mcr_off && fusion_ && !coverage_) {
+          const std::int32_t run = fused_->run_at(cur_file, bc::aux_of(h));
+          if (run >= 0) {
+            Nanoseconds t = elapsed;
+            std::uint64_t n = 0;
+            pc = code_ + fused_->execute(run, w_, t, n, watchdog);
+            elapsed = t;
+            count_ += n;
+            continue;
+          }
+        }
         break;
       // BST/NXB/BND (and direct-bit XIC/XIO/OTE) are normally taken by the fast path above;
       // these cases give the same result if the general switch ever sees them.

@@ -16,6 +16,11 @@
 // the general switch alone kept the rung condition in memory and ran about 6 ns per bit
 // instruction; with the fast path about 2.4 ns (docs/bytecode.md, "Performance").
 //
+// Fused rungs. Runs of rungs that are pure contact networks are not dispatched instruction by
+// instruction at all: at such a run's first SOR the general switch hands it to a FusedProgram
+// (vm/fused.h), built once at construction, which executes the whole run as gathered bits and
+// table lookups with the same results, scan time and counts. Coverage keeps the general path.
+//
 // Run-time addresses (indexed, indirect, M0/M1) go through resolve(), the one checked path: it
 // either yields an index inside the data table (or a module word) or records a major fault
 // (0029h/002Ah/xx55h) and yields a harmless scratch location. Instructions with such operands
@@ -34,6 +39,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "vm/bytecode.h"
@@ -77,6 +83,7 @@ inline constexpr int kMaxCallDepth = 16;
 
 class ModuleCall;
 class CoverageRecorder;
+class FusedProgram;
 
 class Interpreter {
  public:
@@ -91,6 +98,10 @@ class Interpreter {
   // its bit-logic fast path and reports every instruction (vm/coverage.h); without one nothing
   // is recorded and the fast path is unchanged.
   void set_coverage(CoverageRecorder* recorder) { coverage_ = recorder; }
+
+  // Fused rungs (vm/fused.h) are on by default; off, every rung takes the general path. The
+  // result is the same either way; tests compare the two.
+  void set_fusion(bool on) { fusion_ = on; }
 
   // The cost table (ns) indexed by op * 2 + rung-in.
   const std::vector<Nanoseconds>& costs() const { return cost_; }
@@ -199,6 +210,9 @@ class Interpreter {
   int max_depth_;
   std::uint32_t s0_, s2_, s5_, s13_, s14_, s24_;
   CoverageRecorder* coverage_ = nullptr;
+  // Whole rungs of direct-bit logic, built once from the program and the cost table.
+  std::shared_ptr<const FusedProgram> fused_;
+  bool fusion_ = true;
 
   // Per-scan state used by the handlers.
   VirtualTime scan_start_ = 0;

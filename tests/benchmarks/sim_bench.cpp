@@ -1,0 +1,130 @@
+// Simulation speed and load time.
+//
+// BM_Simulate/<example>: every shipped example program (examples/ladder/**/*.slc) with its bench
+// file when one sits beside it, loaded through the public Controller API exactly as `softslc
+// test` loads it, then run in virtual time. The counter `x_realtime` is virtual seconds per CPU
+// second of this thread (the machine the figures come from is shared, so CPU time, not wall time).
+// An example that faults in its first second of virtual time (the fault-injection examples do
+// so on purpose) is reported as an error with its fault, not timed.
+//
+// BM_LoadProgram/<rungs>: parse + check + compile of a generated program from 1,000 to 1,000,000
+// rungs (the mix of parse_bench.cpp: contacts, branches, TON, CTU, ADD, GEQ, MOV, OTL, OTE), split
+// into program files of at most 50,000 rungs that file 2 calls with JSR (a file holds at most
+// 65,535 rungs). `peak_MB` is the process's peak resident set after the load (getrusage), so run
+// one size per process to read it: --benchmark_filter='BM_LoadProgram/1000000$'.
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "parser/loader.h"
+#include "tools/controller/controller.h"
+#include "vm/compiler.h"
+
+namespace softslc {
+namespace {
+
+namespace fs = std::filesystem;
+
+void BM_Simulate(benchmark::State& state, const fs::path& program, const std::optional<fs::path>& bench) {
+  std::optional<Controller> plc;
+  try {
+    plc.emplace(Controller::load(program, bench));
+  } catch (const std::exception& e) {
+    state.SkipWithError(e.what());
+    return;
+  }
+  constexpr Nanoseconds kSlice = milliseconds(100);
+  Nanoseconds simulated = 0;
+  for (auto _ : state) {
+    const VirtualTime before = plc->now();
+    plc->run_for(kSlice);
+    if (plc->fault()) {
+      state.SkipWithError(("faults: " + plc->fault()->to_string()).c_str());
+      return;
+    }
+    simulated += plc->now() - before;
+  }
+  state.counters["x_realtime"] = benchmark::Counter(static_cast<double>(simulated) / 1e9, benchmark::Counter::kIsRate);
+  state.counters["scan_us"] = static_cast<double>(plc->runtime().stats().avg()) / 1e3;
+}
+
+std::string generate_program(int rungs) {
+  constexpr int kPerFile = 50'000;
+  const int files = (rungs + kPerFile - 1) / kPerFile;
+  std::string s =
+      "START 1747-L552\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nSLOT 2 1746-OB16 SCAN_IN 0 SCAN_OUT 1\nLADDER 2\n";
+  if (files > 1)
+    for (int f = 0; f < files; ++f) s += "SOR JSR " + std::to_string(10 + f) + " EOR\n";
+  for (int i = 0; i < rungs; ++i) {
+    if (files > 1 && i % kPerFile == 0) s += "LADDER " + std::to_string(10 + i / kPerFile) + "\nSOR SBR OTE B3:255/0 EOR\n";
+    const std::string n = std::to_string(i % 200);
+    switch (i % 5) {
+      case 0:
+        s += "SOR XIC I:1/" + std::to_string(i % 16) + " BST XIC B3:" + n + "/1 NXB XIO B3:" + n + "/2 BND OTE B3:" + n +
+             "/3 EOR\n";
+        break;
+      case 1: s += "SOR XIC B3:" + n + "/3 TON T4:" + n + " 0.01 100 0 EOR\n"; break;
+      case 2: s += "SOR XIC T4:" + n + "/DN BST CTU C5:" + n + " 10 0 NXB ADD N7:" + n + " 1 N7:" + n + " BND EOR\n"; break;
+      case 3: s += "SOR GEQ N7:" + n + " 100 BST MOV 0 N7:" + n + " NXB OTL B3:" + n + "/4 BND EOR\n"; break;
+      case 4: s += "SOR XIC B3:" + n + "/4 XIO C5:" + n + "/DN OTE O:2/" + std::to_string(i % 16) + " EOR\n"; break;
+    }
+  }
+  return s;
+}
+
+void BM_LoadProgram(benchmark::State& state) {
+  const int rungs = static_cast<int>(state.range(0));
+  const std::string text = generate_program(rungs);
+  for (auto _ : state) {
+    LoadResult lr = load_program(text, "generated.slc");
+    if (!lr.ok()) {
+      state.SkipWithError(lr.render_diagnostics().substr(0, 500).c_str());
+      return;
+    }
+    CompileResult cr = compile(*lr.program);
+    if (!cr.ok()) {
+      state.SkipWithError(cr.render().substr(0, 500).c_str());
+      return;
+    }
+    benchmark::DoNotOptimize(cr);
+  }
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  state.counters["peak_MB"] = static_cast<double>(ru.ru_maxrss) / 1024.0;
+  state.counters["rungs/s"] = benchmark::Counter(static_cast<double>(rungs), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["text_MB"] = static_cast<double>(text.size()) / 1e6;
+}
+BENCHMARK(BM_LoadProgram)->Arg(1'000)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
+
+// One benchmark per shipped example, in path order.
+void register_examples() {
+  std::vector<fs::path> programs;
+  const fs::path root = fs::path(SOFTSLC_SOURCE_DIR) / "examples" / "ladder";
+  for (const auto& e : fs::recursive_directory_iterator(root))
+    if (e.is_regular_file() && e.path().extension() == ".slc") programs.push_back(e.path());
+  std::sort(programs.begin(), programs.end());
+  for (const auto& p : programs) {
+    fs::path bench = p;
+    bench.replace_extension(".bench");
+    const std::optional<fs::path> b = fs::exists(bench) ? std::optional<fs::path>(bench) : std::nullopt;
+    const std::string name = "BM_Simulate/" + fs::relative(p, root).string();
+    benchmark::RegisterBenchmark(name.c_str(), [p, b](benchmark::State& st) { BM_Simulate(st, p, b); })
+        ->Unit(benchmark::kMillisecond);
+  }
+}
+
+}  // namespace
+}  // namespace softslc
+
+int main(int argc, char** argv) {
+  softslc::register_examples();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

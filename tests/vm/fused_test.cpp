@@ -1,0 +1,230 @@
+// Fused rungs (vm/fused.h) must give exactly what the general path gives: the same data table,
+// scan time, instruction count, last rung and faults. The main test generates random programs
+// of bit-logic rungs (nested branches, coils inside legs, contacts that read a coil of the same
+// rung, more contacts than a fused rung holds) mixed with rungs the general path must run (TON,
+// CTU, MOV, OSR, MCR zones, JSR into a subroutine, JMP/LBL), and scans each with fusion on and off
+// under a cost model whose every op has distinct true and false charges. The smaller tests pin
+// values computed by hand from docs/bytecode.md ("Rung logic") and the default cost model's
+// documented constants (vm/scan_time_model.h).
+#include <gtest/gtest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "parser/loader.h"
+#include "vm/compiler.h"
+#include "vm/fused.h"
+#include "vm/interpreter.h"
+#include "vm/scan_time_model.h"
+
+namespace softslc {
+namespace {
+
+// Every op costs something different, true or false, so a wrong rung-in anywhere shows up in
+// the scan time.
+class DistinctCosts final : public ScanTimeModel {
+ public:
+  std::string_view name() const override { return "distinct"; }
+  Nanoseconds instruction_cost(Opcode op, bool rung_in) const override {
+    return 100 + 17 * static_cast<Nanoseconds>(op) + (rung_in ? 1000 : 0);
+  }
+  Nanoseconds input_scan_cost(const Module&) const override { return 0; }
+  Nanoseconds output_scan_cost(const Module&) const override { return 0; }
+  Nanoseconds housekeeping_cost() const override { return 0; }
+};
+
+struct NoChassis final : ChassisAccess {
+  MAccess read_m(int, MFile, int, std::uint16_t&) override { return MAccess::NoSuchWord; }
+  MAccess write_m(int, MFile, int, std::uint16_t) override { return MAccess::NoSuchWord; }
+  void immediate_input(int, int, int, std::uint16_t) override {}
+  void immediate_output(int, int, int, std::uint16_t) override {}
+};
+
+CompiledProgram build(const std::string& text) {
+  LoadResult lr = load_program(text, "fused.slc");
+  if (!lr.ok()) throw std::runtime_error(lr.render_diagnostics() + "\n" + text);
+  CompileResult cr = compile(*lr.program);
+  if (!cr.ok()) throw std::runtime_error(cr.render() + "\n" + text);
+  return std::move(*cr.program);
+}
+
+// A small pool of bits (four words), so contacts often read what coils of the same rung write.
+std::string random_bit(std::mt19937& rng) {
+  return "B3:" + std::to_string(rng() % 4) + "/" + std::to_string(rng() % 16);
+}
+
+// A random condition: contacts and (nested) input branches.
+std::string random_condition(std::mt19937& rng, int depth, int& budget) {
+  std::string s;
+  const int n = 1 + static_cast<int>(rng() % 4);
+  for (int i = 0; i < n && budget > 0; ++i, --budget) {
+    const unsigned pick = rng() % 10;
+    if (pick < 5) {
+      s += "XIC " + random_bit(rng) + " ";
+    } else if (pick < 8 || depth >= 3) {
+      s += "XIO " + random_bit(rng) + " ";
+    } else {
+      const int legs = 2 + static_cast<int>(rng() % 2);
+      s += "BST ";
+      for (int l = 0; l < legs; ++l) s += std::string(l > 0 ? "NXB " : "") + random_condition(rng, depth + 1, budget);
+      s += "BND ";
+    }
+  }
+  return s;
+}
+
+std::string random_coil(std::mt19937& rng) {
+  static const char* const kCoils[] = {"OTE ", "OTE ", "OTL ", "OTU "};
+  return kCoils[rng() % 4] + random_bit(rng) + " ";
+}
+
+// A random rung body of contact logic: a condition, then one coil or an output branch whose legs
+// have their own conditions and coils (a later leg's contact may read an earlier leg's coil).
+std::string random_elements(std::mt19937& rng, int& budget) {
+  std::string s = random_condition(rng, 0, budget);
+  if (rng() % 3 != 0) return s + random_coil(rng);
+  const int legs = 2 + static_cast<int>(rng() % 3);
+  s += "BST ";
+  for (int l = 0; l < legs; ++l) {
+    if (l > 0) s += "NXB ";
+    if (rng() % 2) s += random_condition(rng, 1, budget);
+    s += random_coil(rng);
+    if (rng() % 4 == 0) s += random_coil(rng);
+  }
+  return s + "BND ";
+}
+
+std::string random_program(std::mt19937& rng) {
+  std::string s = "START 1747-L532\nLADDER 2\n";
+  const int rungs = 40 + static_cast<int>(rng() % 40);
+  for (int r = 0; r < rungs; ++r) {
+    const unsigned kind = rng() % 20;
+    if (kind == 0) {
+      s += "SOR XIC " + random_bit(rng) + " TON T4:" + std::to_string(rng() % 4) + " 0.01 5 0 EOR\n";
+    } else if (kind == 1) {
+      s += "SOR XIC " + random_bit(rng) + " CTU C5:" + std::to_string(rng() % 4) + " 3 0 EOR\n";
+    } else if (kind == 2) {
+      s += "SOR XIC " + random_bit(rng) + " MOV B3:" + std::to_string(rng() % 4) + " B3:" + std::to_string(rng() % 4) +
+           " EOR\n";
+    } else if (kind == 3) {
+      s += "SOR XIC " + random_bit(rng) + " OSR B3:4/" + std::to_string(rng() % 16) + " OTE " + random_bit(rng) + " EOR\n";
+    } else if (kind == 4) {
+      // An MCR zone: the rungs inside it run with rung-in false while the opening MCR is false.
+      s += "SOR XIC " + random_bit(rng) + " MCR EOR\n";
+      int budget = 12;
+      s += "SOR " + random_elements(rng, budget) + "EOR\n";
+      s += "SOR MCR EOR\n";
+    } else if (kind == 5) {
+      s += "SOR XIC " + random_bit(rng) + " JSR 3 EOR\n";
+    } else if (kind == 6) {
+      // A JMP over the next fused rung to a label rung.
+      const std::string label = std::to_string(r);
+      int budget = 6;
+      s += "SOR XIO " + random_bit(rng) + " JMP " + label + " EOR\n";
+      s += "SOR " + random_elements(rng, budget) + "EOR\n";
+      s += "SOR LBL " + label + " XIC " + random_bit(rng) + " OTE " + random_bit(rng) + " EOR\n";
+    } else {
+      int budget = 4 + static_cast<int>(rng() % 10);
+      s += "SOR " + random_elements(rng, budget) + "EOR\n";
+    }
+  }
+  s += "LADDER 3\nSOR SBR OTE B3:5/0 EOR\n";
+  for (int r = 0; r < 5; ++r) {
+    int budget = 8;
+    s += "SOR " + random_elements(rng, budget) + "EOR\n";
+  }
+  s += "SOR RET EOR\n";
+  return s;
+}
+
+struct Machine {
+  DataTable table;
+  NoChassis chassis;
+  Interpreter interp;
+  Machine(const CompiledProgram& p, const ScanTimeModel& m, bool fusion)
+      : table(p.layout, p.initial_words), interp(p, table, chassis, m) {
+    interp.set_fusion(fusion);
+  }
+};
+
+void expect_same(const ProgramScanResult& a, const ProgramScanResult& b, const std::string& where) {
+  EXPECT_EQ(a.faulted, b.faulted) << where;
+  EXPECT_EQ(a.fault.code, b.fault.code) << where;
+  EXPECT_EQ(a.fault.rung, b.fault.rung) << where;
+  EXPECT_EQ(a.elapsed, b.elapsed) << where;
+  EXPECT_EQ(a.instructions, b.instructions) << where;
+  EXPECT_EQ(a.last_file, b.last_file) << where;
+  EXPECT_EQ(a.last_rung, b.last_rung) << where;
+}
+
+TEST(Fused, RandomProgramsMatchTheGeneralPath) {
+  const DistinctCosts model;
+  std::size_t fused_total = 0, rungs_total = 0;
+  for (unsigned seed = 1; seed <= 60; ++seed) {
+    std::mt19937 rng(seed);
+    const std::string text = random_program(rng);
+    const CompiledProgram p = build(text);
+    Machine fused(p, model, true), general(p, model, false);
+    const FusedProgram fp(p, fused.interp.costs());
+    fused_total += fp.fused_rungs();
+    for (const auto& f : p.files) rungs_total += f.rungs.size();
+    // A watchdog that some seeds reach mid-scan, so the fused path's watchdog exit is compared too.
+    const Nanoseconds watchdog = seed % 3 == 0 ? 40'000 : INT64_MAX;
+    for (int scan = 0; scan < 30; ++scan) {
+      for (std::uint32_t w = 0; w < 4; ++w) {
+        const auto v = static_cast<std::uint16_t>(rng());
+        const std::uint32_t at = p.layout->files[3].base + w;
+        // Half the scans keep what the program wrote, so latches and feedback carry over.
+        if (scan % 2 == 0) {
+          fused.table.set_word(at, v);
+          general.table.set_word(at, v);
+        }
+      }
+      const auto a = fused.interp.program_scan(scan * 10'000'000LL, 0, scan == 0, watchdog);
+      const auto b = general.interp.program_scan(scan * 10'000'000LL, 0, scan == 0, watchdog);
+      const std::string where = "seed " + std::to_string(seed) + " scan " + std::to_string(scan) + "\n" + text;
+      expect_same(a, b, where);
+      for (std::uint32_t w = 0; w < p.layout->total_words; ++w)
+        ASSERT_EQ(fused.table.word(w), general.table.word(w)) << "word " << p.layout->describe(w) << ", " << where;
+    }
+  }
+  // The comparison means something only if many rungs were fused and many were not.
+  EXPECT_GT(fused_total, rungs_total / 3);
+  EXPECT_LT(fused_total, rungs_total);
+}
+
+// docs/bytecode.md "Rung logic": each leg starts from the condition at BST, and an output acts on
+// the rung condition where it stands, so the second leg's XIC sees the bit the first leg's OTE
+// has just written. Fused rungs gather contacts first, so this rung must not be fused.
+TEST(Fused, ContactReadingACoilOfTheSameRungSeesTheNewValue) {
+  const DefaultScanTimeModel model;
+  const CompiledProgram p = build("START 1747-L532\nLADDER 2\nSOR BST OTE B3:0/1 NXB XIC B3:0/1 OTE B3:0/2 BND EOR\n");
+  Machine m(p, model, true);
+  EXPECT_EQ(FusedProgram(p, m.interp.costs()).fused_rungs(), 0u);
+  m.interp.program_scan(0, 0, false, INT64_MAX);
+  EXPECT_EQ(m.table.word(p.layout->files[3].base), 0b110);
+}
+
+// The default model (vm/scan_time_model.h): inputs 1 us true or false, outputs 2 us true and
+// 1 us false. XIC B3:0/0 OTE B3:0/1: 1 + 1 = 2 us with B3:0/0 off, 1 + 2 = 3 us with it on; a
+// second rung XIO B3:0/0 OTL B3:0/2 is the mirror image.
+TEST(Fused, ScanTimeIsEachInstructionsTrueOrFalseCharge) {
+  const DefaultScanTimeModel model;
+  const CompiledProgram p =
+      build("START 1747-L532\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\nSOR XIO B3:0/0 OTL B3:0/2 EOR\n");
+  Machine m(p, model, true);
+  ASSERT_EQ(FusedProgram(p, m.interp.costs()).fused_rungs(), 2u);
+  const std::uint32_t b3 = p.layout->files[3].base;
+  auto r = m.interp.program_scan(0, 0, false, INT64_MAX);
+  EXPECT_EQ(r.elapsed, 2'000 + 3'000);
+  EXPECT_EQ(r.instructions, 4u);
+  EXPECT_EQ(m.table.word(b3), 0b100);
+  m.table.set_word(b3, 0b001);
+  r = m.interp.program_scan(0, 0, false, INT64_MAX);
+  EXPECT_EQ(r.elapsed, 3'000 + 2'000);
+  EXPECT_EQ(m.table.word(b3), 0b011);  // B3:0/2 was cleared by the set_word; XIO is now false
+}
+
+}  // namespace
+}  // namespace softslc

@@ -15,6 +15,8 @@
 
 #include "parser/checker.h"
 #include "parser/grammar.h"
+#include "parser/input_file.h"
+#include "parser/limits.h"
 #include "parser/grammar_messages.h"
 
 namespace softslc {
@@ -650,7 +652,7 @@ template <> struct action<mnemonic> {
     if (spec) {
       s.instruction.opcode = spec->opcode;
     } else {
-      s.diags.error(s.instruction.pos.line, s.instruction.pos.column, "unknown instruction '" + std::string(m) + "'");
+      s.diags.error(s.instruction.pos.line, s.instruction.pos.column, unknown_instruction_message(m));
     }
   }
 };
@@ -672,6 +674,10 @@ template <> struct action<instruction> {
 template <> struct action<branch_open> {
   template <typename Input>
   static void apply(const Input& in, LoadState& s) {
+    // The limit is enforced while parsing, before the grammar recurses further: a file of 15,000
+    // nested BSTs is one positioned error, not a stack overflow.
+    if (s.open_branches.size() >= static_cast<std::size_t>(kMaxBranchNesting))
+      throw pegtl::parse_error("branches nested deeper than " + std::to_string(kMaxBranchNesting) + " levels", in);
     RungElement e;
     e.kind = RungElement::Kind::Branch;
     e.pos = pos_of(in);
@@ -1118,16 +1124,15 @@ LoadResult load_program(std::string text, std::string source_name) {
 }
 
 LoadResult load_program_file(const std::filesystem::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
+  // Regular files only, with a size limit; a UTF-8 BOM dropped, UTF-16 refused (input_file.h).
+  InputFile in = read_input_file(path);
+  if (!in.ok) {
     LoadResult r;
     r.source_name = path.string();
-    r.diagnostics.error(0, 0, "cannot open file");
+    r.diagnostics.error(0, 0, in.error);
     return r;
   }
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return load_program(ss.str(), path.string());
+  return load_program(std::move(in.contents), path.string());
 }
 
 namespace {

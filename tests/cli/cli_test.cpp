@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sys/wait.h>
 
-#include "tests/cli/cli_test_util.h"
+#include "cli_test_util.h"
 
 namespace {
 
@@ -91,7 +91,7 @@ TEST(Cli, ThroughputBadInput) {
   auto notjson = temp_file("x.json", "{ not json");
   auto r = run("throughput " + notjson.string());
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.out.find("x.json: error: not valid JSON"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("x.json:1:4: error: not valid JSON"), std::string::npos) << r.out;
   auto bad = temp_file("y.json", R"({"network": "rio", "baud": "9600"})");
   auto b = run("throughput " + bad.string());
   EXPECT_EQ(b.exit_code, 1);

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "parser/json_document.h"
-#include "tests/cli/cli_test_util.h"
+#include "cli_test_util.h"
 
 namespace {
 

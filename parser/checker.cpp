@@ -19,6 +19,20 @@ class Checker {
  public:
   Checker(Program& p, DiagnosticList& d) : program_(p), diags_(d) {}
 
+  // An address a tool reads or writes: the rules of a program operand, without recording the
+  // file's type (a tool may name any file the program has).
+  void check_tool_address(const Address& a) {
+    // Status words: the runtime models one status file for every processor and refuses words
+    // beyond it; a tool may set any of them (the 1747-SN examples' tests set S:33/13 on a 5/02,
+    // which a program of that processor could not name — noted in docs/robustness.md). Only the
+    // bit rule, which guards the shift, applies.
+    if (a.type == FileType::Status) {
+      if (a.bit > 15) error({}, "bit number " + std::to_string(a.bit) + " is out of range 0-15");
+      return;
+    }
+    check_address(a, {}, OperandKind::Source, MFileAccess::OtherM, false);
+  }
+
   void run() {
     add_embedded_io();
     check_slots();
@@ -43,6 +57,7 @@ class Checker {
   std::map<int, FileUse> file_types_;
   std::vector<std::pair<Address, SourcePos>> osr_bits_;
   std::vector<std::pair<int, SourcePos>> jsr_targets_;
+  bool unknown_in_rung_ = false;  // the rung being checked names an unknown instruction
 
   void error(SourcePos p, std::string m) { diags_.error(p.line, p.column, std::move(m)); }
   void warning(SourcePos p, std::string m) { diags_.warning(p.line, p.column, std::move(m)); }
@@ -462,10 +477,8 @@ class Checker {
       if (in.operands.size() > s.operand_count) {
         auto& extra = in.operands[s.operand_count];
         if (extra.kind == Operand::Kind::Symbol && !symbols_.count(extra.symbol)) {
-          if (rss::is_known_rslogix_mnemonic(extra.symbol))
-            error(extra.pos, "instruction " + extra.symbol + " is not supported by softslc yet");
-          else
-            error(extra.pos, "unknown instruction '" + extra.symbol + "'");
+          error(extra.pos, unknown_instruction_message(extra.symbol));
+          unknown_in_rung_ = true;
           return;
         }
       }
@@ -624,9 +637,11 @@ class Checker {
     for (std::size_t r = 0; r < file.rungs.size(); ++r) {
       auto& rung = file.rungs[r];
       int counter = 0;
+      unknown_in_rung_ = false;
       auto info = check_sequence(rung.elements, true, file.number, static_cast<int>(r), counter);
       if (!info.has_output) {
-        error(rung.pos, "rung has no output instruction");
+        // An unknown instruction is the error; that the rung then lacks an output follows from it.
+        if (!unknown_in_rung_) error(rung.pos, "rung has no output instruction");
         continue;
       }
       if (!info.ends_with_output) error(rung.pos, "rung must end with an output instruction");
@@ -796,6 +811,31 @@ Program retarget_program(const Program& program, const ProcessorModel& processor
   std::erase_if(p.slots, [](const SlotConfig& s) { return s.implicit; });
   check_program(p, diags);
   return p;
+}
+
+std::string unknown_instruction_message(std::string_view name) {
+  // Instructions of the SLC 500 and MicroLogix instruction sets (1747-RM001, 1762-RM001) that the
+  // instruction table does not have yet: this list, and every mnemonic the .RSS reader knows. A name found in the table never reaches here, so a row
+  // added later wins without touching this list.
+  static constexpr std::string_view kReal[] = {
+      "ABL", "ABS", "ACB", "ACI", "ACL", "ACN", "ACS", "AEX", "AHL", "AIC", "ARD", "ARL", "ASC", "ASN", "ASR",
+      "ATN", "AWA", "AWT", "CPT", "COS", "DCD", "DDV", "DEG", "DII", "ENC", "FRD", "HSC", "HSD", "HSE",
+      "HSL", "IID", "IIE", "INT", "LN",  "LOG", "MSG", "PID", "PTO", "PWM", "RAD", "RAC", "REF", "RHC", "RPC",
+      "RPI", "SCL", "SCP", "SIN", "SQR", "STD", "STE", "STS", "SUS", "SVC", "SWP", "TAN", "TDF", "TOD", "XPY"};
+  const bool real = rss::is_known_rslogix_mnemonic(name) ||
+                    std::find(std::begin(kReal), std::end(kReal), name) != std::end(kReal);
+  if (real) return "instruction " + std::string(name) + " is not supported by softslc yet";
+  return "unknown instruction '" + std::string(name) + "'";
+}
+
+std::string check_tool_address(const Program& program, const Address& a) {
+  DiagnosticList diags;
+  // The checker takes the program mutably because run() resolves symbols in place; checking one
+  // address reads it only.
+  Checker(const_cast<Program&>(program), diags).check_tool_address(a);
+  for (const auto& d : diags.items())
+    if (d.severity == Severity::Error) return to_string(a) + ": " + d.message;
+  return {};
 }
 
 }  // namespace softslc

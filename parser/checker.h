@@ -12,6 +12,9 @@
 // duplicate OSR storage bits and unknown module catalogs. It never stops at the first problem.
 #pragma once
 
+#include <string>
+#include <string_view>
+
 #include "parser/diagnostics.h"
 #include "parser/program.h"
 
@@ -26,6 +29,17 @@ void check_program(Program& program, DiagnosticList& diags);
 // a 1747-L551, ONS on an SLC, ...). The embedded slot 0 follows the new processor. Problems go
 // to `diags`; the result is meaningful only when they hold no error.
 Program retarget_program(const Program& program, const ProcessorModel& processor, DiagnosticList& diags);
+
+// Checks an address a tool reads or writes — `run --set/--print`, a test file, the C++
+// Controller API — by the same rules as a program operand (bit 0-15, the slot's I/O image, the
+// element limits, M-file sizes). Returns the first error ("I:1/32: bit number 32 is out of range
+// 0-15"), or an empty string. One rule for every entry point: none can write a bit the program
+// could not name.
+std::string check_tool_address(const Program& program, const Address& a);
+
+// "unknown instruction 'FOO'", or, for a real SLC 500 / MicroLogix instruction the table does not
+// have, that it is not supported — so a real instruction does not read like a typo.
+std::string unknown_instruction_message(std::string_view name);
 
 // The number of words of the status file on this processor.
 int status_file_words(const ProcessorModel& p);

@@ -11,10 +11,13 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include "parser/checker.h"
 #include "parser/grammar.h"
+#include "parser/input_file.h"
+#include "parser/limits.h"
 #include "parser/grammar_messages.h"
 #include "parser/rss/rss_reader.h"
 
@@ -667,11 +670,7 @@ template <> struct action<mnemonic> {
     if (spec) {
       s.instruction.opcode = spec->opcode;
     } else {
-      // An RSLogix instruction softslc lacks is named as such, not reported like a typo.
-      if (rss::is_known_rslogix_mnemonic(m))
-        s.diags.error(s.instruction.pos.line, s.instruction.pos.column, "instruction " + std::string(m) + " is not supported by softslc yet");
-      else
-        s.diags.error(s.instruction.pos.line, s.instruction.pos.column, "unknown instruction '" + std::string(m) + "'");
+      s.diags.error(s.instruction.pos.line, s.instruction.pos.column, unknown_instruction_message(m));
     }
   }
 };
@@ -696,6 +695,10 @@ template <> struct action<instruction> {
 template <> struct action<branch_open> {
   template <typename Input>
   static void apply(const Input& in, LoadState& s) {
+    // The limit is enforced while parsing, before the grammar recurses further: a file of 15,000
+    // nested BSTs is one positioned error, not a stack overflow.
+    if (s.open_branches.size() >= static_cast<std::size_t>(kMaxBranchNesting))
+      throw pegtl::parse_error("branches nested deeper than " + std::to_string(kMaxBranchNesting) + " levels", in);
     RungElement e;
     e.kind = RungElement::Kind::Branch;
     e.pos = pos_of(in);
@@ -1142,25 +1145,16 @@ LoadResult load_program(std::string text, std::string source_name) {
 }
 
 LoadResult load_program_file(const std::filesystem::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) {
+  // Regular files only, with a size limit (input_file.h); read as bytes, since the content tells
+  // a project file from export text, whose encoding load_program_bytes settles.
+  InputFile in = read_input_file(path, InputKind::Binary);
+  if (!in.ok) {
     LoadResult r;
     r.source_name = path.string();
-    r.diagnostics.error(0, 0, "cannot open file");
+    r.diagnostics.error(0, 0, in.error);
     return r;
   }
-  // Refuse absurd sizes before reading: no program text or project file comes near this.
-  std::error_code ec;
-  auto size = std::filesystem::file_size(path, ec);
-  if (!ec && size > rss::kMaxFileBytes) {
-    LoadResult r;
-    r.source_name = path.string();
-    r.diagnostics.error(0, 0, "file larger than " + std::to_string(rss::kMaxFileBytes >> 20) + " MiB");
-    return r;
-  }
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return load_program_bytes(ss.str(), path.string());
+  return load_program_bytes(std::move(in.contents), path.string());
 }
 
 LoadResult load_program_bytes(std::string bytes, std::string source_name) {
@@ -1175,16 +1169,25 @@ LoadResult load_program_bytes(std::string bytes, std::string source_name) {
     LoadResult r = load_program(std::move(*rr.text), std::move(source_name));
     // Diagnostics point into the converted text; name the program file and rung as well, since
     // the user knows the project by its rungs, not by the lines of a text they never saw.
+    std::map<std::uint32_t, const rss::RungOrigin*> origin_of_line;
+    for (const auto& o : rr.origins) origin_of_line[o.line] = &o;
     DiagnosticList named;
     for (const auto& d : r.diagnostics.items()) {
       std::string msg = d.message;
-      for (const auto& o : rr.origins)
-        if (o.line == d.line) msg = "program file " + std::to_string(o.file) + " rung " + std::to_string(o.rung) + ": " + msg;
+      if (auto o = origin_of_line.find(d.line); o != origin_of_line.end())
+        msg = "program file " + std::to_string(o->second->file) + " rung " + std::to_string(o->second->rung) + ": " + msg;
       if (d.severity == Severity::Error) named.error(d.line, d.column, msg);
       else if (d.severity == Severity::Warning) named.warning(d.line, d.column, msg);
       else named.note(d.line, d.column, msg);
     }
     r.diagnostics = std::move(named);
+    return r;
+  }
+  // Text (before the NUL test, which UTF-16 would fail): a UTF-8 byte-order mark is dropped, UTF-16 refused with what to do about it.
+  if (std::string error = normalise_text_encoding(bytes); !error.empty()) {
+    LoadResult r;
+    r.source_name = std::move(source_name);
+    r.diagnostics.error(0, 0, error);
     return r;
   }
   // A NUL byte never occurs in export text; other binary files are refused here rather than

@@ -2,7 +2,9 @@
 //
 // write_file_atomically() writes to a temporary file in the same directory, flushes it to disk
 // (fsync), then renames it over the destination: readers see either the old file or the new
-// one, never a mixture.
+// one, never a mixture. A replaced file keeps its permission bits; a symbolic link is written
+// through (the file it names is replaced, the link stays); a destination that exists but is
+// not a regular file (a device, a directory, a FIFO) is refused.
 #pragma once
 
 #include <filesystem>

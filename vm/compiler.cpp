@@ -7,8 +7,12 @@
 
 #include "parser/checker.h"
 #include "parser/loader.h"
+#include "parser/limits.h"
 
 namespace softslc {
+
+// The loader refuses deeper nesting than the interpreter's branch stack holds: one number.
+static_assert(kMaxBranchDepth == kMaxBranchNesting, "the loader's branch limit is the interpreter's");
 
 std::string CompileError::to_string() const {
   std::string s;

@@ -119,7 +119,7 @@ CoverageReport build_coverage_report(const Program& source, const CompiledProgra
       if (executed) ++fc.rungs_executed;
       else if (fc.called)
         report.uncovered.push_back({cf.number, rung, -1, rung_line, "rung " + std::to_string(rung), "never executed"});
-      bool seen_true = false, seen_false = false, any_output = false;
+      bool seen_true = false, seen_false = false, any_output = false, any_input = false;
       int k = 0;
       std::vector<CoverageItem> items;
       for (std::uint32_t pc = begin; pc < end; pc += 1 + bc::count_of(compiled.code[pc])) {
@@ -132,6 +132,7 @@ CoverageReport build_coverage_report(const Program& source, const CompiledProgra
         const std::uint8_t f = flag(pc);
         switch (spec(to_opcode(op)).role) {
           case Role::Input: {
+            any_input = true;
             ++fc.conditions;
             const bool t = has(f, coverage::kDecidedTrue), fl = has(f, coverage::kDecidedFalse);
             if (t && fl) ++fc.conditions_both_ways;
@@ -152,7 +153,10 @@ CoverageReport build_coverage_report(const Program& source, const CompiledProgra
           case Role::Leading: break;
         }
       }
-      if (executed && (!any_output || (seen_true && seen_false))) ++fc.rungs_both_ways;
+      // A rung without an input instruction (SOR RET EOR, an unconditional OTE) can only be true
+      // (short of an MCR zone): seen true is all the coverage it can have.
+      const bool unconditional_done = !any_input && seen_true;
+      if (executed && (!any_output || (seen_true && seen_false) || unconditional_done)) ++fc.rungs_both_ways;
       else if (executed)
         report.uncovered.push_back({cf.number, rung, -1, rung_line, "rung " + std::to_string(rung),
                                     seen_true ? "never false" : "never true"});

@@ -4,7 +4,8 @@
 // program in:
 //   - rungs executed (scanned with the processor in Run or Test);
 //   - rungs seen both true and false: an output instruction of the rung was executed with its
-//     rung condition true, and one with it false;
+//     rung condition true, and one with it false (a rung with no input instruction, which can
+//     only be true, counts once seen true);
 //   - input instructions (XIC, XIO, compares, OSR: the instruction table's Input role) that
 //     decided their rung segment both ways — condition coverage in the MC/DC spirit: an input
 //     decides when the rung condition reaching it was true and every later input of its segment

@@ -1807,10 +1807,16 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
         break;
       case Op::RET:
         if (!rung) break;
+        // Taken, RET leaves before the common coverage record below: record it here, or an
+        // unconditional SOR RET EOR reads "never true".
+        if (coverage_) [[unlikely]] coverage_->record(static_cast<std::uint32_t>(pc - code_), op, rung_in, rung);
         if (fsp == 0) goto end_of_scan;
         goto return_from_subroutine;
       case Op::TND:
-        if (rung) goto end_of_scan;
+        if (rung) {
+          if (coverage_) [[unlikely]] coverage_->record(static_cast<std::uint32_t>(pc - code_), op, rung_in, rung);
+          goto end_of_scan;
+        }
         break;
       case Op::MCR:
         // An unconditional MCR closes the zone; a conditional one opens a zone that is live

@@ -3,6 +3,8 @@
 #include "vm/profile_scan_time_model.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "parser/checker.h"
@@ -375,7 +377,52 @@ RuntimeStatus Runtime::set(std::string_view address, Value v) {
   return set(*a, v);
 }
 
+namespace {
+
+// The one value-conversion rule for everything a tool writes (run --set, test files, the
+// Controller API), the rule test files always had: a bit takes 0 or 1; a 16- or 32-bit word
+// takes an integer in its signed range (hex and binary patterns are sign-extended by the caller,
+// vm's callers pass values); a float element takes any finite number a 32-bit float holds. A
+// value that does not fit is refused, never wrapped (99999 into N7:0 stored -31073), rounded
+// (1.5 stored 2) or squashed (2 on a bit stored 1).
+std::string value_refusal(const Address& a, const Value& v, int width) {
+  const std::string what = to_string(a);
+  if (width == 0) {
+    const double d = v.as_double();
+    if (!std::isfinite(d) || std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max()))
+      return what + " holds a 32-bit float; " + v.to_string() + " does not fit";
+    return {};
+  }
+  if (v.kind == Value::Kind::Float)
+    return what + " holds " + (width == 1 ? std::string("a bit") : "integers") + "; " + v.to_string() +
+           " is not an integer";
+  if (width == 1)
+    return v.integer == 0 || v.integer == 1 ? std::string() : what + ": a bit is 0 or 1, not " + v.to_string();
+  const std::int64_t max = width == 32 ? std::numeric_limits<std::int32_t>::max() : 32767;
+  if (v.integer < -max - 1 || v.integer > max)
+    return what + ": " + v.to_string() + " does not fit a " + std::to_string(width) + "-bit word (" +
+           std::to_string(-max - 1) + ".." + std::to_string(max) + ")";
+  return {};
+}
+
+int width_of_location(const Address& a, const Location& loc) {
+  if (a.has_bit() || loc.bit >= 0) return 1;
+  switch (loc.vtype) {
+    case ValueType::Float32: return 0;
+    case ValueType::Int32: return 32;
+    default: return 16;
+  }
+}
+
+}  // namespace
+
 RuntimeStatus Runtime::set(const Address& a, Value v) {
+  // A bit beyond 15 would shift past the word (UB); the checker's rules (check_tool_address) say
+  // so with the program's context, this is the runtime's own guard.
+  if (a.bit > 15) return RuntimeStatus::failure(to_string(a) + ": bit number " + std::to_string(a.bit) +
+                                                " is out of range 0-15");
+  if (auto why = value_refusal(a, v, a.has_bit() ? 1 : 16); !why.empty() && (a.type == FileType::Input || is_mfile(a.type)))
+    return RuntimeStatus::failure(why);
   if (a.type == FileType::Input && !a.is_indirect() && !a.indexed) {
     Module* m = module(a.element);
     if (!m) return RuntimeStatus::failure(to_string(a) + ": no module in slot " + std::to_string(a.element));
@@ -409,6 +456,7 @@ RuntimeStatus Runtime::set(const Address& a, Value v) {
   std::string error;
   auto loc = resolve_tool_address(a, error);
   if (!loc) return RuntimeStatus::failure(error);
+  if (auto why = value_refusal(a, v, width_of_location(a, *loc)); !why.empty()) return RuntimeStatus::failure(why);
   data_.write(*loc, v);
   return {};
 }

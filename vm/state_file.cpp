@@ -1,12 +1,17 @@
 #include "vm/state_file.h"
 
+#include <algorithm>
 #include <array>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <sstream>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
 
 #include "parser/formatter.h"
+#include "parser/input_file.h"
 #include "vm/atomic_file.h"
 #include "vm/runtime.h"
 
@@ -15,17 +20,6 @@ namespace softslc {
 namespace {
 
 constexpr char kMagic[16] = {'S', 'O', 'F', 'T', 'S', 'L', 'C', '-', 'S', 'T', 'A', 'T', 'E', '\n', 0, 0};
-
-constexpr std::array<std::uint32_t, 256> make_crc_table() {
-  std::array<std::uint32_t, 256> t{};
-  for (std::uint32_t i = 0; i < 256; ++i) {
-    std::uint32_t c = i;
-    for (int k = 0; k < 8; ++k) c = (c & 1) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-    t[i] = c;
-  }
-  return t;
-}
-constexpr auto kCrcTable = make_crc_table();
 
 void put_u8(std::string& out, std::uint8_t v) { out.push_back(static_cast<char>(v)); }
 void put_u16(std::string& out, std::uint16_t v) {
@@ -134,10 +128,18 @@ struct FileRecord {
 }  // namespace
 
 std::uint32_t crc32(const void* data, std::size_t size) {
-  const auto* p = static_cast<const std::uint8_t*>(data);
-  std::uint32_t c = 0xFFFFFFFFu;
-  for (std::size_t i = 0; i < size; ++i) c = kCrcTable[(c ^ p[i]) & 0xFF] ^ (c >> 8);
-  return c ^ 0xFFFFFFFFu;
+  // zlib's CRC-32 is the same IEEE 802.3 CRC the format has always used, so files saved before
+  // and after the change read alike (format version unchanged). zlib takes lengths as uInt:
+  // feed it in chunks.
+  const auto* p = static_cast<const Bytef*>(data);
+  uLong c = ::crc32(0L, Z_NULL, 0);
+  while (size > 0) {
+    const auto n = static_cast<uInt>(std::min<std::size_t>(size, 1u << 30));
+    c = ::crc32(c, p, n);
+    p += n;
+    size -= n;
+  }
+  return static_cast<std::uint32_t>(c);
 }
 
 std::uint64_t program_fingerprint(const Program& program) {
@@ -309,19 +311,93 @@ std::string save_state_file(const std::string& path, const DataTable& table, std
 StateLoadResult load_state_file(const std::string& path, std::uint64_t fingerprint, DataTable& table, bool force,
                                 bool* missing, const std::vector<Module*>& modules) {
   *missing = false;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (errno == ENOENT) {
-      *missing = true;
-      return {true, {}, {}};
-    }
-    return {false, "cannot open " + path + ": " + std::strerror(errno), {}};
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 && errno == ENOENT) {
+    *missing = true;
+    return {true, {}, {}};
   }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  auto r = decode_state(ss.str(), fingerprint, table, force, modules);
+  // Regular files only, with a size limit: --state /dev/zero is refused, not read forever.
+  InputFile in = read_input_file(path, InputKind::Binary);
+  if (!in.ok) return {false, path + ": " + in.error, {}};
+  auto r = decode_state(in.contents, fingerprint, table, force, modules);
   if (!r.ok) r.error = path + ": " + r.error;
   return r;
 }
 
+namespace {
+
+// The lock file of a state file: ".NAME.lock" beside it. The state file itself cannot carry the
+// lock, because every save replaces it (rename) with a new inode a second process could lock.
+std::string lock_path_of(const std::filesystem::path& state) {
+  auto dir = state.has_parent_path() ? state.parent_path() : std::filesystem::path(".");
+  return (dir / ("." + state.filename().string() + ".lock")).string();
+}
+
+// A temporary left by write_file_atomically() for this file: ".NAME.XXXXXX", six characters
+// from mkstemp's alphabet.
+bool is_save_temporary(const std::string& name, const std::string& prefix) {
+  if (name.size() != prefix.size() + 6 || name.compare(0, prefix.size(), prefix) != 0) return false;
+  return std::all_of(name.begin() + static_cast<std::ptrdiff_t>(prefix.size()), name.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0; });
+}
+
+}  // namespace
+
+StateFileLock::~StateFileLock() {
+  if (fd_ >= 0) ::close(fd_);  // closing releases the flock
+}
+
+StateFileLock::StateFileLock(StateFileLock&& o) noexcept : fd_(o.fd_), removed_(o.removed_) { o.fd_ = -1; }
+
+std::string StateFileLock::acquire(const std::filesystem::path& link_or_state) {
+  // Through a symbolic link, the file saved (and locked) is the one it names.
+  std::error_code ec;
+  const std::filesystem::path state =
+      std::filesystem::is_symlink(std::filesystem::symlink_status(link_or_state, ec))
+          ? std::filesystem::weakly_canonical(link_or_state, ec)
+          : link_or_state;
+  const std::string lock = lock_path_of(state);
+  fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
+  if (fd_ < 0) return "cannot create the lock file " + lock + ": " + std::strerror(errno);
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int e = errno;
+    ::close(fd_);
+    fd_ = -1;
+    if (e == EWOULDBLOCK)
+      return state.string() + " is in use by another softslc run (it holds " + lock +
+             "); wait for it to finish, or use another --state file";
+    return "cannot lock " + lock + ": " + std::strerror(e);
+  }
+  // Holding the lock, no other softslc saves this file: any temporary of it is a leftover of a
+  // killed save and can go.
+  auto dir = state.has_parent_path() ? state.parent_path() : std::filesystem::path(".");
+  const std::string prefix = "." + state.filename().string() + ".";
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (is_save_temporary(name, prefix) && it->is_regular_file(ec) && std::filesystem::remove(it->path(), ec))
+      ++removed_;
+  }
+  return {};
+}
+
+std::string check_state_file_writable(const std::filesystem::path& state) {
+  // The file itself: a regular file (or a link to one) or nothing yet.
+  std::error_code ec;
+  auto st = std::filesystem::status(state, ec);
+  if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+    return state.string() + ": not a regular file; a state file is replaced on every save";
+  // The directory the save's temporary goes in: try it, exactly as a save does.
+  auto target = std::filesystem::is_symlink(std::filesystem::symlink_status(state, ec))
+                    ? std::filesystem::weakly_canonical(state, ec)
+                    : state;
+  auto dir = target.has_parent_path() ? target.parent_path() : std::filesystem::path(".");
+  std::string tmpl = (dir / ("." + target.filename().string() + ".XXXXXX")).string();
+  int fd = ::mkstemp(tmpl.data());
+  if (fd < 0) return "cannot save state in " + dir.string() + ": " + std::strerror(errno);
+  ::close(fd);
+  ::unlink(tmpl.c_str());
+  return {};
+}
+
 }  // namespace softslc
+

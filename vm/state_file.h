@@ -29,6 +29,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -72,7 +73,34 @@ std::string save_state_file(const std::string& path, const DataTable& table, std
 StateLoadResult load_state_file(const std::string& path, std::uint64_t fingerprint, DataTable& table, bool force,
                                 bool* missing, const std::vector<Module*>& modules = {});
 
-// CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320) of a byte string.
+// CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320) of a byte string: zlib's crc32.
 std::uint32_t crc32(const void* data, std::size_t size);
+
+// An advisory lock (flock) on a state file for the whole of one run, so two `run --state s.bin`
+// at once cannot both save and silently lose one run's scans: the second is refused at start
+// with a message naming the file. The lock is held on ".NAME.lock" beside the state file (the
+// state file itself is replaced by every save, so it cannot carry a lock); holding it, acquire()
+// also removes temporaries of killed saves (".NAME.XXXXXX"), which no other process can be
+// writing. Released when the object is destroyed (or the process ends, however it ends).
+class StateFileLock {
+ public:
+  StateFileLock() = default;
+  StateFileLock(StateFileLock&& o) noexcept;
+  StateFileLock& operator=(StateFileLock&&) = delete;
+  ~StateFileLock();
+  // Returns an empty string when the lock is held, else why not.
+  std::string acquire(const std::filesystem::path& state);
+  // Stale temporaries acquire() removed.
+  int removed_temporaries() const { return removed_; }
+
+ private:
+  int fd_ = -1;
+  int removed_ = 0;
+};
+
+// Whether a save can succeed: the state file is a regular file (or absent) and its directory
+// takes a new file. Checked before the first scan, so an unwritable location is not found
+// only after the whole run. Returns an empty string, or why not.
+std::string check_state_file_writable(const std::filesystem::path& state);
 
 }  // namespace softslc

@@ -6,6 +6,10 @@
 #include <fstream>
 
 #include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "parser/input_file.h"
+#include "parser/json_document.h"
 
 namespace softslc {
 
@@ -185,14 +189,12 @@ TimingProfile load_timing_profile(const json& user) {
 }
 
 TimingProfile load_timing_profile_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw TimingProfileError(path + ": cannot open file");
-  json j;
-  try {
-    j = json::parse(in);
-  } catch (const json::parse_error& e) {
-    throw TimingProfileError(path + ": not valid JSON: " + e.what());
-  }
+  InputFile in = read_input_file(path);
+  if (!in.ok) throw TimingProfileError(path + ": " + in.error);
+  // Every JSON error (syntax, a number such as 1e309, nesting) is positioned.
+  JsonDocument doc = parse_json_document(in.contents);
+  if (!doc.ok) throw TimingProfileError(path + ":" + doc.where_and_what());
+  json j = std::move(doc.value);
   try {
     return load_timing_profile(j);
   } catch (const TimingProfileError& e) {

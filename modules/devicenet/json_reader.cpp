@@ -1,5 +1,7 @@
 #include "modules/devicenet/json_reader.h"
 
+#include "parser/json_document.h"
+
 namespace softslc::devicenet {
 
 using nlohmann::json;
@@ -31,11 +33,10 @@ std::string describe(const json& value) {
 }
 
 json parse_json_text(std::string_view text, std::string_view source) {
-  try {
-    return json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    throw ConfigError("", std::string(source) + ": not valid JSON at byte " + std::to_string(e.byte));
-  }
+  // Every JSON error (syntax, a number such as 1e309, nesting) is a positioned ConfigError.
+  JsonDocument doc = parse_json_document(text);
+  if (!doc.ok) throw ConfigError("", std::string(source) + ":" + doc.where_and_what());
+  return std::move(doc.value);
 }
 
 std::int64_t integer_at(const json& value, const std::string& path, std::int64_t min, std::int64_t max) {

@@ -6,6 +6,9 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "parser/input_file.h"
+#include "parser/json_document.h"
+
 namespace softslc::scanport {
 
 namespace detail {
@@ -332,12 +335,10 @@ DriveDescription read_description(const Reader& rd, const json& root) {
 }  // namespace
 
 DriveDescription parse_drive_description(std::string_view json_text, std::string_view source_name) {
-  json root;
-  try {
-    root = json::parse(json_text.begin(), json_text.end());
-  } catch (const json::parse_error& e) {
-    syntax_error(json_text, source_name, e.byte, e.what());
-  }
+  // Every JSON error (syntax, a number such as 1e309, nesting) is a positioned diagnostic.
+  JsonDocument doc = parse_json_document(json_text);
+  if (!doc.ok) syntax_error(json_text, source_name, doc.byte, doc.message);
+  json root = std::move(doc.value);
   Reader rd{std::string(source_name)};
   DriveDescription d = read_description(rd, root);
   try {
@@ -349,11 +350,9 @@ DriveDescription parse_drive_description(std::string_view json_text, std::string
 }
 
 DriveDescription load_drive_description_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw DriveDescriptionError(path + ": cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_drive_description(text.str(), path);
+  InputFile in = read_input_file(path);
+  if (!in.ok) throw DriveDescriptionError(path + ": " + (in.error.rfind("cannot open", 0) == 0 ? "cannot open the file" : in.error));
+  return parse_drive_description(in.contents, path);
 }
 
 std::vector<std::string> builtin_drive_names() {

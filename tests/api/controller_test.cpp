@@ -109,6 +109,24 @@ TEST(ControllerApi, ErrorsCarryTheReason) {
   EXPECT_THROW(Controller::load("/nonexistent/x.slc"), ControllerError);
 }
 
+// Issue 17: the API wrote I:1/0 for I:1/32 (the shift wrapped), nothing for O:2/16, -31073 for
+// 99999 and 2 for 1.5; it now refuses what `run --set` and test files refuse, with the reason.
+TEST(ControllerApi, OneAddressRuleAndOneValueRule) {
+  Controller plc = Controller::load(example("seal_in/seal_in.slc"));
+  try {
+    plc.set("I:1/32", 1);
+    FAIL() << "I:1/32 was written";
+  } catch (const ControllerError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("bit number 32 is out of range 0-15")) << e.what();
+  }
+  EXPECT_THROW(plc.set("O:2/16", 1), ControllerError);
+  EXPECT_THROW(plc.set("T4:0.ACC", 99999), ControllerError);
+  EXPECT_THROW(plc.set_float("T4:0.ACC", 1.5), ControllerError);
+  plc.set("T4:0.ACC", 32767);
+  EXPECT_EQ(plc.get_int("T4:0.ACC"), 32767);
+  EXPECT_FALSE(plc.get_bit("I:1/0"));
+}
+
 TEST(ControllerApi, BenchDevicesAreInjectedAndObserved) {
   Controller plc = Controller::load(example("1747-sn/ch4_m1_status.slc"), example("1747-sn/ch4_m1_status.bench"));
   plc.run_for(softslc::milliseconds(400));

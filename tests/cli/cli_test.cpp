@@ -10,32 +10,9 @@
 #include <fstream>
 #include <sys/wait.h>
 
+#include "cli_test_util.h"
+
 namespace {
-
-struct Result {
-  int exit_code = -1;
-  std::string out;  // stdout and stderr, as a user sees them
-};
-
-Result run(const std::string& args) {
-  std::string cmd = std::string(SOFTSLC_BINARY) + " " + args + " 2>&1";
-  Result r;
-  FILE* p = ::popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf;
-  while (std::size_t n = std::fread(buf.data(), 1, buf.size(), p)) r.out.append(buf.data(), n);
-  int status = ::pclose(p);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::filesystem::path temp_file(const std::string& name, const std::string& contents) {
-  auto dir = std::filesystem::temp_directory_path() / ("softslc-cli-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  auto path = dir / name;
-  std::ofstream(path) << contents;
-  return path;
-}
 
 const std::string kFixture = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rslogix500/59-BSGS.SLC";
 const std::string kExample = std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder/seal_in/seal_in.slc";
@@ -114,7 +91,7 @@ TEST(Cli, ThroughputBadInput) {
   auto notjson = temp_file("x.json", "{ not json");
   auto r = run("throughput " + notjson.string());
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_NE(r.out.find("x.json: error: not valid JSON"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("x.json:1:4: error: not valid JSON"), std::string::npos) << r.out;
   auto bad = temp_file("y.json", R"({"network": "rio", "baud": "9600"})");
   auto b = run("throughput " + bad.string());
   EXPECT_EQ(b.exit_code, 1);

@@ -23,6 +23,8 @@ struct AddressCase {
   int bit;
   const char* canonical;
 };
+// How ctest and gtest name this case (else "GetParam() = 32-byte object <54-29 ...>").
+void PrintTo(const AddressCase& c, std::ostream* os) { *os << c.text; }
 
 class AddressForms : public ::testing::TestWithParam<AddressCase> {};
 
@@ -118,6 +120,8 @@ struct BadAddress {
   const char* text;
   const char* message_part;
 };
+// How ctest and gtest name this case (else "GetParam() = 32-byte object <54-29 ...>").
+void PrintTo(const BadAddress& c, std::ostream* os) { *os << c.text; }
 
 class MalformedAddresses : public ::testing::TestWithParam<BadAddress> {};
 

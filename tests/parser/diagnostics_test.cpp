@@ -20,6 +20,8 @@ struct Golden {
   const char* rungs;     // text after the header
   const char* expected;  // the full rendered diagnostics
 };
+// How ctest and gtest name this case (else "GetParam() = 32-byte object <54-29 ...>").
+void PrintTo(const Golden& c, std::ostream* os) { *os << c.name; }
 
 class GoldenDiagnostics : public ::testing::TestWithParam<Golden> {};
 
@@ -138,7 +140,7 @@ TEST(Diagnostics, AllIndependentErrorsAreReported) {
 TEST(Diagnostics, UnreadableFile) {
   auto r = load_program_file("/nonexistent/x.slc");
   EXPECT_FALSE(r.ok());
-  EXPECT_EQ(r.render_diagnostics(), "/nonexistent/x.slc: error: cannot open file\n");
+  EXPECT_EQ(r.render_diagnostics(), "/nonexistent/x.slc: error: cannot open file: No such file or directory\n");
 }
 
 TEST(Diagnostics, MissingStart) {

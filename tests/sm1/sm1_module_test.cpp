@@ -179,6 +179,10 @@ struct FaultStateCase {
   std::uint16_t command;  // what the drive then receives
   std::uint16_t reference;
 };
+// How ctest and gtest name this case (else "GetParam() = 32-byte object <54-29 ...>").
+void PrintTo(const FaultStateCase& c, std::ostream* os) {
+  *os << c.option << (c.enhanced ? " enhanced" : " basic") << (c.faults ? " faults" : "");
+}
 
 class Sm1DipSwitch : public ::testing::TestWithParam<FaultStateCase> {};
 

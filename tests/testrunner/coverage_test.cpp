@@ -25,6 +25,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <fstream>
+
 #include "testrunner_test_util.h"
 #include "tools/testrunner/coverage_report.h"
 
@@ -107,6 +109,30 @@ TEST(Coverage, ListsEveryUncoveredItemWithItsLine) {
             "    coverage.slc:17: file 3 rung 0 instruction 0 XIC I:1.0/5: never decided its rung true\n"
             "    coverage.slc:17: file 3 rung 0 instruction 1 OTE O:2.0/2: never energized\n"
             "    coverage.slc:18: file 4 NEVER: never called\n");
+}
+
+// Issue 17: an unconditional SOR RET EOR was "never true" (a taken RET left before coverage was
+// recorded) and an unconditional rung, which can never be false, "never false": 100 % was
+// impossible. By the definition in vm/coverage.h a rung without an input instruction is covered
+// once seen true; one scan runs all three rungs below, each true.
+TEST(Coverage, UnconditionalRungsCanBeFullyCovered) {
+  Sandbox box;
+  std::ofstream(box.dir() / "ret.slc") << "START 1747-L532\nLADDER 2 MAIN\nSOR JSR 3 EOR\nSOR OTE B3:0/0 EOR\n"
+                                           "LADDER 3 SUB\nSOR RET EOR\n";
+  ProgramCache cache;
+  TestFileLoad f = load_test_text("program ret.slc\ntest \"t\"\n  scan 1\n", "t.test", box.dir(), cache);
+  ASSERT_TRUE(f.ok()) << f.render();
+  CoverageCollector c;
+  c.add(run_test(f.file.tests.at(0), "t.test", test::fixed_timing(), true));
+  std::string error;
+  const auto reports = c.reports(error);
+  ASSERT_EQ(reports.size(), 1u);
+  const CoverageReport& r = reports[0];
+  ASSERT_EQ(r.files.size(), 2u);
+  EXPECT_EQ(r.files[0].rungs_both_ways, 2);
+  EXPECT_EQ(r.files[1].rungs_both_ways, 1);
+  EXPECT_EQ(r.files[1].outputs_energized, 1);  // the RET
+  EXPECT_TRUE(r.uncovered.empty()) << render_coverage_text(reports);
 }
 
 TEST(Coverage, MergesAcrossTestsAndPowerCycles) {

@@ -146,6 +146,8 @@ struct Golden {
   const char* text;      // the test file (t.test), beside lamp.slc and other.slc
   const char* expected;  // the rendered diagnostics
 };
+// How ctest and gtest name this case (else "GetParam() = 32-byte object <54-29 ...>").
+void PrintTo(const Golden& c, std::ostream* os) { *os << c.name; }
 
 class BadTestFiles : public ::testing::TestWithParam<Golden> {};
 
@@ -189,7 +191,7 @@ INSTANTIATE_TEST_SUITE_P(
         Golden{"StepOutsideTest", "program lamp.slc\nscan 1\n",
                "t.test:2:1: error: a step must belong to a test: start one with test \"name\"\nscan 1\n^\n"},
         Golden{"MissingBenchFile", "program lamp.slc\nbench nowhere.bench\ntest \"t\"\n  scan 1\n",
-               "nowhere.bench: error: cannot open the bench file\nt.test:2:7: error: bench 'nowhere.bench' did "
+               "nowhere.bench: error: cannot open file: No such file or directory\nt.test:2:7: error: bench 'nowhere.bench' did "
                "not load (its errors are listed above)\nbench nowhere.bench\n      ^\n"},
         Golden{"DeviceWithoutBench", "program lamp.slc\ntest \"t\"\n  device DRIVE1 cable removed\n",
                "t.test:3:10: error: no bench device 'DRIVE1' (this test has no bench: add 'bench FILE.bench')\n"
@@ -203,7 +205,7 @@ INSTANTIATE_TEST_SUITE_P(
                "t.test:3:10: error: N7:9 is beyond the end of N7 (elements 0-3)\n  expect N7:9 == 0\n         "
                "^\n"},
         Golden{"NoInputModule", "program lamp.slc\ntest \"t\"\n  set I:3/0 = 1\n",
-               "t.test:3:7: error: I:3.0/0: no module in slot 3\n  set I:3/0 = 1\n      ^\n"},
+               "t.test:3:7: error: I:3.0/0: slot 3 has no module (no SLOT 3 line)\n  set I:3/0 = 1\n      ^\n"},
         Golden{"ValueDoesNotFit", "program lamp.slc\ntest \"t\"\n  set N7:0 = 0x1FFFF\n",
                "t.test:3:14: error: '0x1FFFF' does not fit a 16-bit word\n  set N7:0 = 0x1FFFF\n             ^\n"},
         Golden{"BitValue", "program lamp.slc\ntest \"t\"\n  expect LAMP == 2\n",
@@ -262,7 +264,7 @@ INSTANTIATE_TEST_SUITE_P(
                "t.test:1:1: error: no program for this test: add 'program FILE.slc' at the top of the file or in "
                "the test\ntest \"t\"\n^\n"},
         Golden{"MissingProgram", "program nowhere.slc\ntest \"t\"\n  scan 1\n",
-               "nowhere.slc: error: cannot open the program file\nt.test:1:9: error: program 'nowhere.slc' did "
+               "nowhere.slc: error: cannot open file: No such file or directory\nt.test:1:9: error: program 'nowhere.slc' did "
                "not load (its errors are listed above)\nprogram nowhere.slc\n        ^\n"},
         Golden{"SecondFileProgram", "program lamp.slc\nprogram other.slc\ntest \"t\"\n  scan 1\n",
                "t.test:2:1: error: a second file-level 'program' line (the first is at line 1); name a test's "
@@ -293,8 +295,9 @@ TEST(Diagnostics, EveryIndependentErrorOfAFileIsReported) {
 TEST(Diagnostics, ProgramErrorsAreShownWithTheProgramsOwnLines) {
   Sandbox box;
   box.write("broken.slc", "START 1747-L532\nLADDER 2\nSOR XIC B3:0/0 FOO B3:0/1 EOR\n");
+  // The unknown instruction is the error; "rung has no output instruction", its consequence,
+  // is not reported (issue 17).
   EXPECT_EQ(box.diagnostics("program broken.slc\ntest \"t\"\n  scan 1\n"),
-            "broken.slc:3:1: error: rung has no output instruction\nSOR XIC B3:0/0 FOO B3:0/1 EOR\n^\n"
             "broken.slc:3:16: error: unknown instruction 'FOO'\nSOR XIC B3:0/0 FOO B3:0/1 EOR\n               ^\n"
             "t.test:1:9: error: program 'broken.slc' did not load (its errors are listed above)\n"
             "program broken.slc\n        ^\n");

@@ -19,6 +19,8 @@ struct BadProgram {
   int file;
   int rung;
 };
+// How ctest and gtest name this case (else "GetParam() = 32-byte object <54-29 ...>").
+void PrintTo(const BadProgram& c, std::ostream* os) { *os << c.name; }
 
 class BadPrograms : public ::testing::TestWithParam<BadProgram> {};
 

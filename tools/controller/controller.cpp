@@ -5,6 +5,7 @@
 
 #include "modules/module_setup.h"
 #include "parser/address.h"
+#include "parser/checker.h"
 #include "parser/loader.h"
 
 namespace softslc {
@@ -66,6 +67,10 @@ void Controller::fresh_runtime() {
 std::string Controller::address_of(std::string_view target) const {
   if (const Symbol* s = loaded_->program.find_symbol(std::string(target)); s && !s->name.empty())
     return to_string(s->address);
+  // The checker's address rules, as for `run --set` and test files: no bit 16-31, no slot or
+  // element the program cannot name.
+  if (auto a = parse_address(target))
+    if (auto error = check_tool_address(loaded_->program, *a); !error.empty()) throw ControllerError(error);
   return std::string(target);
 }
 

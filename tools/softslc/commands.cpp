@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
 
 #include "vm/atomic_file.h"
 #include "run_trace.h"
@@ -18,6 +19,8 @@
 #include "modules/throughput/throughput_json.h"
 #include "parser/checker.h"
 #include "parser/formatter.h"
+#include "parser/input_file.h"
+#include "parser/json_document.h"
 #include "parser/loader.h"
 #include "modules/module_setup.h"
 #include "vm/disassembler.h"
@@ -26,6 +29,8 @@
 #include "vm/runtime.h"
 #include "vm/scantime.h"
 #include "vm/state_file.h"
+#include "tools/testrunner/test_loader.h"
+#include "tools/testrunner/values.h"
 
 namespace softslc::cli {
 
@@ -65,6 +70,16 @@ int run_check(const CheckOptions& o) {
   // diagnostic quoting the manual's rule.
   DiagnosticList modules;
   check_module_configuration(*r.program, modules);
+  if (!modules.has_errors()) {
+    // One source of truth: `check` compiles the program exactly as `run` does (the same module
+    // setup, no bench), so every limit the compiler enforces — rungs per file, operand types,
+    // module instructions — is a `check` error too, and exit 0 means `run` loads it.
+    CompileOptions copts;
+    copts.module_instruction = load_module_setup(*r.program, std::nullopt).options.module_instruction;
+    for (const auto& e : compile(*r.program, copts).errors)
+      modules.error(e.pos.line, e.pos.column, e.to_string());
+  }
+  modules.sort_by_position();
   std::cerr << render_all(modules, r.source_name, r.source);
   return modules.has_errors() ? kInputError : kOk;
 }
@@ -229,11 +244,11 @@ int run_scantime(const ScantimeOptions& o) {
   }
   if (o.json) {
     if (results.size() == 1) {
-      std::cout << prediction_json(results[0]).dump(2) << "\n";
+      std::cout << json_text(prediction_json(results[0])) << "\n";
     } else {
       auto arr = nlohmann::json::array();
       for (const auto& t : results) arr.push_back(prediction_json(t));
-      std::cout << arr.dump(2) << "\n";
+      std::cout << json_text(arr) << "\n";
     }
   } else if (results.size() == 1) {
     print_prediction(results[0], std::cout);
@@ -246,10 +261,16 @@ int run_scantime(const ScantimeOptions& o) {
 namespace {
 
 // An address written on the command line: an address, or a symbol of the program.
+// The checker's address rules apply, as in test files and the Controller API.
 std::optional<Address> resolve_cli_address(const Program& p, const std::string& text, std::string& error) {
   if (const Symbol* s = p.find_symbol(text)) return s->address;
   auto a = parse_address(text, &error);
-  if (!a) error = "'" + text + "' is neither an address nor a symbol of the program (" + error + ")";
+  if (!a) {
+    error = "'" + text + "' is neither an address nor a symbol of the program (" + error + ")";
+    return a;
+  }
+  error = check_tool_address(p, *a);
+  if (!error.empty()) return std::nullopt;
   return a;
 }
 
@@ -269,6 +290,7 @@ int run_run(const RunOptions& o) {
   auto r = load_program_file(o.file);
   report(r);
   if (!r.ok()) return kInputError;
+  spdlog::debug("{}: loaded, {} bytes, {} program files", o.file, r.source.size(), r.program->files.size());
   // Under --processor, the program as that processor sees it (checked with its rules).
   std::optional<Program> retargeted;
   RuntimeOptions options;
@@ -315,17 +337,24 @@ int run_run(const RunOptions& o) {
     }
     std::string error;
     auto a = resolve_cli_address(program, text.substr(0, eq), error);
-    NumberValue v;
     if (!a) {
       std::cerr << "softslc run: --set " << text << ": " << error << "\n";
       return kUsage;
     }
-    if (!parse_number_text(text.substr(eq + 1), v)) {
+    // A value is written as in a test file and converted by the same rule (testing/values.h):
+    // it must fit the operand — never wrapped, rounded or squashed.
+    auto literal = testing::parse_literal(text.substr(eq + 1), &error);
+    if (!literal) {
       std::cerr << "softslc run: --set " << text << ": '" << text.substr(eq + 1)
-                << "' is not a value (decimal, negative, 0x.., or float)\n";
+                << "' is not a value (decimal, negative, 0x.., 0b.., or float)\n";
       return kUsage;
     }
-    assignments.push_back({*a, v.is_float ? Value::of_float(v.real) : Value::of_int(v.integer)});
+    auto value = testing::value_for_width(*literal, testing::width_of(*a), &error);
+    if (!value) {
+      std::cerr << "softslc run: --set " << text << ": " << error << "\n";
+      return kUsage;
+    }
+    assignments.push_back({*a, *value});
   }
   std::vector<std::pair<std::string, Address>> prints;
   for (const auto& text : o.prints) {
@@ -377,6 +406,18 @@ int run_run(const RunOptions& o) {
   // Retentive state: the data table as a power cycle leaves it. A bad state file stops the run
   // before anything executes, so the file is never overwritten.
   const std::uint64_t fingerprint = o.state.empty() ? 0 : program_fingerprint(program);
+  // One run per state file at a time (a second would lose one run's scans), and a location the
+  // save can write — both found now, not after the whole run.
+  StateFileLock state_lock;
+  if (!o.state.empty()) {
+    for (const auto& err : {state_lock.acquire(o.state), check_state_file_writable(o.state)})
+      if (!err.empty()) {
+        std::cerr << "softslc run: --state " << o.state << ": " << err << "\n";
+        return kInputError;
+      }
+    spdlog::debug("{}: locked; {} stale temporary file(s) of killed saves removed", o.state,
+                  state_lock.removed_temporaries());
+  }
   if (!o.state.empty()) {
     bool missing = false;
     auto loaded = load_state_file(o.state, fingerprint, rt.data(), o.force_state, &missing, chassis_modules(rt));
@@ -385,6 +426,8 @@ int run_run(const RunOptions& o) {
       return kInputError;
     }
     for (const auto& w : loaded.warnings) std::cerr << "softslc run: " << o.state << ": warning: " << w << "\n";
+    spdlog::debug("{}: {}", o.state, missing ? "does not exist yet: the run starts from the program's data"
+                                             : "restored");
   }
   auto save_state = [&]() -> bool {
     if (o.state.empty()) return true;
@@ -392,6 +435,7 @@ int run_run(const RunOptions& o) {
       std::cerr << "softslc run: cannot save state: " << err << "\n";
       return false;
     }
+    spdlog::debug("{}: saved after scan {}", o.state, rt.stats().scans);
     return true;
   };
   for (const auto& a : assignments)
@@ -399,6 +443,14 @@ int run_run(const RunOptions& o) {
       std::cerr << "softslc run: --set " << to_string(a.address) << ": " << st.message << "\n";
       return kUsage;
     }
+  // Every --print must name something the data table has: "N7:999 = ?" with exit 0 misled.
+  for (const auto& [text, a] : prints) {
+    std::string error;
+    if (!a.is_indirect() && !a.indexed && !rt.get(a, &error)) {
+      std::cerr << "softslc run: --print " << text << ": " << error << "\n";
+      return kUsage;
+    }
+  }
   if (auto st = rt.set_mode(Mode::Run); !st) {
     std::cerr << "softslc run: " << st.message << "\n";
     return kInputError;
@@ -458,7 +510,7 @@ int run_run(const RunOptions& o) {
     else
       j["fault"] = nullptr;
     j["scan_time_us"] = {{"last", to_us(rt.stats().last)}, {"max", to_us(rt.stats().max)}, {"avg", to_us(rt.stats().avg())}};
-    std::cout << j.dump(2) << "\n";
+    std::cout << json_text(j) << "\n";
   } else {
     for (const auto& [text, a] : prints) {
       auto v = rt.get(a);
@@ -509,23 +561,22 @@ int run_instructions() {
 }
 
 int run_throughput(const ThroughputOptions& o) {
-  std::ifstream in(o.config, std::ios::binary);
-  if (!in) {
-    std::cerr << o.config << ": error: cannot open file\n";
+  InputFile in = read_input_file(o.config);
+  if (!in.ok) {
+    std::cerr << o.config << ": error: " << in.error << "\n";
     return kInputError;
   }
-  nlohmann::json config;
-  try {
-    config = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann reports the byte offset; say which file it is in.
-    std::cerr << o.config << ": error: not valid JSON: " << e.what() << "\n";
+  // Every JSON error (syntax, a number such as 1e309, nesting) is a positioned diagnostic.
+  JsonDocument doc = parse_json_document(in.contents);
+  if (!doc.ok) {
+    std::cerr << o.config << ":" << doc.line << ":" << doc.column << ": error: not valid JSON: " << doc.message << "\n";
     return kInputError;
   }
+  nlohmann::json config = std::move(doc.value);
   try {
     auto result = throughput::compute_throughput(config);
     if (o.json)
-      std::cout << result.dump(2) << "\n";
+      std::cout << json_text(result) << "\n";
     else
       std::cout << throughput::format_throughput_text(result);
   } catch (const throughput::ConfigError& e) {

@@ -6,6 +6,9 @@
 
 #include <iostream>
 
+#include <spdlog/sinks/stdout_sinks.h>
+#include <spdlog/spdlog.h>
+
 #include "cmd_render.h"
 #include "commands.h"
 #include "tools/testrunner/test_command.h"
@@ -15,6 +18,8 @@ int main(int argc, char** argv) {
   CLI::App app{"softslc — run, check and test Allen-Bradley SLC 500 ladder programs without the hardware"};
   app.set_version_flag("--version", std::string("softslc ") + SOFTSLC_VERSION);
   app.require_subcommand(1);
+  bool verbose = false;
+  app.add_flag("-v,--verbose", verbose, "log what softslc does (files, state file, scans) to stderr");
 
   CheckOptions check;
   auto* check_cmd = app.add_subcommand("check", "Parse and check a program (RSLogix 500 export, .SLC); "
@@ -105,15 +110,29 @@ int main(int argc, char** argv) {
     int rc = app.exit(e);
     return rc == 0 ? kOk : kUsage;
   }
-  if (*check_cmd) return run_check(check);
-  if (*fmt_cmd) return run_fmt(fmt);
-  if (*import_cmd) return run_import(import_opts);
-  if (*throughput_cmd) return run_throughput(throughput);
-  if (*instructions_cmd) return run_instructions();
-  if (*test_cmd) return softslc::testing::run_test_command(test, std::cout, std::cerr);
-  if (*scantime_cmd) return run_scantime(scantime);
-  if (*run_cmd) return run_run(run);
-  if (*disasm_cmd) return run_disasm(disasm);
-  if (*render_cmd) return run_render(render);
+  // The log goes to stderr, without timestamps, so a verbose run's output is the same on every
+  // run (the simulation has no wall clock, and neither does its log). Off, only errors.
+  auto log = spdlog::stderr_logger_st("softslc");
+  log->set_pattern("softslc: [%l] %v");
+  log->set_level(verbose ? spdlog::level::debug : spdlog::level::err);
+  spdlog::set_default_logger(log);
+  // Every bad input is reported where it is found, as a positioned diagnostic. This is the
+  // guard behind that rule: an exception that still escapes is a bug, but it ends as a message
+  // and exit status 1, never as std::terminate's abort (a signal in scripts and CI).
+  try {
+    if (*check_cmd) return run_check(check);
+    if (*fmt_cmd) return run_fmt(fmt);
+    if (*import_cmd) return run_import(import_opts);
+    if (*throughput_cmd) return run_throughput(throughput);
+    if (*instructions_cmd) return run_instructions();
+    if (*test_cmd) return softslc::testing::run_test_command(test, std::cout, std::cerr);
+    if (*scantime_cmd) return run_scantime(scantime);
+    if (*run_cmd) return run_run(run);
+    if (*disasm_cmd) return run_disasm(disasm);
+    if (*render_cmd) return run_render(render);
+  } catch (const std::exception& e) {
+    std::cerr << "softslc: internal error (please report it with the input): " << e.what() << "\n";
+    return kInputError;
+  }
   return kUsage;
 }

@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "parser/json_document.h"
+
 namespace softslc::testing {
 
 void CoverageCollector::add(const TestOutcome& outcome) {
@@ -112,7 +114,7 @@ std::string render_coverage_json(const std::vector<CoverageReport>& reports) {
     }
     doc["programs"].push_back(std::move(p));
   }
-  return doc.dump(2) + "\n";
+  return json_text(doc) + "\n";
 }
 
 }  // namespace softslc::testing

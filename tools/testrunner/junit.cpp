@@ -96,7 +96,50 @@ std::string junit_document(const std::vector<JUnitCase>& cases) {
 
   tinyxml2::XMLPrinter printer;
   doc.Print(&printer);
-  return std::string(printer.CStr(), static_cast<std::size_t>(printer.CStrSize() > 0 ? printer.CStrSize() - 1 : 0));
+  return valid_xml_text(
+      std::string(printer.CStr(), static_cast<std::size_t>(printer.CStrSize() > 0 ? printer.CStrSize() - 1 : 0)));
+}
+
+std::string valid_xml_text(std::string_view bytes) {
+  // tinyxml2 escapes markup characters but passes other bytes through; test names, file names and
+  // failure messages can hold anything. The markup itself is ASCII, so checking the whole printed
+  // document is enough.
+  static constexpr std::string_view kReplacement = "\xEF\xBF\xBD";  // U+FFFD
+  std::string out;
+  out.reserve(bytes.size());
+  std::size_t i = 0;
+  while (i < bytes.size()) {
+    const auto c = static_cast<unsigned char>(bytes[i]);
+    if (c < 0x80) {
+      // XML 1.0 allows only tab, line feed and carriage return below 0x20.
+      if (c < 0x20 && c != '\t' && c != '\n' && c != '\r') out += kReplacement;
+      else out += static_cast<char>(c);
+      ++i;
+      continue;
+    }
+    // The length and the smallest code point of a well-formed sequence (no overlong forms, no
+    // surrogates, nothing beyond U+10FFFF).
+    std::size_t n = 0;
+    std::uint32_t cp = 0, min = 0;
+    if ((c & 0xE0) == 0xC0) n = 2, cp = c & 0x1F, min = 0x80;
+    else if ((c & 0xF0) == 0xE0) n = 3, cp = c & 0x0F, min = 0x800;
+    else if ((c & 0xF8) == 0xF0) n = 4, cp = c & 0x07, min = 0x10000;
+    bool ok = n > 0 && i + n <= bytes.size();
+    for (std::size_t k = 1; ok && k < n; ++k) {
+      const auto cc = static_cast<unsigned char>(bytes[i + k]);
+      ok = (cc & 0xC0) == 0x80;
+      cp = (cp << 6) | (cc & 0x3F);
+    }
+    ok = ok && cp >= min && cp <= 0x10FFFF && !(cp >= 0xD800 && cp <= 0xDFFF) && cp != 0xFFFE && cp != 0xFFFF;
+    if (ok) {
+      out.append(bytes.substr(i, n));
+      i += n;
+    } else {
+      out += kReplacement;
+      ++i;
+    }
+  }
+  return out;
 }
 
 

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tools/testrunner/executor.h"
@@ -34,6 +35,11 @@ struct JUnitCase {
 
 // The XML text of the report for `cases`, in order (suites in order of first appearance).
 std::string junit_document(const std::vector<JUnitCase>& cases);
+
+// `bytes` as valid XML 1.0 text in UTF-8: every byte sequence that is not well-formed UTF-8, and
+// every control character XML forbids, becomes U+FFFD. A test name or path that is not UTF-8
+// would otherwise make the report unreadable to every JUnit consumer.
+std::string valid_xml_text(std::string_view bytes);
 
 
 }  // namespace softslc::testing

@@ -1,5 +1,6 @@
 #include "tools/testrunner/runner.h"
 
+#include <fnmatch.h>
 #include <algorithm>
 #include <atomic>
 #include <cctype>
@@ -59,24 +60,9 @@ std::vector<TestFileRef> discover_test_files(const std::vector<std::string>& pat
 }
 
 bool glob_match(std::string_view pattern, std::string_view text) {
-  // Iterative matcher with one backtrack point (the last '*'): linear in practice, no recursion.
-  std::size_t p = 0, t = 0, star = std::string_view::npos, mark = 0;
-  while (t < text.size()) {
-    if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == text[t])) {
-      ++p;
-      ++t;
-    } else if (p < pattern.size() && pattern[p] == '*') {
-      star = p++;
-      mark = t;
-    } else if (star != std::string_view::npos) {
-      p = star + 1;
-      t = ++mark;
-    } else {
-      return false;
-    }
-  }
-  while (p < pattern.size() && pattern[p] == '*') ++p;
-  return p == pattern.size();
+  // The shell's own matcher, fnmatch(3): '*', '?' and [...] as in the shell. Flags 0: '/' and a
+  // leading '.' are ordinary characters in a test name.
+  return ::fnmatch(std::string(pattern).c_str(), std::string(text).c_str(), 0) == 0;
 }
 
 std::string trace_file_name(const std::string& test_file, const std::string& test_name) {
@@ -153,6 +139,28 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (bad > 0) {
     err << "error: " << bad << " test file" << (bad == 1 ? " has" : "s have") << " errors; no test was run\n";
     return kUsageError;
+  }
+  // A report written over an input (--junit t.test, --coverage-json lamp.slc) would destroy it:
+  // refuse before running anything. Inputs: every test file and the programs and benches they
+  // name (resolved as the loader resolved them, relative to the test file).
+  for (const auto& [option, output] : {std::pair<const char*, const std::string&>{"--junit", options.junit},
+                                       std::pair<const char*, const std::string&>{"--coverage-json", options.coverage_json}}) {
+    if (output.empty()) continue;
+    std::vector<std::filesystem::path> inputs;
+    for (std::size_t i = 0; i < refs.size(); ++i) {
+      inputs.push_back(refs[i].path);
+      for (const auto& t : files[i].file.tests)
+        for (const auto* rel : {&t.program_path, &t.bench_path})
+          if (!rel->empty()) inputs.push_back(refs[i].path.parent_path() / *rel);
+    }
+    for (const auto& in : inputs) {
+      std::error_code ec;
+      if (std::filesystem::equivalent(output, in, ec) && !ec) {
+        err << "error: " << option << " " << output << " is an input of this run (" << in.string()
+            << "); refusing to overwrite it\n";
+        return kUsageError;
+      }
+    }
   }
 
   // ---- Select ----

@@ -56,7 +56,8 @@ struct TestFileRef {
 // does not exist or cannot be read.
 std::vector<TestFileRef> discover_test_files(const std::vector<std::string>& paths, std::vector<std::string>& errors);
 
-// Glob match of a whole test name: '*' matches any run of characters, '?' any one character.
+// Glob match of a whole test name, by fnmatch(3): '*' matches any run of characters, '?' any one character,
+// [...] one of a set.
 bool glob_match(std::string_view pattern, std::string_view text);
 
 // The lines printed for one test: "PASS FILE: NAME (12 ms)", or "FAIL FILE: NAME" and the

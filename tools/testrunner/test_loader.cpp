@@ -7,6 +7,8 @@
 #include <tuple>
 
 #include "modules/module_setup.h"
+#include "parser/checker.h"
+#include "parser/input_file.h"
 #include "parser/loader.h"
 #include "tools/testrunner/test_parser.h"
 
@@ -14,12 +16,14 @@ namespace softslc::testing {
 
 namespace {
 
-std::optional<std::string> read_file(const std::filesystem::path& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) return std::nullopt;
-  std::ostringstream ss;
-  ss << f.rdbuf();
-  return ss.str();
+// Regular files only, with a size limit; a UTF-8 BOM dropped, UTF-16 refused (input_file.h).
+std::optional<std::string> read_file(const std::filesystem::path& path, std::string& error) {
+  InputFile in = read_input_file(path);
+  if (!in.ok) {
+    error = in.error;
+    return std::nullopt;
+  }
+  return std::move(in.contents);
 }
 
 std::string cache_key(const std::filesystem::path& path) {
@@ -29,11 +33,7 @@ std::string cache_key(const std::filesystem::path& path) {
 }
 
 // The value a literal writes into an operand of `width` (validated by the caller).
-Value value_for(const Literal& l, int width) {
-  if (width == 1) return Value::bit(l.integer != 0);
-  if (width == 0) return Value::of_float(l.kind == Literal::Kind::Float ? l.real : static_cast<double>(l.integer));
-  return Value::of_int(integer_for_width(l, width, nullptr).value_or(0));
-}
+Value value_for(const Literal& l, int width) { return value_for_width(l, width, nullptr).value_or(Value{}); }
 
 bool is_word_file(FileType t) {
   return t == FileType::Integer || t == FileType::Bit || t == FileType::Float || t == FileType::Long ||
@@ -144,13 +144,19 @@ class Checker {
   // ---- Operands ----
 
   bool resolve(DataRef& r, const LoadedProgram& p) {
-    if (r.symbol.empty()) return true;
-    const Symbol* s = p.program.find_symbol(r.symbol);
-    if (!s || s->name.empty()) {
-      error(r.loc, "unknown symbol '" + r.symbol + "': not a SYMBOL of " + p.path);
+    if (!r.symbol.empty()) {
+      const Symbol* s = p.program.find_symbol(r.symbol);
+      if (!s || s->name.empty()) {
+        error(r.loc, "unknown symbol '" + r.symbol + "': not a SYMBOL of " + p.path);
+        return false;
+      }
+      r.address = s->address;
+    }
+    // The checker's address rules, as for `run --set` and the Controller API.
+    if (auto e = check_tool_address(p.program, r.address); !e.empty()) {
+      error(r.loc, e);
       return false;
     }
-    r.address = s->address;
     return true;
   }
 
@@ -384,9 +390,10 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
   const std::string key = cache_key(path) + "\n" + (bench.empty() ? std::string() : cache_key(bench));
   if (auto it = entries_.find(key); it != entries_.end()) return it->second;
   Entry& e = entries_[key];
-  auto text = read_file(path);
+  std::string error;
+  auto text = read_file(path, error);
   if (!text) {
-    e.errors = display + ": error: cannot open the program file\n";
+    e.errors = display + ": error: " + error + "\n";
     return e;
   }
   softslc::LoadResult lr = load_program_bytes(std::move(*text), display);  // .SLC text or .RSS project
@@ -398,9 +405,9 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
   if (bench.empty()) {
     setup = load_module_setup(*lr.program, std::nullopt);
   } else {
-    auto bench_text = read_file(bench);
+    auto bench_text = read_file(bench, error);
     if (!bench_text) {
-      e.errors = bench_display + ": error: cannot open the bench file\n";
+      e.errors = bench_display + ": error: " + error + "\n";
       e.bench_failed = true;
       return e;
     }
@@ -447,11 +454,12 @@ TestFileLoad load_test_text(std::string text, const std::string& display, const 
 }
 
 TestFileLoad load_test_file(const std::filesystem::path& path, const std::string& display, ProgramCache& cache) {
-  auto text = read_file(path);
+  std::string error;
+  auto text = read_file(path, error);
   if (!text) {
     TestFileLoad out;
     out.file.name = display;
-    out.diagnostics.error(0, 0, "cannot open the test file");
+    out.diagnostics.error(0, 0, error);
     return out;
   }
   return load_test_text(std::move(*text), display, path.parent_path(), cache);

@@ -14,6 +14,7 @@
 #include <set>
 #include <tuple>
 
+#include "parser/limits.h"
 #include "parser/loader.h"
 #include "tools/testrunner/test_grammar.h"
 #include "tools/testrunner/test_grammar_messages.h"
@@ -603,6 +604,19 @@ struct LineError {
 // Parses one line; returns the error when it does not parse.
 std::optional<LineError> parse_line(std::string_view text, std::uint32_t number, const std::string& source,
                                     ParsedLine& out) {
+  // Parenthesised conditions recurse in the grammar: bound the nesting before parsing, so 40,000
+  // '(' are one positioned error, not a stack overflow. (Quoted text — names, paths — may hold
+  // any parentheses.)
+  int depth = 0;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '"') quoted = !quoted;
+    else if (quoted) continue;
+    else if (text[i] == ')' && depth > 0) --depth;
+    else if (text[i] == '(' && ++depth > kMaxExpressionNesting)
+      return LineError{Location{number, static_cast<std::uint32_t>(i + 1)},
+                       "parentheses nested deeper than " + std::to_string(kMaxExpressionNesting) + " levels"};
+  }
   pegtl::memory_input in(text.data(), text.data() + text.size(), source, 0, number, 1);
   LineState state;
   try {

@@ -97,6 +97,19 @@ std::optional<Literal> parse_literal(std::string_view text, std::string* error) 
   return l;
 }
 
+std::optional<Value> value_for_width(const Literal& l, int width, std::string* error) {
+  if (width == 0) {
+    if (l.kind == Literal::Kind::Pattern) {
+      set_error(error, "a bit pattern with x digits can only be compared with == or !=");
+      return std::nullopt;
+    }
+    return Value::of_float(l.kind == Literal::Kind::Float ? l.real : static_cast<double>(l.integer));
+  }
+  auto i = integer_for_width(l, width, error);
+  if (!i) return std::nullopt;
+  return width == 1 ? Value::bit(*i != 0) : Value::of_int(*i);
+}
+
 std::optional<std::int64_t> integer_for_width(const Literal& l, int width, std::string* error) {
   if (l.kind == Literal::Kind::Float) {
     set_error(error, "'" + l.spelling + "' is not an integer; this operand holds integers");

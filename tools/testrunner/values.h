@@ -59,6 +59,12 @@ std::optional<Literal> parse_literal(std::string_view text, std::string* error);
 // and sets `error` to a sentence naming the range.
 std::optional<std::int64_t> integer_for_width(const Literal& l, int width, std::string* error);
 
+// The value a literal writes into an operand of `width` bits (1, 16, 32; 0 for a float):
+// integer_for_width()'s rule, a float only into a float operand. The one conversion rule of
+// test-file `set` and `softslc run --set` (the runtime refuses the same values from the C++ API).
+// On refusal returns nullopt and sets `error`.
+std::optional<Value> value_for_width(const Literal& l, int width, std::string* error);
+
 // Durations are parsed and printed by vm/duration.h, shared with the CLI.
 using softslc::format_duration;
 using softslc::parse_duration;

@@ -323,13 +323,13 @@ TEST(AutomaxMaster, SharkConfigurationRules) {
   b.set(A(b, "CFG"), 0x20);  // slot 5 digital, but bit 15 not yet set
   b->run_for(milliseconds(20));
   EXPECT_EQ(b->observe("S2", "configured")->at(0), 0);
-  b.set(A(b, "CFG"), 0x8020);  // the manual's 20H with the ready bit 15
+  b.set(A(b, "CFG"), static_cast<std::int16_t>(0x8020));  // the manual's 20H with the ready bit 15
   b->run_for(milliseconds(20));
   EXPECT_EQ(b->observe("S2", "configured")->at(0), 1);
   EXPECT_EQ(b.i(A(b, "SPD_REF")), 1234);
   EXPECT_TRUE(b.b(A(b, "START")));
   // A second configuration word is ignored: slot 5 stays digital.
-  b.set(A(b, "CFG"), 0x8000);
+  b.set(A(b, "CFG"), static_cast<std::int16_t>(0x8000));
   b->run_for(milliseconds(20));
   EXPECT_TRUE(b.b(A(b, "START")));
   // A Stop-All (Run -> Program) allows a new configuration: now slot 5 is configured analog,

@@ -67,7 +67,7 @@ TEST(Discrete, AnEightPointCardHasEightPoints) {
   Bench b(kTwoSlots + "SOR XIC I:2/0 OTE O:3/0 EOR\n", "");
   EXPECT_TRUE(b->set("I:2/7", Value::bit(true)));
   EXPECT_FALSE(b->set("I:2/8", Value::bit(true)));
-  b.set("I:2.0", 0xFFFF);  // only the eight points exist
+  b.set("I:2.0", static_cast<std::int16_t>(0xFFFF));  // every bit; only the eight points exist
   b.run();
   b->scan(1);
   EXPECT_EQ(b.u("I:2.0"), 0x00FF);

@@ -241,9 +241,9 @@ TEST(RssReader, DamagedFilesEndInCleanErrors) {
 
 // A known RSLogix mnemonic softslc lacks is named as not supported; a typo stays unknown.
 TEST(RssReader, InstructionsSoftslcLacksAreNamedNotSupported) {
-  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 SCP N7:0 0 100 0 1000 N7:1 EOR\n", "t.slc");
+  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 HSL N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("instruction SCP is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
+  EXPECT_NE(r.render_diagnostics().find("instruction HSL is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
   auto typo = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 QQQ N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(typo.ok());
   EXPECT_NE(typo.render_diagnostics().find("unknown instruction 'QQQ'"), std::string::npos) << typo.render_diagnostics();

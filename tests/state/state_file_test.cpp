@@ -361,12 +361,27 @@ TEST(StateCli, KillingDuringSavesNeverLosesTheState) {
               "--checkpoint", "10ms", static_cast<char*>(nullptr));
       ::_exit(127);
     }
-    ::usleep(static_cast<useconds_t>(20000 + 7919 * i % 60000));
+    // Wait until this run has replaced the state file at least once, then kill it at a varied
+    // point 0-60 ms later: the kill lands among the saves however long the process took to start
+    // (on a loaded machine start-up alone can exceed a fixed delay, and no kill would test a save).
+    const auto saved_before = std::filesystem::exists(state) ? std::filesystem::last_write_time(state)
+                                                             : std::filesystem::file_time_type::min();
+    for (int waited_ms = 0;; ++waited_ms) {
+      std::error_code ec;
+      const auto t = std::filesystem::last_write_time(state, ec);
+      if (!ec && t != saved_before) break;
+      if (waited_ms > 20000) {
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, nullptr, 0);
+        FAIL() << "run " << i << " saved no state within 20 s";
+      }
+      ::usleep(1000);
+    }
+    ::usleep(static_cast<useconds_t>(7919 * i % 60000));
     ::kill(pid, SIGKILL);
     int st = 0;
     ::waitpid(pid, &st, 0);
     ASSERT_TRUE(WIFSIGNALED(st)) << "the run ended by itself before the kill";
-    if (!std::filesystem::exists(state)) continue;  // killed before the first checkpoint
     auto rt = make_runtime(program);
     auto r = decode_state(read_file(state), fp, rt->data(), false);
     ASSERT_TRUE(r.ok) << "after kill " << i << ": " << r.error;
@@ -375,7 +390,7 @@ TEST(StateCli, KillingDuringSavesNeverLosesTheState) {
     EXPECT_GE(now, last) << "after kill " << i;
     last = now;
   }
-  EXPECT_GT(valid_after_kill, 10);
+  EXPECT_EQ(valid_after_kill, 25);
   // Leftover temporary files of interrupted saves are never mistaken for the state.
   for (const auto& e : std::filesystem::directory_iterator(dir))
     if (e.path().filename().string().rfind(".kill.state.", 0) == 0) std::filesystem::remove(e.path());

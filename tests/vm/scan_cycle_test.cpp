@@ -318,11 +318,13 @@ TEST(ScanCycle, SetAndGetFormatValuesForTools) {
   ASSERT_TRUE(plc->set("N7:0", Value::of_int(-12)));
   ASSERT_TRUE(plc->set("F8:0", Value::of_float(0.1)));
   ASSERT_TRUE(plc->set("B3:0/0", Value::bit(true)));
-  ASSERT_TRUE(plc->set("N7:1", Value::of_float(2.5)));
+  // One value rule for every tool (issue 17): a float does not silently round into a word.
+  EXPECT_FALSE(plc->set("N7:1", Value::of_float(2.5)));
+  ASSERT_TRUE(plc->set("N7:1", Value::of_int(2)));
   EXPECT_EQ(plc->format("N7:0"), "-12");
   EXPECT_EQ(plc->format("F8:0"), "0.1");
   EXPECT_EQ(plc->format("B3:0/0"), "1");
-  EXPECT_EQ(plc->format("N7:1"), "2") << "a float written to a word rounds half to even";
+  EXPECT_EQ(plc->format("N7:1"), "2");
   EXPECT_EQ(plc->value("T4:0/DN").kind, Value::Kind::Bit);
   std::string err;
   EXPECT_FALSE(plc->get("N7:300", &err).has_value());

@@ -6,6 +6,7 @@
 
 #include <iostream>
 
+#include "cmd_serve.h"
 #include "commands.h"
 #include "tools/testrunner/test_command.h"
 
@@ -84,6 +85,11 @@ int main(int argc, char** argv) {
   auto* instructions_cmd =
       app.add_subcommand("instructions", "List the instruction table: operands in text order, kinds, ranges");
 
+  ServeOptions serve;
+  auto* serve_cmd = add_serve_command(app, serve);
+  ReplayOptions replay;
+  auto* replay_cmd = add_replay_command(app, replay);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -98,5 +104,7 @@ int main(int argc, char** argv) {
   if (*scantime_cmd) return run_scantime(scantime);
   if (*run_cmd) return run_run(run);
   if (*disasm_cmd) return run_disasm(disasm);
+  if (*serve_cmd) return run_serve(serve);
+  if (*replay_cmd) return run_replay(replay);
   return kUsage;
 }

@@ -48,7 +48,7 @@ struct Server::Connection : std::enable_shared_from_this<Server::Connection> {
     asio::async_read(socket, asio::buffer(frame), [self = shared_from_this()](const std::error_code& ec, std::size_t) {
       if (ec) {
         if (ec != asio::error::eof && ec != asio::error::operation_aborted)
-          spdlog::info("{}: connection closed: {}", self->peer, ec.message());
+          spdlog::debug("{}: connection closed: {}", self->peer, ec.message());
         self->close();
         return;
       }
@@ -164,7 +164,7 @@ void Server::accept() {
       std::error_code ignored;
       socket.set_option(asio::ip::tcp::no_delay(true), ignored);
       auto c = std::make_shared<Connection>(std::move(socket), live_, next_session_++, options_, live_connections_);
-      spdlog::info("{}: connected", c->peer);
+      spdlog::debug("{}: connected", c->peer);
       c->start();
     }
     accept();

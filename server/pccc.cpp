@@ -1,5 +1,7 @@
 #include "server/pccc.h"
 
+#include <algorithm>
+
 namespace softslc::pccc {
 
 std::optional<std::uint8_t> type_code(FileType t) {
@@ -183,7 +185,12 @@ std::vector<std::uint8_t> execute(const Request& r, Target& target, std::string*
       static_cast<std::uint32_t>(r.element) * static_cast<std::uint32_t>(file->words_per_element) + r.sub;
   // Words touched: a byte count rounds up to whole words (an odd size reads or writes the low
   // byte of the last word, as the A file's one-byte characters need).
-  const std::uint32_t words = (static_cast<std::uint32_t>(r.size) + 1) / 2;
+  std::uint32_t words = (static_cast<std::uint32_t>(r.size) + 1) / 2;
+  // A write addressed to a sub-element of a timer, counter or control element (.PRE, .ACC, .LEN,
+  // .POS) writes that one word. Clients that work against real SLCs send the whole element's
+  // size here with the value in the first word (nodepccc 0.1.17 writes T4:0.PRE as 6 bytes at
+  // sub-element 1), so the rest of the data is not a request to overwrite the next words.
+  if (r.kind != Kind::Read && r.sub > 0 && is_structured(file->type)) words = 1;
   const std::uint32_t file_words = file->elements * static_cast<std::uint32_t>(file->words_per_element);
   if (offset + words > file_words) return extended(r, kExtPastEnd, refusal, what + ": past the end of the file");
 
@@ -196,10 +203,11 @@ std::vector<std::uint8_t> execute(const Request& r, Target& target, std::string*
     return out;
   }
   std::vector<std::uint16_t> masks(words, r.mask);
-  for (std::size_t i = 0; i < r.size; ++i)
+  const std::size_t bytes = std::min<std::size_t>(r.size, static_cast<std::size_t>(words) * 2);
+  for (std::size_t i = 0; i < bytes; ++i)
     buf[i / 2] = static_cast<std::uint16_t>(buf[i / 2] | (r.data[i] << ((i % 2) ? 8 : 0)));
   // An odd size writes only the low byte of its last word.
-  if (r.size % 2) masks.back() = static_cast<std::uint16_t>(masks.back() & 0x00FF);
+  if (bytes % 2) masks.back() = static_cast<std::uint16_t>(masks.back() & 0x00FF);
   const std::string why = target.write(r.file, offset, buf, masks);
   if (!why.empty()) return extended(r, kExtNoAccess, refusal, what + ": " + why);
   return reply_header(r, kStsOk);

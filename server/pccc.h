@@ -16,7 +16,11 @@
 //   CMD 0F FNC AA  protected typed logical write, 3 address fields
 //   CMD 0F FNC AB  protected typed logical write with mask, 3 address fields (read-modify-write)
 // An address field is one byte, or 0xFF followed by a 16-bit little-endian value. Everything else
-// is answered STS 10h (illegal command or format).
+// is answered STS 10h (illegal command or format). Element e, sub-element s of a file is word
+// e * words-per-element + s; a read or write covers size/2 words from there (within the file).
+// Decision (the manual is silent): a write addressed to a sub-element of a T, C or R element
+// writes that one word whatever its size byte says, because clients that work against real SLCs
+// send the whole element's size there (nodepccc writes T4:0.PRE as 6 bytes at sub-element 1).
 //
 // Error replies (1770-6.5.16 p. 8-4, "EXT STS codes for CMD 0F"; STS F0h carries EXT STS):
 //   06h  address does not point to something usable — no such file, element or sub-element

@@ -8,11 +8,11 @@ namespace softslc::serve {
 // hand the frame to its EipSession, write the reply, repeat. An idle timer closes it when the
 // client goes quiet.
 struct Server::Connection : std::enable_shared_from_this<Server::Connection> {
-  Connection(asio::ip::tcp::socket s, LiveController& live, std::uint32_t session, const ServerOptions& o,
-             std::shared_ptr<std::size_t> count)
+  Connection(asio::ip::tcp::socket s, LiveController& live, eip::Identity identity, std::uint32_t session,
+             const ServerOptions& o, std::shared_ptr<std::size_t> count)
       : socket(std::move(s)),
         idle(socket.get_executor()),
-        eip(live, live.identity(), session),
+        eip(live, std::move(identity), session),
         options(o),
         connections(std::move(count)) {
     ++*connections;
@@ -149,6 +149,16 @@ void Server::stop() {
 std::uint16_t Server::tcp_port() const { return acceptor_.local_endpoint().port(); }
 std::size_t Server::connections() const { return *live_connections_; }
 
+eip::Identity Server::identity() const {
+  // The socket address item carries the address and port clients reach this server on.
+  eip::Identity id = live_.identity();
+  id.port = tcp_port();
+  std::error_code ec;
+  const auto address = asio::ip::make_address(options_.listen, ec);
+  if (!ec && address.is_v4()) id.ipv4 = address.to_v4().to_uint();
+  return id;
+}
+
 void Server::restart_pacing() { pacing_start_ = std::chrono::steady_clock::now(); }
 
 void Server::accept() {
@@ -163,7 +173,8 @@ void Server::accept() {
     } else {
       std::error_code ignored;
       socket.set_option(asio::ip::tcp::no_delay(true), ignored);
-      auto c = std::make_shared<Connection>(std::move(socket), live_, next_session_++, options_, live_connections_);
+      auto c = std::make_shared<Connection>(std::move(socket), live_, identity(), next_session_++, options_,
+                                            live_connections_);
       spdlog::debug("{}: connected", c->peer);
       c->start();
     }
@@ -182,9 +193,7 @@ void Server::receive_udp() {
     // Only ListIdentity (and ListServices) are answered over UDP; anything else is ignored.
     if (h && h->length + eip::kHeaderSize == n &&
         (h->command == eip::kListIdentity || h->command == eip::kListServices)) {
-      eip::Identity id = live_.identity();
-      id.port = tcp_port();
-      eip::EipSession session(live_, id, 0);
+      eip::EipSession session(live_, identity(), 0);
       auto out = session.handle(std::span<const std::uint8_t>(udp_buffer_.data(), n));
       auto reply = std::make_shared<std::vector<std::uint8_t>>(std::move(out.reply));
       udp_.async_send_to(asio::buffer(*reply), udp_peer_, [reply](const std::error_code&, std::size_t) {});

@@ -57,6 +57,7 @@ class Server {
   void accept();
   void receive_udp();
   void tick();
+  eip::Identity identity() const;
 
   asio::io_context& io_;
   LiveController& live_;

@@ -60,6 +60,16 @@ TEST_F(PcccTest, ReadsTimerSubElementsAndWholeElements) {
   EXPECT_EQ(run({0x0F, 0x00, 1, 0, 0xA2, 0x02, 0x04, 0x86, 0x00, 0x01}), (Bytes{0x4F, 0x00, 1, 0, 0xE8, 0x03}));
 }
 
+TEST_F(PcccTest, SubElementWriteWritesOneWordWhateverTheSize) {
+  // T4:0.PRE = 50 as nodepccc 0.1.17 sends it: FNC AA, size 6 (a whole timer), sub-element 1,
+  // the value in the first word and zeros after. ACC must keep its value.
+  live.controller().set("T4:0.ACC", 33);
+  EXPECT_EQ(run({0x0F, 0x00, 2, 0, 0xAA, 0x06, 0x04, 0x86, 0x00, 0x01, 0x32, 0x00, 0x00, 0x00, 0x00, 0x00}),
+            (Bytes{0x4F, 0x00, 2, 0}));
+  EXPECT_EQ(live.controller().get_int("T4:0.PRE"), 50);
+  EXPECT_EQ(live.controller().get_int("T4:0.ACC"), 33);
+}
+
 TEST_F(PcccTest, WritesAFloatWholeAndReadsItBack) {
   // 12.5f is 41480000h, little-endian 00 00 48 41.
   EXPECT_EQ(run({0x0F, 0x00, 2, 0, 0xAA, 0x04, 0x08, 0x8A, 0x01, 0x00, 0x00, 0x00, 0x48, 0x41}), (Bytes{0x4F, 0x00, 2, 0}));

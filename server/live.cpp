@@ -1,5 +1,6 @@
 #include "server/live.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -73,6 +74,7 @@ int LiveController::advance(Nanoseconds wall_elapsed) {
     ++ran;
   }
   lag_ = controller_.now() < target ? target - controller_.now() : 0;
+  max_lag_ = std::max(max_lag_, lag_);
   return ran;
 }
 

@@ -60,6 +60,8 @@ class LiveController final : public pccc::Target {
   bool paused() const { return options_.paused; }
   // How far virtual time trails the wall clock target after the last advance() (0 when on time).
   Nanoseconds lag() const { return lag_; }
+  // The largest lag seen since start (the pacing bound a run held).
+  Nanoseconds max_lag() const { return max_lag_; }
 
   Controller& controller() { return controller_; }
   const Controller& controller() const { return controller_; }
@@ -85,6 +87,7 @@ class LiveController final : public pccc::Target {
   LiveOptions options_;
   VirtualTime base_ = 0;  // virtual time when pacing (re)started
   Nanoseconds lag_ = 0;
+  Nanoseconds max_lag_ = 0;
   std::uint64_t pending_scans_ = 0;
   std::uint64_t writes_ = 0;
   std::unique_ptr<std::ofstream> journal_;

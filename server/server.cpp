@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 namespace softslc::serve {
 
 // One TCP connection: read a 24-byte header, check its length against the bound, read the data,
@@ -204,7 +206,11 @@ void Server::receive_udp() {
 
 void Server::tick() {
   if (stopped_) return;
-  const auto elapsed = std::chrono::steady_clock::now() - pacing_start_;
+  const auto now = std::chrono::steady_clock::now();
+  if (last_tick_ != std::chrono::steady_clock::time_point{})
+    max_tick_gap_ = std::max(max_tick_gap_, std::chrono::duration_cast<std::chrono::nanoseconds>(now - last_tick_));
+  last_tick_ = now;
+  const auto elapsed = now - pacing_start_;
   live_.advance(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count());
   timer_.expires_after(options_.tick);
   timer_.async_wait([this](const std::error_code& ec) {

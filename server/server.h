@@ -48,6 +48,9 @@ class Server {
   void stop();
   std::uint16_t tcp_port() const;
   std::size_t connections() const;
+  // The longest wall time between two pacing ticks: with LiveController::max_lag() it bounds how
+  // far virtual time trailed the wall clock (times the speed).
+  std::chrono::nanoseconds max_tick_gap() const { return max_tick_gap_; }
   // Restarts the pacing wall clock (after resume()).
   void restart_pacing();
 
@@ -66,6 +69,8 @@ class Server {
   asio::ip::udp::socket udp_;
   asio::steady_timer timer_;
   std::chrono::steady_clock::time_point pacing_start_;
+  std::chrono::steady_clock::time_point last_tick_;
+  std::chrono::nanoseconds max_tick_gap_{0};
   std::uint32_t next_session_ = 0x00010000;
   std::shared_ptr<std::size_t> live_connections_ = std::make_shared<std::size_t>(0);
   std::array<std::uint8_t, 600> udp_buffer_{};

@@ -139,7 +139,9 @@ int run_serve(const ServeOptions& o) {
   io.run();
   live->finish();
   std::cout << "softslc serve: stopped at virtual time " << live->controller().now() << " ns after "
-            << live->controller().scans() << " scans; " << live->writes() << " write(s)" << std::endl;
+            << live->controller().scans() << " scans; " << live->writes() << " write(s); largest lag behind the wall clock "
+            << live->max_lag() / 1000 << " us after a tick, longest tick gap "
+            << server.max_tick_gap().count() / 1000 << " us" << std::endl;
   return kOk;
 }
 

@@ -10,15 +10,8 @@ if ! command -v node > /dev/null; then echo "SKIPPED: no node on this machine"; 
 if [ ! -d "$dir/node_modules" ]; then echo "SKIPPED: client packages not installed (setup.sh failed?)"; exit 77; fi
 work="$(mktemp -d)"
 trap 'kill -INT "$server" 2>/dev/null; rm -rf "$work"' EXIT
-"$softslc" serve "$program" --port 0 --journal "$work/journal" > "$work/out" 2> "$work/log" &
-server=$!
-port=""
-for _ in $(seq 1 100); do
-  port="$(sed -n 's/.*listening on 127\.0\.0\.1:\([0-9]*\).*/\1/p' "$work/out")"
-  [ -n "$port" ] && break
-  sleep 0.1
-done
-if [ -z "$port" ]; then echo "softslc serve did not start:"; cat "$work/out" "$work/log"; exit 1; fi
+source "$(dirname "${BASH_SOURCE[0]}")/../../../tools/lib/serve-start.sh"
+start_serve "$softslc" "$work" "$program" --journal "$work/journal" || exit 1
 head -1 "$work/out"
 NODE_PATH="$dir/node_modules" node "$script" "$port"
 status=$?

@@ -199,12 +199,17 @@ ReplayResult replay(const std::filesystem::path& journal) {
       if (word != "softslc-journal" || version != "1") return fail("not a softslc journal (version 1)");
       continue;
     }
+    // Paths may contain spaces: the program path is everything between "program " and the
+    // fingerprint (the last word), the bench path everything after "bench ".
     if (word == "program") {
-      ls >> program >> fingerprint;
+      const auto last = line.rfind(' ');
+      if (last == std::string::npos || last <= 8) return fail("expected: program PATH FINGERPRINT");
+      program = line.substr(8, last - 8);
+      fingerprint = line.substr(last + 1);
       continue;
     }
     if (word == "bench") {
-      ls >> bench;
+      bench = line.size() > 6 ? line.substr(6) : std::string();
       try {
         r.controller = Controller::load(program, bench == "-" ? std::nullopt : std::optional<std::filesystem::path>(bench));
       } catch (const ControllerError& e) {

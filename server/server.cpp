@@ -56,6 +56,10 @@ struct Server::Connection : std::enable_shared_from_this<Server::Connection> {
       }
       self->arm_idle();
       const auto h = eip::decode_header(self->frame);
+      if (!h) {  // cannot happen: 24 bytes were read; closing is the safe answer all the same
+        self->close();
+        return;
+      }
       if (h->length > self->options.max_frame) {
         spdlog::warn("{}: frame of {} data bytes exceeds the limit of {}; connection closed", self->peer, h->length,
                      self->options.max_frame);
@@ -110,7 +114,7 @@ struct Server::Connection : std::enable_shared_from_this<Server::Connection> {
   asio::ip::tcp::socket socket;
   asio::steady_timer idle;
   eip::EipSession eip;
-  const ServerOptions& options;
+  const ServerOptions options;  // a copy: a connection's handlers may outlive the Server
   std::shared_ptr<std::size_t> connections;
   std::vector<std::uint8_t> frame;
   std::vector<std::uint8_t> reply;

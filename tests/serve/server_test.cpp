@@ -16,7 +16,7 @@ using asio::ip::tcp;
 
 class ServerTest : public ::testing::Test {
  protected:
-  void start(LiveOptions lo = {}, ServerOptions so = {}) {
+  void start(const LiveOptions& lo = {}, ServerOptions so = {}) {
     live_.emplace(hmi_program(), std::nullopt, lo);
     live_->controller().force("I:1/3", false);
     so.port = 0;

@@ -18,7 +18,8 @@ build="${SOFTSLC_BUILD_DIR:-$root/build}"
 source "$root/tools/lib/ensure-packages.sh"
 ensure_packages g++ cmake ninja-build pkg-config tao-pegtl-dev libcli11-dev libspdlog-dev libgtest-dev libgmock-dev \
   libbenchmark-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev python3 \
-  libolecf-dev libbfio-dev zlib1g-dev poppler-utils
+  libolecf-dev libbfio-dev zlib1g-dev poppler-utils \
+  libasio-dev nodejs npm
 
 # Extra configure options (the sanitizer job of .ci/run passes -DSOFTSLC_SANITIZE=ON).
 read -r -a extra <<< "${SOFTSLC_CMAKE_ARGS:-}"

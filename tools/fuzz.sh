@@ -15,12 +15,12 @@ build="${SOFTSLC_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 
 source "$root/tools/lib/ensure-packages.sh"
 ensure_packages clang libclang-rt-14-dev cmake ninja-build tao-pegtl-dev libcli11-dev libspdlog-dev libgtest-dev \
-  libgmock-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libolecf-dev libbfio-dev zlib1g-dev
+  libgmock-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libolecf-dev libbfio-dev zlib1g-dev libasio-dev
 
 mkdir -p "$build"
 CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSLC_FUZZ=ON \
   -DSOFTSLC_TESTS=ON -DSOFTSLC_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS=-Wno-unused-command-line-argument > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-targets=(program address testfile bench scanport_message transaction dem rss)
+targets=(program address testfile bench scanport_message transaction dem rss pccc eip)
 cmake --build "$build" --target "${targets[@]/%/_fuzz}"
 
 corpus="$build/corpus"
@@ -48,6 +48,15 @@ printf "$(words 0x0101 0x0006 0x0E14 0x0001 0x0001 0x0001)" > "$corpus/transacti
 printf "$(words 0 2 0 0 0 0 0x0001 0x0000 0x0E14 0x0001 0x0001 0x0001)" > "$corpus/dem/get-vendor-id"
 head -c $((4 * 70 - 24)) /dev/zero >> "$corpus/dem/get-vendor-id"
 printf '\x01\x31\x31\x00\x01\x00' >> "$corpus/dem/get-vendor-id"
+
+# `softslc serve`: a typed read of N7:0 (1770-6.5.16 CMD 0F FNC A2), a masked bit write (FNC AB),
+# a diagnostic status (CMD 06 FNC 03); nodepccc's RegisterSession frame, and the CPF of a
+# SendRRData carrying Execute PCCC with the same read.
+printf '\x0f\x00\x34\x12\xa2\x02\x07\x89\x00\x00' > "$corpus/pccc/read-n7-0"
+printf '\x0f\x00\x01\x00\xab\x02\x03\x85\x00\x00\x02\x00\x02\x00' > "$corpus/pccc/mask-b3-0-1"
+printf '\x06\x00\x01\x00\x03' > "$corpus/pccc/diagnostic-status"
+printf '\x65\x00\x04\x00\x00\x00\x00\x00\x00\x00\x00\x00\x0a\x0b\x0c\x0d\x0e\x0f\x0a\x0b\x00\x00\x00\x00\x01\x00\x00\x00' > "$corpus/eip/register-session"
+printf '\x02\x00\x00\x00\x00\x00\xb2\x00\x17\x00\x4b\x02\x20\x67\x24\x01\x07\x00\x00\x01\x02\x03\x04\x0f\x00\x34\x12\xa2\x02\x07\x89\x00\x00' > "$corpus/eip/execute-pccc-cpf"
 
 # The targets run two at a time (one per core of the 2-core machines CI runs on); each one's
 # output is kept in its own log and printed in target order, so the log reads the same whatever

@@ -1,5 +1,6 @@
 #include "tools/controller/controller.h"
 
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -7,6 +8,7 @@
 #include "parser/address.h"
 #include "parser/checker.h"
 #include "parser/loader.h"
+#include "vm/state_file.h"
 
 namespace softslc {
 
@@ -86,8 +88,23 @@ void Controller::apply(const ControllerCall& c, bool record) {
     case ControllerCall::Kind::SetMode: check(rt.set_mode(c.mode), "set_mode", to_string(c.mode)); break;
     case ControllerCall::Kind::ClearFault: rt.clear_fault(); break;
     case ControllerCall::Kind::Inject: check(rt.inject(c.target, c.change, c.args), "inject", c.target); break;
+    case ControllerCall::Kind::SetWord: {
+      // No address names one word of a string element, so the word is located from the
+      // element's own location; the range was checked when the call was made.
+      std::string error;
+      auto a = parse_address(c.target, &error);
+      std::optional<Location> loc;
+      if (a) loc = rt.data().layout().locate(*a, &error);
+      if (!loc) throw ControllerError("set_word " + c.target + ": " + error);
+      const FileLayout& f = rt.data().layout().files[static_cast<std::size_t>(loc->file)];
+      if (c.word < 0 || c.word >= f.words_per_element)
+        throw ControllerError("set_word " + c.target + ": the element has words 0-" +
+                              std::to_string(f.words_per_element - 1));
+      rt.data().set_word(loc->word + static_cast<std::uint32_t>(c.word), static_cast<std::uint16_t>(c.integer));
+      break;
+    }
   }
-  if (record) journal_.push_back(c);
+  if (record && keep_journal_) journal_.push_back(c);
 }
 
 void Controller::set(std::string_view target, std::int64_t value) {
@@ -136,7 +153,7 @@ int Controller::scan(int n) {
   ControllerCall c;
   c.kind = ControllerCall::Kind::Scans;
   c.integer = n;
-  journal_.push_back(c);
+  if (keep_journal_) journal_.push_back(c);
   return runtime_->scan(n);
 }
 
@@ -144,7 +161,7 @@ int Controller::run_for(Nanoseconds duration) {
   ControllerCall c;
   c.kind = ControllerCall::Kind::RunFor;
   c.integer = duration;
-  journal_.push_back(c);
+  if (keep_journal_) journal_.push_back(c);
   return runtime_->run_for(duration);
 }
 
@@ -157,7 +174,7 @@ bool Controller::run_until(const std::function<bool(const Controller&)>& conditi
     ControllerCall c;
     c.kind = ControllerCall::Kind::RunFor;
     c.integer = runtime_->now() - start;
-    journal_.push_back(c);
+    if (keep_journal_) journal_.push_back(c);
   }
   return held;
 }
@@ -212,6 +229,179 @@ void Controller::restore(const Snapshot& s) {
   run.mode = Mode::Run;
   apply(run, false);
   for (const auto& c : s.journal_) apply(c, true);
+}
+
+// ---- Data files word by word ----
+
+std::optional<Controller::FileInfo> Controller::file_info(int number) const {
+  if (number < 0 || number > 255) return std::nullopt;
+  const FileLayout& f = runtime_->data().layout().files[static_cast<std::size_t>(number)];
+  if (!f.present) return std::nullopt;
+  FileInfo info;
+  info.type = f.type;
+  info.number = number;
+  info.elements = f.elements;
+  info.words_per_element = f.words_per_element;
+  return info;
+}
+
+bool Controller::read_file_words(int number, std::uint32_t offset, std::span<std::uint16_t> out) const {
+  auto info = file_info(number);
+  if (!info || offset > info->words() || out.size() > info->words() - offset) return false;
+  const FileLayout& f = runtime_->data().layout().files[static_cast<std::size_t>(number)];
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = runtime_->data().word(f.base + offset + static_cast<std::uint32_t>(i));
+  return true;
+}
+
+namespace {
+
+// The address of word `w` (0-based within the file) of an I or O file: the slot whose image
+// holds it, and the word within the slot.
+std::optional<Address> io_word_address(const DataTableLayout& L, FileType type, std::uint32_t w) {
+  const auto& slots = type == FileType::Input ? L.input_slots : L.output_slots;
+  for (int s = 0; s < kMaxSlots; ++s) {
+    const SlotImage& img = slots[static_cast<std::size_t>(s)];
+    if (img.present && w >= img.first && w < img.first + img.words) {
+      Address a;
+      a.type = type;
+      a.file = static_cast<std::uint16_t>(fixed_file_number(type));
+      a.element = s;
+      a.word = static_cast<std::int32_t>(w - img.first);
+      return a;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+Controller::WriteResult Controller::write_file_words(int number, std::uint32_t offset,
+                                                     std::span<const std::uint16_t> values,
+                                                     std::span<const std::uint16_t> masks) {
+  WriteResult result;
+  try {
+    write_file_words_or_throw(number, offset, values, masks, result.calls);
+  } catch (const ControllerError& e) {
+    result.error = e.what();
+  }
+  return result;
+}
+
+void Controller::write_file_words_or_throw(int number, std::uint32_t offset, std::span<const std::uint16_t> values,
+                                           std::span<const std::uint16_t> masks, std::vector<ControllerCall>& calls) {
+  const std::string where = "write file " + std::to_string(number) + " word " + std::to_string(offset);
+  auto info = file_info(number);
+  if (!info) throw ControllerError(where + ": the file does not exist");
+  if (masks.size() != values.size()) throw ControllerError(where + ": one mask per word");
+  if (offset > info->words() || values.size() > info->words() - offset)
+    throw ControllerError(where + ": " + std::to_string(values.size()) + " word(s) do not fit in the file");
+  const DataTableLayout& L = runtime_->data().layout();
+  const auto wpe = static_cast<std::uint32_t>(info->words_per_element);
+  const auto emit = [&](ControllerCall c) {
+    apply(c, true);
+    calls.push_back(std::move(c));
+  };
+  std::vector<std::uint16_t> old(values.size());
+  read_file_words(number, offset, old);
+  const auto merged = [&](std::size_t i) {
+    return static_cast<std::uint16_t>((old[i] & ~masks[i]) | (values[i] & masks[i]));
+  };
+  for (std::size_t i = 0; i < values.size();) {
+    const std::uint32_t w = offset + static_cast<std::uint32_t>(i);
+    Address a;
+    a.type = info->type;
+    a.file = static_cast<std::uint16_t>(number);
+    a.element = static_cast<std::int32_t>(w / wpe);
+    const int sub = static_cast<int>(w % wpe);
+    if (masks[i] == 0) {
+      ++i;
+      continue;
+    }
+    if (is_io(info->type)) {
+      auto io = io_word_address(L, info->type, w);
+      if (!io) throw ControllerError(where + ": no slot holds image word " + std::to_string(w));
+      a = *io;
+    } else if (is_structured(info->type)) {
+      a.word = sub;
+    }
+    if (info->type == FileType::Float || info->type == FileType::Long) {
+      // A 32-bit value is written whole, from both of its words (the half outside the request
+      // keeps its value), so a float never passes through a half-written pattern.
+      std::uint16_t pair[2];
+      read_file_words(number, w - static_cast<std::uint32_t>(sub), pair);
+      pair[sub] = merged(i);
+      if (sub == 0 && i + 1 < values.size()) pair[1] = merged(i + 1);
+      std::uint32_t bits = static_cast<std::uint32_t>(pair[0]) | (static_cast<std::uint32_t>(pair[1]) << 16);
+      ControllerCall c;
+      c.target = to_string(a);
+      if (info->type == FileType::Float) {
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        c.kind = ControllerCall::Kind::SetFloat;
+        c.real = static_cast<double>(f);
+      } else {
+        c.kind = ControllerCall::Kind::Set;
+        c.integer = static_cast<std::int32_t>(bits);
+      }
+      emit(std::move(c));
+      i += (sub == 0 && i + 1 < values.size()) ? 2 : 1;
+      continue;
+    }
+    if (info->type == FileType::String) {
+      ControllerCall c;
+      c.kind = ControllerCall::Kind::SetWord;
+      c.target = to_string(a);
+      c.word = sub;
+      c.integer = merged(i);
+      emit(std::move(c));
+      ++i;
+      continue;
+    }
+    if (masks[i] == 0xFFFF) {
+      ControllerCall c;
+      c.kind = ControllerCall::Kind::Set;
+      c.target = to_string(a);
+      c.integer = static_cast<std::int16_t>(values[i]);
+      emit(std::move(c));
+    } else {
+      // A masked write changes only the masked bits: one bit write per bit, as `--set B3:0/4=1`.
+      for (int b = 0; b < 16; ++b) {
+        if (!((masks[i] >> b) & 1u)) continue;
+        Address bit = a;
+        bit.bit = b;
+        ControllerCall c;
+        c.kind = ControllerCall::Kind::Set;
+        c.target = to_string(bit);
+        c.integer = (values[i] >> b) & 1u;
+        emit(std::move(c));
+      }
+    }
+    ++i;
+  }
+}
+
+void Controller::set_word(std::string_view element, int word, std::uint16_t value) {
+  ControllerCall c;
+  c.kind = ControllerCall::Kind::SetWord;
+  c.target = address_of(element);
+  c.word = word;
+  c.integer = value;
+  apply(c, true);
+}
+
+void Controller::perform(const ControllerCall& call) {
+  switch (call.kind) {
+    case ControllerCall::Kind::Scans: scan(static_cast<int>(call.integer)); break;
+    case ControllerCall::Kind::RunFor: run_for(call.integer); break;
+    default: apply(call, true); break;
+  }
+}
+
+std::uint32_t Controller::data_digest() const {
+  // The state file's CRC-32 over the words as the host stores them (little-endian on every
+  // host softslc targets, as the state file assumes).
+  const DataTable& d = runtime_->data();
+  return crc32(d.words(), static_cast<std::size_t>(d.size()) * sizeof(std::uint16_t));
 }
 
 Runtime& Controller::runtime() { return *runtime_; }

@@ -27,6 +27,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -45,10 +46,11 @@ class ControllerError : public std::runtime_error {
 
 // One state-changing call, as a snapshot journal records it.
 struct ControllerCall {
-  enum class Kind : std::uint8_t { Set, SetFloat, Force, Unforce, Scans, RunFor, SetMode, ClearFault, Inject };
+  enum class Kind : std::uint8_t { Set, SetFloat, Force, Unforce, Scans, RunFor, SetMode, ClearFault, Inject, SetWord };
   Kind kind = Kind::Scans;
   std::string target;  // address (symbols resolved) or device
-  std::int64_t integer = 0;  // Set: value; Force: 0/1; Scans: how many; RunFor: nanoseconds
+  std::int64_t integer = 0;  // Set, SetWord: value; Force: 0/1; Scans: how many; RunFor: nanoseconds
+  int word = 0;              // SetWord: the word within the element
   double real = 0.0;         // SetFloat
   Mode mode = Mode::Run;     // SetMode
   std::string change;        // Inject
@@ -92,6 +94,40 @@ class Controller {
   void force(std::string_view target, bool on);
   void unforce(std::string_view target);
 
+  // ---- Data files word by word (network servers: PCCC, Modbus) ----
+  // A data file as a protocol addresses it: element e, word w of the element is word
+  // e * words_per_element + w of the file. The I and O files have one word per element, in
+  // image order (slot 1's words first), as PCCC's logical-by-slot I/O types number them.
+  struct FileInfo {
+    FileType type = FileType::Integer;
+    int number = 0;
+    std::uint32_t elements = 0;
+    int words_per_element = 1;
+    std::uint32_t words() const { return elements * static_cast<std::uint32_t>(words_per_element); }
+  };
+  std::optional<FileInfo> file_info(int number) const;
+  // Copies out.size() words starting at word `offset` of data file `number`; false (nothing
+  // copied) when the file does not exist or the range does not fit in it.
+  bool read_file_words(int number, std::uint32_t offset, std::span<std::uint16_t> out) const;
+  // Writes words of a data file: bits set in masks[i] take the bits of values[i]. Every word goes
+  // through the same path as set()/set_float() (an I word sets the field input, a float is
+  // written whole), so forces and module rules hold; string words, which no address names
+  // singly, go through set_word(). Returns the calls performed, in order (also recorded in the
+  // snapshot journal when it is kept), and why the write stopped early, if it did (a range
+  // outside the file performs nothing; a refused word stops the write there).
+  struct WriteResult {
+    std::vector<ControllerCall> calls;
+    std::string error;
+  };
+  WriteResult write_file_words(int number, std::uint32_t offset, std::span<const std::uint16_t> values,
+                               std::span<const std::uint16_t> masks);
+  // Writes word `word` of an element that has several (ST9:0 word 5) as a raw 16-bit pattern.
+  void set_word(std::string_view element, int word, std::uint16_t value);
+  // Performs one recorded call (a journal's replay).
+  void perform(const ControllerCall& call);
+  // A CRC-32 of every word of the data table, for comparing histories.
+  std::uint32_t data_digest() const;
+
   // ---- Running (virtual time) ----
   // Runs n scan cycles; returns how many ran (fewer when the processor faulted).
   int scan(int n = 1);
@@ -115,6 +151,9 @@ class Controller {
   std::vector<std::string> devices() const;
 
   // ---- Snapshots ----
+  // Whether state-changing calls are recorded for snapshot() (on by default). A long-running
+  // server turns it off: it keeps its own journal, and a snapshot journal would grow forever.
+  void keep_journal(bool on) { keep_journal_ = on; }
   Snapshot snapshot() const;
   void restore(const Snapshot& s);
 
@@ -131,10 +170,13 @@ class Controller {
   std::string address_of(std::string_view target) const;
   // Performs a call on the current processor; records it in the journal when `record`.
   void apply(const ControllerCall& c, bool record);
+  void write_file_words_or_throw(int number, std::uint32_t offset, std::span<const std::uint16_t> values,
+                                 std::span<const std::uint16_t> masks, std::vector<ControllerCall>& calls);
 
   std::shared_ptr<const Loaded> loaded_;
   std::unique_ptr<Runtime> runtime_;
   std::vector<ControllerCall> journal_;
+  bool keep_journal_ = true;
 };
 
 }  // namespace softslc

@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cmd_render.h"
+#include "cmd_serve.h"
 #include "commands.h"
 #include "tools/testrunner/test_command.h"
 
@@ -104,6 +105,11 @@ int main(int argc, char** argv) {
   auto* instructions_cmd =
       app.add_subcommand("instructions", "List the instruction table: operands in text order, kinds, ranges");
 
+  ServeOptions serve;
+  auto* serve_cmd = add_serve_command(app, serve);
+  ReplayOptions replay;
+  auto* replay_cmd = add_replay_command(app, replay);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -130,6 +136,8 @@ int main(int argc, char** argv) {
     if (*run_cmd) return run_run(run);
     if (*disasm_cmd) return run_disasm(disasm);
     if (*render_cmd) return run_render(render);
+    if (*serve_cmd) return run_serve(serve);
+    if (*replay_cmd) return run_replay(replay);
   } catch (const std::exception& e) {
     std::cerr << "softslc: internal error (please report it with the input): " << e.what() << "\n";
     return kInputError;

@@ -1,0 +1,81 @@
+// The network face of `softslc serve`: EtherNet/IP on TCP and UDP, on one Asio io_context.
+//
+// Everything runs on the caller's io_context in one thread: the accept loop, every connection's
+// reads and writes, the UDP ListIdentity responder and the pacing timer that advances the
+// LiveController. So a request is always handled between two scans, with no lock, and the
+// journal's order is the order things happened. A later web view (HTTP + WebSocket, issue 19)
+// adds its own acceptor to the same io_context and reads the controller from its handlers, on
+// the same thread, the same way (docs/serve.md).
+//
+// Bounds (ServerOptions, all documented in docs/serve.md): connections at once, the largest
+// encapsulation frame accepted, and idle time per connection. A connection past the limit is
+// accepted and closed at once (the client sees the refusal), a frame longer than the limit
+// closes its connection before any of it is read into memory, a connection silent longer than
+// the idle time is closed. Each closure is logged with spdlog; none affects other connections.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <asio.hpp>
+
+#include "server/live.h"
+
+namespace softslc::serve {
+
+struct ServerOptions {
+  std::string listen = "127.0.0.1";
+  std::uint16_t port = eip::kPort;  // 0: any free port (tests)
+  std::size_t max_connections = 64;
+  std::size_t max_frame = 4096;  // encapsulation data bytes
+  std::chrono::milliseconds idle_timeout{60000};
+  std::chrono::milliseconds tick{10};  // pacing timer period
+};
+
+class Server {
+ public:
+  Server(asio::io_context& io, LiveController& live, ServerOptions options);
+  ~Server();
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  // Opens the sockets and starts accepting and pacing. Throws std::system_error when the
+  // address cannot be bound.
+  void start();
+  // Closes every socket and stops the timer; the io_context then runs out of work.
+  void stop();
+  std::uint16_t tcp_port() const;
+  std::size_t connections() const;
+  // The longest wall time between two pacing ticks: with LiveController::max_lag() it bounds how
+  // far virtual time trailed the wall clock (times the speed).
+  std::chrono::nanoseconds max_tick_gap() const { return max_tick_gap_; }
+  // Restarts the pacing wall clock (after resume()).
+  void restart_pacing();
+
+  struct Connection;
+
+ private:
+  void accept();
+  void receive_udp();
+  void tick();
+  eip::Identity identity() const;
+
+  asio::io_context& io_;
+  LiveController& live_;
+  ServerOptions options_;
+  asio::ip::tcp::acceptor acceptor_;
+  asio::ip::udp::socket udp_;
+  asio::steady_timer timer_;
+  std::chrono::steady_clock::time_point pacing_start_;
+  std::chrono::steady_clock::time_point last_tick_;
+  std::chrono::nanoseconds max_tick_gap_{0};
+  std::uint32_t next_session_ = 0x00010000;
+  std::shared_ptr<std::size_t> live_connections_ = std::make_shared<std::size_t>(0);
+  std::array<std::uint8_t, 600> udp_buffer_{};
+  asio::ip::udp::endpoint udp_peer_;
+  bool stopped_ = false;
+};
+
+}  // namespace softslc::serve

@@ -1,0 +1,72 @@
+// What must hold for any bytes a network client sends `softslc serve` (server/pccc.h,
+// server/eip.h): the decoders never read past their input or throw, a PCCC command that
+// decodes always gets a reply with the request's TNS and CMD | 40h, and an encapsulation frame
+// either gets a well-formed reply frame, nothing (NOP), or closes the connection. Each property
+// returns an empty string when it holds, else what broke. The fuzz targets run them on random
+// bytes; serve_tests runs them on the protocol documents' frames.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "server/eip.h"
+#include "server/live.h"
+#include "server/pccc.h"
+
+namespace softslc::fuzz {
+
+// One live controller for every input: loading a program per input would make the fuzzer slow;
+// writes accumulate, which is what a long-running server sees too.
+inline serve::LiveController& serve_live() {
+  static serve::LiveController live(std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder/serve/hmi_panel.slc",
+                                    std::nullopt, {});
+  return live;
+}
+
+inline std::span<const std::uint8_t> as_bytes(std::string_view in) {
+  return {reinterpret_cast<const std::uint8_t*>(in.data()), in.size()};
+}
+
+inline std::string check_pccc_property(std::string_view input) {
+  const auto bytes = as_bytes(input);
+  std::string error;
+  auto request = pccc::decode(bytes, &error);
+  if (!request) return error.empty() ? "PCCC decode failed without saying why" : std::string();
+  const auto reply = pccc::execute(*request, serve_live());
+  if (reply.size() < 4) return "PCCC reply shorter than CMD, STS, TNS";
+  if (reply[0] != (request->cmd | pccc::kReplyBit)) return "PCCC reply CMD is not the request's | 40h";
+  if ((reply[2] | (reply[3] << 8)) != request->tns) return "PCCC reply TNS differs from the request's";
+  if (reply.size() > 4 + 24 + pccc::kMaxDataBytes) return "PCCC reply longer than the largest read";
+  return {};
+}
+
+// The input is tried twice: as a whole frame on a fresh connection, and as the CPF data of a
+// SendRRData on a registered session (so the fuzzer reaches CIP and PCCC without having to
+// guess the session handle).
+inline std::string check_eip_property(std::string_view input) {
+  const auto check_outcome = [](const eip::Outcome& o) -> std::string {
+    if (o.reply.empty()) return {};
+    auto h = eip::decode_header(o.reply);
+    if (!h || h->length + eip::kHeaderSize != o.reply.size()) return "reply frame length disagrees with its header";
+    return {};
+  };
+  {
+    eip::EipSession session(serve_live(), serve_live().identity(), 7);
+    if (auto broken = check_outcome(session.handle(as_bytes(input))); !broken.empty()) return broken;
+  }
+  eip::EipSession session(serve_live(), serve_live().identity(), 7);
+  const std::uint8_t reg[28] = {0x65, 0, 4, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0};
+  (void)session.handle(reg);
+  if (input.size() > 60000) return {};
+  std::vector<std::uint8_t> frame = {0x6F, 0, 0, 0, 7, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 10, 0};
+  frame.insert(frame.end(), input.begin(), input.end());
+  const auto len = static_cast<std::uint16_t>(frame.size() - eip::kHeaderSize);
+  frame[2] = static_cast<std::uint8_t>(len & 0xFF);
+  frame[3] = static_cast<std::uint8_t>(len >> 8);
+  return check_outcome(session.handle(frame));
+}
+
+}  // namespace softslc::fuzz

@@ -1,0 +1,174 @@
+// `softslc serve PROGRAM`: runs the program paced to the wall clock and answers EtherNet/IP
+// (PCCC) clients; `softslc replay JOURNAL`: replays a serve session's journal and checks that
+// the data table went through the same states.
+//
+// The server, its pacing timer, the signal handler and the console reader all run on one
+// io_context in this thread (server/server.h says why). The console takes one command a line:
+// `step [N]` runs N scans (paused or not), `pause`, `resume`, `quit`; with --paused it is how a
+// session is single-stepped.
+#include "tools/softslc/cmd_serve.h"
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+#include <unistd.h>
+
+#include <iostream>
+#include <sstream>
+
+#include "server/server.h"
+#include "tools/softslc/commands.h"
+
+namespace softslc::cli {
+
+CLI::App* add_serve_command(CLI::App& app, ServeOptions& o) {
+  auto* cmd = app.add_subcommand("serve", "Run a program paced to the wall clock and serve its data table to "
+                                          "EtherNet/IP (PCCC) clients: HMIs, SCADA, test scripts");
+  cmd->add_option("PROGRAM", o.program, "program file")->required();
+  cmd->add_option("--bench", o.bench, "bench file of simulated field devices (docs/bench-format.md)");
+  cmd->add_option("--speed", o.speed, "virtual seconds per wall second (default 1)")->check(CLI::Range(0.001, 1000.0));
+  cmd->add_flag("--paused", o.paused, "start paused; type `step [N]` or `resume` on standard input");
+  cmd->add_option("--listen", o.listen, "address to listen on (default 127.0.0.1: this machine only)");
+  cmd->add_option("--port", o.port, "TCP and UDP port (default 44818; 0 picks a free one)")->check(CLI::Range(0, 65535));
+  cmd->add_flag("--read-only", o.read_only, "refuse every write (PCCC EXT STS 10h, no access)");
+  cmd->add_option("--journal", o.journal, "write every client write, with its virtual time, to FILE (softslc replay)")
+      ->type_name("FILE");
+  cmd->add_option("--max-connections", o.max_connections, "connections at once (default 64)")->check(CLI::Range(1, 4096));
+  cmd->add_option("--idle", o.idle_seconds, "close a connection silent this many seconds (default 60)")
+      ->check(CLI::Range(1, 86400));
+  cmd->add_flag("-v,--verbose", o.verbose, "log every refused request, not only closed connections");
+  return cmd;
+}
+
+namespace {
+
+// Reads console commands from standard input on the io_context.
+class Console : public std::enable_shared_from_this<Console> {
+ public:
+  Console(asio::io_context& io, serve::LiveController& live, serve::Server& server)
+      : io_(io), in_(io, ::dup(STDIN_FILENO)), live_(live), server_(server) {}
+  void start() { read(); }
+
+ private:
+  void read() {
+    asio::async_read_until(in_, buffer_, '\n', [self = shared_from_this()](const std::error_code& ec, std::size_t) {
+      if (ec) return;  // end of input: the server goes on until a signal
+      std::istream is(&self->buffer_);
+      std::string line;
+      std::getline(is, line);
+      self->command(line);
+      self->read();
+    });
+  }
+  void command(const std::string& line) {
+    std::istringstream ls(line);
+    std::string word;
+    ls >> word;
+    if (word == "step") {
+      int n = 1;
+      ls >> n;
+      if (n < 1 || n > 1000000) n = 1;
+      live_.step(n);
+      std::cout << "stepped " << n << " scan(s); virtual time " << live_.controller().now() << " ns" << std::endl;
+    } else if (word == "pause") {
+      live_.pause();
+      std::cout << "paused at virtual time " << live_.controller().now() << " ns" << std::endl;
+    } else if (word == "resume") {
+      live_.resume();
+      server_.restart_pacing();
+      std::cout << "running" << std::endl;
+    } else if (word == "quit") {
+      server_.stop();
+      io_.stop();
+    } else if (!word.empty()) {
+      std::cout << "commands: step [N], pause, resume, quit" << std::endl;
+    }
+  }
+
+  asio::io_context& io_;
+  asio::posix::stream_descriptor in_;
+  asio::streambuf buffer_{4096};
+  serve::LiveController& live_;
+  serve::Server& server_;
+};
+
+}  // namespace
+
+int run_serve(const ServeOptions& o) {
+  spdlog::set_default_logger(spdlog::stderr_color_st("serve"));
+  spdlog::set_level(o.verbose ? spdlog::level::debug : spdlog::level::info);
+  serve::LiveOptions lo;
+  lo.speed = o.speed;
+  lo.paused = o.paused;
+  lo.read_only = o.read_only;
+  if (!o.journal.empty()) lo.journal = o.journal;
+  std::optional<serve::LiveController> live;
+  try {
+    live.emplace(o.program, o.bench.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.bench), lo);
+  } catch (const ControllerError& e) {
+    std::cerr << e.what() << "\n";
+    return kInputError;
+  }
+  asio::io_context io;
+  serve::ServerOptions so;
+  so.listen = o.listen;
+  so.port = static_cast<std::uint16_t>(o.port);
+  so.max_connections = static_cast<std::size_t>(o.max_connections);
+  so.idle_timeout = std::chrono::seconds(o.idle_seconds);
+  serve::Server server(io, *live, so);
+  try {
+    server.start();
+  } catch (const std::exception& e) {
+    std::cerr << "softslc serve: cannot listen on " << o.listen << ":" << o.port << ": " << e.what() << "\n";
+    return kInputError;
+  }
+  std::cout << "softslc serve: " << live->controller().program().processor.catalog << " listening on " << o.listen
+            << ":" << server.tcp_port() << " (EtherNet/IP, TCP and UDP)"
+            << (o.read_only ? ", read-only" : "") << (o.paused ? ", paused" : "") << ", speed " << o.speed << std::endl;
+  if (o.listen != "127.0.0.1" && o.listen != "::1")
+    std::cout << "softslc serve: warning: listening on " << o.listen
+              << ", reachable from other machines; PCCC has no authentication" << std::endl;
+
+  asio::signal_set signals(io, SIGINT, SIGTERM);
+  signals.async_wait([&](const std::error_code& ec, int) {
+    if (ec) return;
+    server.stop();
+    io.stop();
+  });
+  auto console = std::make_shared<Console>(io, *live, server);
+  console->start();
+  io.run();
+  live->finish();
+  std::cout << "softslc serve: stopped at virtual time " << live->controller().now() << " ns after "
+            << live->controller().scans() << " scans; " << live->writes() << " write(s); largest lag behind the wall clock "
+            << live->max_lag() / 1000 << " us after a tick, longest tick gap "
+            << server.max_tick_gap().count() / 1000 << " us" << std::endl;
+  return kOk;
+}
+
+CLI::App* add_replay_command(CLI::App& app, ReplayOptions& o) {
+  auto* cmd = app.add_subcommand("replay", "Replay a `softslc serve --journal` file and check that the data table "
+                                           "goes through the same states; exit 0 identical, 1 diverged");
+  cmd->add_option("JOURNAL", o.journal, "journal file")->required();
+  cmd->add_option("--print", o.prints, "address or symbol to print after the replay, in order");
+  return cmd;
+}
+
+int run_replay(const ReplayOptions& o) {
+  auto r = serve::replay(o.journal);
+  if (!r.ok) {
+    std::cerr << r.message << "\n";
+    return kInputError;
+  }
+  std::cout << r.message << "\n";
+  for (const auto& p : o.prints) {
+    try {
+      std::cout << p << " = " << r.controller->get(p).to_string() << "\n";
+    } catch (const ControllerError& e) {
+      std::cerr << e.what() << "\n";
+      return kInputError;
+    }
+  }
+  return kOk;
+}
+
+}  // namespace softslc::cli

@@ -1,0 +1,37 @@
+// `softslc serve` and `softslc replay`: the live controller on the network, and the replay of its
+// journal (server/live.h, server/server.h, docs/serve.md). Each command registers its own options
+// so main.cpp only adds two lines per command.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace softslc::cli {
+
+struct ServeOptions {
+  std::string program;
+  std::string bench;
+  double speed = 1.0;
+  bool paused = false;
+  std::string listen = "127.0.0.1";
+  int port = 44818;
+  bool read_only = false;
+  std::string journal;
+  int max_connections = 64;
+  int idle_seconds = 60;
+  bool verbose = false;
+};
+CLI::App* add_serve_command(CLI::App& app, ServeOptions& o);
+int run_serve(const ServeOptions& o);
+
+struct ReplayOptions {
+  std::string journal;
+  std::vector<std::string> prints;
+};
+CLI::App* add_replay_command(CLI::App& app, ReplayOptions& o);
+int run_replay(const ReplayOptions& o);
+
+}  // namespace softslc::cli

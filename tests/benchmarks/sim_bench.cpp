@@ -18,6 +18,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+
+#include "tests/benchmarks/generated_rung.h"
 #include <vector>
 
 #include "parser/loader.h"
@@ -61,17 +63,7 @@ std::string generate_program(int rungs) {
     for (int f = 0; f < files; ++f) s += "SOR JSR " + std::to_string(10 + f) + " EOR\n";
   for (int i = 0; i < rungs; ++i) {
     if (files > 1 && i % kPerFile == 0) s += "LADDER " + std::to_string(10 + i / kPerFile) + "\nSOR SBR OTE B3:255/0 EOR\n";
-    const std::string n = std::to_string(i % 200);
-    switch (i % 5) {
-      case 0:
-        s += "SOR XIC I:1/" + std::to_string(i % 16) + " BST XIC B3:" + n + "/1 NXB XIO B3:" + n + "/2 BND OTE B3:" + n +
-             "/3 EOR\n";
-        break;
-      case 1: s += "SOR XIC B3:" + n + "/3 TON T4:" + n + " 0.01 100 0 EOR\n"; break;
-      case 2: s += "SOR XIC T4:" + n + "/DN BST CTU C5:" + n + " 10 0 NXB ADD N7:" + n + " 1 N7:" + n + " BND EOR\n"; break;
-      case 3: s += "SOR GEQ N7:" + n + " 100 BST MOV 0 N7:" + n + " NXB OTL B3:" + n + "/4 BND EOR\n"; break;
-      case 4: s += "SOR XIC B3:" + n + "/4 XIO C5:" + n + "/DN OTE O:2/" + std::to_string(i % 16) + " EOR\n"; break;
-    }
+    s += bench::generated_rung(i);
   }
   return s;
 }

@@ -122,7 +122,7 @@ struct Server::Connection : std::enable_shared_from_this<Server::Connection> {
 };
 
 Server::Server(asio::io_context& io, LiveController& live, ServerOptions options)
-    : io_(io), live_(live), options_(std::move(options)), acceptor_(io), udp_(io), timer_(io) {}
+    : live_(live), options_(std::move(options)), acceptor_(io), udp_(io), timer_(io) {}
 
 Server::~Server() = default;
 

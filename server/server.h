@@ -62,7 +62,6 @@ class Server {
   void tick();
   eip::Identity identity() const;
 
-  asio::io_context& io_;
   LiveController& live_;
   ServerOptions options_;
   asio::ip::tcp::acceptor acceptor_;

@@ -189,16 +189,18 @@ TEST(HardeningFiles, ByteOrderMarkLoadsAndUtf16IsNamed) {
 TEST(HardeningState, ASecondRunOnTheSameStateFileIsRefused) {
   auto dir = temp_file("lock/x", "").parent_path();
   const std::string state = (dir / "s.bin").string();
-  // The first run holds the lock for 30 s of wall time (--realtime) while the second starts.
+  // The first run holds the lock for 120 s of wall time (--realtime) while the second starts;
+  // it is stopped with SIGTERM as soon as the second has been refused.
   const std::string first = std::string(SOFTSLC_BINARY) + " run " + kExample + " --state " + state +
-                            " --for 30s --realtime > /dev/null 2>&1 & echo $!";
+                            " --for 120s --realtime > /dev/null 2>&1 & echo $!";
   FILE* p = ::popen(first.c_str(), "r");
   char pid[32] = {};
   ASSERT_TRUE(p && std::fgets(pid, sizeof pid, p));
   ::pclose(p);
-  // Wait for the lock file to appear and be held.
+  // Wait for the lock file to appear and be held: up to 60 s, as a loaded CI machine running the
+  // sanitizer build can take seconds to start the first run (10 s was not always enough).
   Result second;
-  for (int i = 0; i < 100; ++i) {
+  for (int i = 0; i < 600; ++i) {
     second = run("run " + kExample + " --state " + state);
     if (second.exit_code != 0) break;
     ::usleep(100000);

@@ -407,10 +407,20 @@ TEST(StateCli, SigtermSavesAndExits) {
   if (pid == 0) {
     if (!std::freopen("/dev/null", "w", stdout)) ::_exit(126);
     ::execl(SOFTSLC_BINARY, SOFTSLC_BINARY, "run", prog.c_str(), "--for", "60m", "--state", state.c_str(),
-            static_cast<char*>(nullptr));
+            "--checkpoint", "1s", static_cast<char*>(nullptr));
     ::_exit(127);
   }
-  ::usleep(200000);
+  // Signal only once the scan loop runs (its first checkpoint has written the state file): a
+  // fixed delay lost the race to a slow start under AddressSanitizer, and a SIGTERM before the
+  // handler is installed kills the process instead of stopping it.
+  for (int waited_ms = 0; !std::filesystem::exists(state); ++waited_ms) {
+    if (waited_ms > 30000) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, nullptr, 0);
+      FAIL() << "the run saved no checkpoint within 30 s";
+    }
+    ::usleep(1000);
+  }
   ::kill(pid, SIGTERM);
   int st = 0;
   ::waitpid(pid, &st, 0);

@@ -307,7 +307,8 @@ class ProgramDecoder {
       std::string name(a_.bytes(10));
       name.erase(std::find(name.begin(), name.end(), '\0'), name.end());
       std::uint16_t number = a_.u16();
-      std::string description = a_.cstring();
+      a_.cstring();  // the file's description: the export text has no place for it (a comment
+                     // line after LADDER would become rung 0's comment)
       std::uint16_t rungs = a_.u16();
       // Types seen: 0 system files 0/1, 1 ladder, 3 an unused file number.
       if (type != 1) {
@@ -318,7 +319,6 @@ class ProgramDecoder {
       out += "\nLADDER " + std::to_string(number);
       if (!name.empty()) out += " " + ladder_name(name);
       out += "\n";
-      if (!description.empty()) out += "% " + sanitize_comment(description) + " %\n";
       for (std::uint16_t r = 0; r < rungs; ++r) {
         a_.set_context("file " + std::to_string(number) + " rung " + std::to_string(r));
         a_.expect("CRung");
@@ -354,11 +354,6 @@ class ProgramDecoder {
       if (c == '"' || static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) c = '_';
     }
     return ident ? s : "\"" + s + "\"";
-  }
-  static std::string sanitize_comment(std::string s) {
-    for (char& c : s)
-      if (c == '%' || c == '\n' || c == '\r' || static_cast<unsigned char>(c) < 0x20) c = ' ';
-    return s;
   }
 
   InsRecord ins() {

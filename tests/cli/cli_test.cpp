@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <vector>
 #include <sys/wait.h>
 
 #include "cli_test_util.h"
@@ -266,3 +268,58 @@ TEST(Cli, CheckNamesTheProcessorAnInstructionIsMissingOn) {
 }
 
 }  // namespace
+
+namespace {
+
+std::vector<std::filesystem::path> rss_fixtures() {
+  std::vector<std::filesystem::path> out;
+  auto dir = std::filesystem::path(SOFTSLC_SHARED_DIR) / "fixtures" / "rss";
+  if (!std::filesystem::exists(dir)) return out;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(dir))
+    if (e.path().extension() == ".RSS") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+// Issue 14: `softslc run X.RSS` and `softslc run X.slc` after `softslc import X.RSS -o X.slc`
+// print byte-identical output, for every .RSS fixture that loads. The run prints every symbol
+// the project defines (up to 60) and the first element of every data file, after 3 s of
+// virtual time, so the saved data values, the symbols and the logic all take part.
+TEST(Cli, RunOfTheProjectAndOfItsImportAreIdentical) {
+  auto all = rss_fixtures();
+  if (all.empty()) GTEST_SKIP() << "no .RSS fixtures";
+  int compared = 0;
+  for (const auto& f : all) {
+    SCOPED_TRACE(f.filename().string());
+    if (run("check '" + f.string() + "'").exit_code != 0) continue;  // does not load yet
+    auto slc = temp_file(f.stem().string() + ".slc", "");
+    auto imported = run("import '" + f.string() + "' -o '" + slc.string() + "'");
+    ASSERT_EQ(imported.exit_code, 0) << imported.out;
+    std::ifstream in(slc);
+    std::string line, prints;
+    int symbols = 0;
+    while (std::getline(in, line)) {
+      std::istringstream ls(line);
+      std::string w, address, name;
+      ls >> w;
+      if (w == "SYMBOL" && symbols < 60 && (ls >> address >> name)) {
+        prints += " " + name;
+        ++symbols;
+      } else if (w == "DATA" && (ls >> address)) {
+        if (address[0] == 'T' || address[0] == 'C') address += ".ACC";
+        if (address[0] == 'R') address += ".POS";
+        prints += " " + address;
+      }
+    }
+    ASSERT_FALSE(prints.empty());
+    auto a = run("run '" + f.string() + "' --for 3s --json --print" + prints);
+    auto b = run("run '" + slc.string() + "' --for 3s --json --print" + prints);
+    EXPECT_EQ(a.exit_code, 0) << a.out;
+    EXPECT_EQ(a.out, b.out);
+    EXPECT_EQ(b.exit_code, a.exit_code);
+    ++compared;
+  }
+  EXPECT_GE(compared, 4) << "fixtures that load (lecky_demo, lecky_demo_tof, training_two_setpoints, water_filtration_system on 2026-11-25)";
+}

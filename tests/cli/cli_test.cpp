@@ -323,3 +323,24 @@ TEST(Cli, RunOfTheProjectAndOfItsImportAreIdentical) {
   }
   EXPECT_GE(compared, 4) << "fixtures that load (lecky_demo, lecky_demo_tof, training_two_setpoints, water_filtration_system on 2026-11-25)";
 }
+
+// Pasted rungs (issue 14): `check` and `run` with --processor take bare SOR ... EOR lines as
+// program file 2 of that processor; without --processor, one error says what to add
+// (../shared/fixtures/rslogix500/pasted: rungs copied from a blog's SLC 500 listing).
+TEST(Cli, PastedRungsWithProcessor) {
+  auto pasted = temp_file("pasted.txt", "SOR XIC I:0/0 OTE O:0/0 EOR\nSOR XIC O:0/0 TON T4:0 1.0 10 0 EOR\n");
+  auto plain = run("check '" + pasted.string() + "'");
+  EXPECT_EQ(plain.exit_code, 1);
+  EXPECT_NE(plain.out.find("pasted rungs"), std::string::npos) << plain.out;
+  EXPECT_EQ(plain.out.find("rung before any LADDER statement"), std::string::npos) << plain.out;
+  auto checked = run("check --processor Bul.1766 '" + pasted.string() + "'");
+  EXPECT_EQ(checked.exit_code, 0) << checked.out;
+  auto ran = run("run --processor Bul.1766 '" + pasted.string() + "' --set I:0/0=1 --for 2s --print O:0/0 T4:0/DN");
+  EXPECT_EQ(ran.exit_code, 0) << ran.out;
+  EXPECT_NE(ran.out.find("O:0/0 = 1"), std::string::npos) << ran.out;
+  auto blog = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rslogix500/pasted/blog-slc500-gemini.rungs.txt";
+  if (std::filesystem::exists(blog)) {
+    auto r = run("check --processor Bul.1766 '" + blog + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+  }
+}

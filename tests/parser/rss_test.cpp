@@ -21,6 +21,7 @@
 
 #include <unistd.h>
 
+#include "instructions/processor.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
 #include "parser/rss/rss_reader.h"
@@ -508,4 +509,35 @@ TEST(RssReader, DataValuesAgreeWithTheRslogixReports) {
   }
   EXPECT_GE(exact, 2000) << "values compared where the report is of the same save";
   EXPECT_GE(presets, 8) << "presets compared where the report is of a later save";
+}
+
+// Pasted rungs (issue 14): bare SOR ... EOR lines are program file 2 of the processor named,
+// with its default data files and a MicroLogix's embedded I/O; line numbers are the text's own.
+TEST(PastedRungs, LoadAsProgramFileTwoOfTheNamedProcessor) {
+  const std::string rungs = "SOR XIC I:0/0 BST OTE O:0/0 NXB TON T4:0 1.0 10 0 BND EOR\nSOR XIC T4:0/DN OTL B3:0/1 EOR\n";
+  EXPECT_TRUE(softslc::is_pasted_rungs(rungs));
+  EXPECT_TRUE(softslc::is_pasted_rungs("% copied from RSLogix %\n\n" + rungs));
+  EXPECT_FALSE(softslc::is_pasted_rungs("START Bul.1766\nLADDER 2\n" + rungs));
+  EXPECT_FALSE(softslc::is_pasted_rungs("LADDER 2\n" + rungs));
+  EXPECT_FALSE(softslc::is_pasted_rungs(""));
+  auto ml = softslc::resolve_processor("Bul.1766", std::nullopt);
+  ASSERT_TRUE(ml);
+  auto r = softslc::load_pasted_rungs(rungs, "pasted.txt", *ml);
+  ASSERT_TRUE(r.ok()) << r.render_diagnostics();
+  ASSERT_EQ(r.program->files.size(), 1u);
+  EXPECT_EQ(r.program->files[0].number, 2);
+  EXPECT_EQ(r.program->files[0].rungs.size(), 2u);
+  // The same program as with the header written out.
+  auto full = softslc::load_program("START Bul.1766\nLADDER 2\n" + rungs, "full.slc");
+  ASSERT_TRUE(full.ok()) << full.render_diagnostics();
+  std::string diff;
+  EXPECT_TRUE(softslc::same_program(*r.program, *full.program, &diff)) << diff;
+  // A modular SLC 5/03 has no I/O in slot 0: the pasted text's own line 1 is named.
+  auto slc = softslc::resolve_processor("1747-L532", std::nullopt);
+  ASSERT_TRUE(slc);
+  auto bad = softslc::load_pasted_rungs(rungs, "pasted.txt", *slc);
+  ASSERT_FALSE(bad.ok());
+  ASSERT_FALSE(bad.diagnostics.items().empty());
+  EXPECT_EQ(bad.diagnostics.items()[0].line, 1u);
+  EXPECT_NE(bad.render_diagnostics().find("slot 0 has no module"), std::string::npos) << bad.render_diagnostics();
 }

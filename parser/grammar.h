@@ -240,7 +240,10 @@ struct force_stmt : seq<kw_force, ws, must<data_header>, star<ws, not_at<eof>, m
 // ---- Symbols -------------------------------------------------------------------------------------------
 
 struct symbol_address : address {};
-struct symbol_def_name : seq<identifier, token_end> {};
+// RSLogix also accepts symbols that start with digits ("5120MS_TIMER" in lecky_demo.RSS); such a
+// name is defined by SYMBOL and shown, but operands in rungs use the address.
+struct digit_led_name : seq<plus<digit>, sor<alpha, one<'_'>>, star<ident_other>> {};
+struct symbol_def_name : seq<sor<identifier, digit_led_name>, token_end> {};
 struct symbol_description : comment {};
 struct kw_symbol : TAO_PEGTL_STRING("SYMBOL") {};
 struct symbol_note : comment {};

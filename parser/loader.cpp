@@ -1135,6 +1135,53 @@ LoadResult parse_program_syntax(std::string text, std::string source_name) {
   return r;
 }
 
+bool is_pasted_rungs(std::string_view text) {
+  // The first statement (skipping blank and comment lines) is a rung, and no line starts with
+  // START or LADDER: what RSLogix puts on the clipboard when rungs are copied.
+  bool first_statement_seen = false, first_is_rung = false;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    std::size_t end = text.find('\n', pos);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(pos, end - pos);
+    pos = end + 1;
+    auto b = line.find_first_not_of(" \t\r");
+    if (b == std::string_view::npos) continue;
+    line = line.substr(b);
+    if (line.rfind("START", 0) == 0 || line.rfind("LADDER", 0) == 0) return false;
+    if (!first_statement_seen && line[0] != '%') {
+      first_statement_seen = true;
+      first_is_rung = line.rfind("SOR", 0) == 0;
+    }
+  }
+  return first_is_rung;
+}
+
+LoadResult load_pasted_rungs(std::string text, std::string source_name, const ProcessorModel& processor) {
+  LoadResult r;
+  r.source = std::move(text);
+  r.source_name = std::move(source_name);
+  Program program;
+  program.source_name = r.source_name;
+  LoadState state(program, r.diagnostics, r.source);
+  // As if the text were preceded by "START <catalog>" and "LADDER 2": the rungs land in program
+  // file 2, and the checker adds the processor's default data files and embedded I/O.
+  state.have_start = true;
+  program.processor = processor;
+  ProgramFile main_file;
+  main_file.number = 2;
+  main_file.pos = {1, 1};
+  program.files.push_back(std::move(main_file));
+  state.current_file = 0;
+  parse_statements(state, r.source, r.source_name);
+  if (!r.diagnostics.has_errors()) {
+    check_program(program, r.diagnostics);
+    if (!r.diagnostics.has_errors()) r.program = std::move(program);
+  }
+  r.diagnostics.sort_by_position();
+  return r;
+}
+
 LoadResult load_program(std::string text, std::string source_name) {
   LoadResult r = parse_program_syntax(std::move(text), std::move(source_name));
   if (!r.program) return r;

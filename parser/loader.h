@@ -35,6 +35,14 @@ LoadResult load_program_file(const std::filesystem::path& path);
 // The same for a file's bytes already in memory (the test runner, the C++ API, the fuzzer).
 LoadResult load_program_bytes(std::string bytes, std::string source_name);
 
+// Pasted rungs: rungs copied out of RSLogix as bare text (`SOR ... EOR`, one rung a line, no
+// START or LADDER statement). `is_pasted_rungs` tells such a text; `load_pasted_rungs` loads it
+// as program file 2 of `processor`, with that processor's default data files and (for fixed and
+// MicroLogix controllers) its embedded I/O, exactly as if "START <catalog>" and "LADDER 2" came
+// first. Diagnostics keep the pasted text's own line numbers.
+bool is_pasted_rungs(std::string_view text);
+LoadResult load_pasted_rungs(std::string text, std::string source_name, const ProcessorModel& processor);
+
 // Parses the syntax only (no semantic checks): for tests of the grammar and for tools that
 // want the tree of a program with semantic errors.
 LoadResult parse_program_syntax(std::string text, std::string source_name);

@@ -8,9 +8,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
+#include <cmath>
 #include <array>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <stdexcept>
 
@@ -272,9 +275,25 @@ struct InsRecord {
 };
 
 // ---- program files → export text ---------------------------------------------------------------
+// Rung comments from MEM DATABASE: (program file, rung) → text, lines separated by '\n'.
+using RungComments = std::map<std::pair<int, int>, std::string>;
+
+// One line of free text as the export's `% ... %` comment syntax can carry it: '%' (the
+// delimiter), tabs, control and non-ASCII bytes become blanks; leading/trailing blanks go.
+std::string comment_text(std::string_view s) {
+  std::string out;
+  for (char c : s) {
+    auto u = static_cast<unsigned char>(c);
+    out += (c == '%' || u < 0x20 || u >= 0x7F) ? ' ' : c;
+  }
+  auto b = out.find_first_not_of(' ');
+  if (b == std::string::npos) return {};
+  return out.substr(b, out.find_last_not_of(' ') - b + 1);
+}
+
 class ProgramDecoder {
  public:
-  explicit ProgramDecoder(Archive& a) : a_(a) {}
+  ProgramDecoder(Archive& a, const RungComments& comments) : a_(a), comments_(comments) {}
 
   // Decodes PROGRAM FILES; appends LADDER sections to `out`.
   void decode(std::string& out, std::vector<RungOrigin>& origins) {
@@ -288,7 +307,8 @@ class ProgramDecoder {
       std::string name(a_.bytes(10));
       name.erase(std::find(name.begin(), name.end(), '\0'), name.end());
       std::uint16_t number = a_.u16();
-      std::string description = a_.cstring();
+      a_.cstring();  // the file's description: the export text has no place for it (a comment
+                     // line after LADDER would become rung 0's comment)
       std::uint16_t rungs = a_.u16();
       // Types seen: 0 system files 0/1, 1 ladder, 3 an unused file number.
       if (type != 1) {
@@ -299,10 +319,21 @@ class ProgramDecoder {
       out += "\nLADDER " + std::to_string(number);
       if (!name.empty()) out += " " + ladder_name(name);
       out += "\n";
-      if (!description.empty()) out += "% " + sanitize_comment(description) + " %\n";
       for (std::uint16_t r = 0; r < rungs; ++r) {
         a_.set_context("file " + std::to_string(number) + " rung " + std::to_string(r));
         a_.expect("CRung");
+        // The comment goes on `% ... %` lines directly above the SOR, one per line of the
+        // comment (the loader joins them with newlines again).
+        if (auto c = comments_.find({number, r}); c != comments_.end()) {
+          std::size_t start = 0;
+          const std::string& body = c->second;
+          while (start <= body.size()) {
+            std::size_t end = body.find('\n', start);
+            if (end == std::string::npos) end = body.size();
+            out += "% " + comment_text(std::string_view(body).substr(start, end - start)) + " %\n";
+            start = end + 1;
+          }
+        }
         std::string text = "SOR";
         leg(text, RungOpen, RungClose, 0);
         a_.bytes(12);  // rung trailer: the last word keys the rung comment in MEM DATABASE
@@ -323,11 +354,6 @@ class ProgramDecoder {
       if (c == '"' || static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) c = '_';
     }
     return ident ? s : "\"" + s + "\"";
-  }
-  static std::string sanitize_comment(std::string s) {
-    for (char& c : s)
-      if (c == '%' || c == '\n' || c == '\r' || static_cast<unsigned char>(c) < 0x20) c = ' ';
-    return s;
   }
 
   InsRecord ins() {
@@ -440,6 +466,7 @@ class ProgramDecoder {
   }
 
   Archive& a_;
+  const RungComments& comments_;
 };
 
 // ---- processor ----------------------------------------------------------------------------------
@@ -469,6 +496,282 @@ std::string decode_processor(std::string_view data) {
       return "START " + std::string(p.catalog) + " SERIES " + std::string(1, p.series) + "\nSLOT 0 " + std::string(p.catalog) +
              " SCAN_IN " + std::to_string(p.input_words) + " SCAN_OUT " + std::to_string(p.output_words) + "\n";
   a.fail("unknown processor type code " + hex(code, 4), at);
+}
+
+// ---- MEM DATABASE: symbols, address descriptions, rung comments ----------------------------------
+// The payload (confirmed on all 15 fixtures: every byte is accounted for) is a DBXMemMap record:
+// six 32-bit words (version 1, 20 characters a line, 5 lines, ...), the marker string "Valid
+// Database Entry!", five 32-bit words, a 16-bit entry count and two 16-bit words; then per entry
+// 8 bytes, the key (an address in RSLogix's fixed-width form, "B0003:000/11", "I0001:000.000/02",
+// or a non-address key: "DFILE:00007", "PFILE:00012", "U:00003", "Q2:0", function files
+// "RTC0000:000.005/01"), the symbol, the 5 description lines, and 16 bytes of list links. Then a
+// 16-bit count of rung comments, each a 32-bit id, the comment (CRLF between lines), the page
+// title and the key "RUNGffffff-rrrrrr" (program file, rung). Then a 16-bit count that is 0 in
+// every fixture. The reports print the same symbols ("(LAMP_FLASH_TON)" beside T4:0) and comments.
+struct AddressEntry {
+  std::string address;  // in the export text's spelling
+  std::string symbol;
+  std::string description;
+};
+struct MemDatabase {
+  std::vector<AddressEntry> entries;  // in database order; only entries with an address key
+  RungComments comments;
+};
+
+// "B0003:000/11" → "B3:0/11", "I0001:000.000/02" → "I:0.0/2", "S0002:001/15" → "S:1/15",
+// "T0004:000.002" → "T4:0.2". Any other key (function files, indirect keys, program files,
+// labels, data-file names) gives nullopt: it names no data-table address the text can carry.
+std::optional<std::string> key_to_address(std::string_view key) {
+  std::size_t i = 0;
+  while (i < key.size() && std::isupper(static_cast<unsigned char>(key[i]))) ++i;
+  std::string type(key.substr(0, i));
+  static constexpr std::string_view kTypes[] = {"O", "I", "S", "B", "T", "C", "R", "N", "F", "L", "ST"};
+  if (std::find(std::begin(kTypes), std::end(kTypes), type) == std::end(kTypes)) return std::nullopt;
+  auto digits = [&](std::size_t n) -> std::optional<int> {
+    if (key.size() - i < n) return std::nullopt;
+    int v = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      char c = key[i + k];
+      if (c < '0' || c > '9') return std::nullopt;
+      v = v * 10 + (c - '0');
+    }
+    i += n;
+    return v;
+  };
+  auto file = digits(4);
+  if (!file || i >= key.size() || key[i++] != ':') return std::nullopt;
+  auto element = digits(3);
+  if (!element) return std::nullopt;
+  std::optional<int> word, bit;
+  if (i < key.size() && key[i] == '.') {
+    ++i;
+    if (!(word = digits(3))) return std::nullopt;
+  }
+  if (i < key.size() && key[i] == '/') {
+    ++i;
+    if (!(bit = digits(2))) return std::nullopt;
+  }
+  if (i != key.size()) return std::nullopt;
+  std::string out;
+  if (type == "O" || type == "I") {
+    if (*file != (type == "O" ? 0 : 1)) return std::nullopt;
+    out = type + ":" + std::to_string(*element);
+  } else if (type == "S") {
+    if (*file != 2 || word) return std::nullopt;
+    out = "S:" + std::to_string(*element);
+  } else {
+    out = type + std::to_string(*file) + ":" + std::to_string(*element);
+  }
+  if (word) out += "." + std::to_string(*word);
+  if (bit) out += "/" + std::to_string(*bit);
+  return out;
+}
+
+MemDatabase decode_mem_database(std::string_view data) {
+  MemDatabase db;
+  Archive a(data, "MEM DATABASE");
+  a.expect("DBXMemMap");
+  std::array<std::uint32_t, 6> head{};
+  for (auto& w : head) w = a.u32();
+  if (head[0] != 1 || head[2] != 5) a.fail("unknown database layout (version " + std::to_string(head[0]) + ", " + std::to_string(head[2]) + " description lines)", 0);
+  a.cstring();
+  for (int k = 0; k < 5; ++k) a.u32();
+  std::uint16_t count = a.u16();
+  a.u16();
+  a.u16();
+  for (std::uint16_t e = 0; e < count; ++e) {
+    a.bytes(8);
+    std::size_t at = a.offset();
+    std::string key = a.cstring();
+    std::string symbol = a.cstring();
+    std::string description;
+    for (int line = 0; line < 5; ++line) {
+      std::string t = comment_text(a.cstring());
+      if (t.empty()) continue;
+      if (!description.empty()) description += ' ';
+      description += t;
+    }
+    a.bytes(16);
+    if (symbol.empty() && description.empty()) continue;
+    auto address = key_to_address(key);
+    if (!address) continue;
+    if (!symbol.empty()) {
+      // Letters, digits and '_', not digits only (the SYMBOL statement's name).
+      bool ident = std::any_of(symbol.begin(), symbol.end(), [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; });
+      for (char c : symbol)
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_') ident = false;
+      if (!ident) a.fail("symbol of " + *address + " is not a name", at);
+    }
+    db.entries.push_back({*address, symbol, description});
+  }
+  std::uint16_t comments = a.u16();
+  for (std::uint16_t c = 0; c < comments; ++c) {
+    a.u32();
+    std::string text = a.cstring();
+    a.cstring();  // page title: not carried by the export text
+    std::size_t at = a.offset();
+    std::string key = a.cstring();
+    // "RUNG000002-000007": program file 2, rung 7. A comment attached to an output address
+    // (research: key "B0003:000/01") has no place in the export text; none of the fixtures has one.
+    if (key.size() != 17 || key.compare(0, 4, "RUNG") != 0 || key[10] != '-') continue;
+    int file = 0, rung = 0;
+    for (std::size_t k = 4; k < 17; ++k) {
+      if (k == 10) continue;
+      if (key[k] < '0' || key[k] > '9') a.fail("malformed rung comment key", at);
+      (k < 10 ? file : rung) = (k < 10 ? file : rung) * 10 + (key[k] - '0');
+    }
+    std::string joined;
+    for (char ch : text)
+      if (ch != '\r') joined += ch;
+    while (!joined.empty() && (joined.back() == '\n' || joined.back() == ' ')) joined.pop_back();
+    db.comments[{file, rung}] = joined;
+  }
+  std::size_t at = a.offset();
+  if (a.u16() != 0) a.fail("unknown MEM DATABASE record group", at);
+  if (a.offset() != data.size()) a.fail("unexpected data after the last record", a.offset());
+  return db;
+}
+
+void write_symbols(const MemDatabase& db, std::string& out) {
+  if (db.entries.empty()) return;
+  out += "\n";
+  for (const auto& e : db.entries) {
+    if (e.symbol.empty())
+      out += "DESC " + e.address + " % " + e.description + " %\n";
+    else
+      out += "SYMBOL " + e.address + " " + e.symbol + (e.description.empty() ? "" : " % " + e.description + " %") + "\n";
+  }
+}
+
+// ---- DATA FILES: every data file's type, number, size and saved values ------------------------
+// The payload is a CDataHolder: a 16-bit count of data files 0..n, each a CDataFile record; a
+// count of MicroLogix function files (CDataFile records of types 0x11 and up); then M files.
+// A CDataFile record: type (0 O, 1 I, 2 S, 3 B, 4 T, 5 C, 6 R, 7 N, 8 F, 0x0A unused number,
+// 0x0E ST, 0x10 L, 0x13 MG), 6 bytes, element count, words per element, 2 bytes, 0xFFFF, the
+// values (little-endian words; T/C/R as CTL PRE ACC; F IEEE single and L two's complement, low
+// word first; ST a length word and 82 characters, two to a word, high byte first), for O and I
+// an ON/OFF force pair per word, the file number, description and name, and 4 bytes.
+// Confirmed against the Data File List and the data-file pages of the reports.
+enum DataType : std::uint16_t { DtOutput = 0, DtInput = 1, DtStatus = 2, DtBinary = 3, DtTimer = 4, DtCounter = 5, DtControl = 6,
+                                DtInteger = 7, DtFloat = 8, DtUnused = 0x0A, DtString = 0x0E, DtLong = 0x10, DtMessage = 0x13 };
+
+struct DataFileRecord {
+  std::uint16_t type = 0;
+  int number = 0;
+  int elements = 0;
+  int words_per_element = 0;
+  std::string_view values;
+};
+
+DataFileRecord data_file_record(Archive& a) {
+  DataFileRecord r;
+  std::size_t at = a.offset();
+  r.type = a.u16();
+  a.bytes(6);
+  r.elements = a.u16();
+  r.words_per_element = a.u16();
+  a.u16();
+  a.u16();
+  r.values = a.bytes(static_cast<std::size_t>(r.elements) * static_cast<std::size_t>(r.words_per_element) * 2);
+  if (r.type == DtOutput || r.type == DtInput) a.bytes(static_cast<std::size_t>(r.elements) * 4);
+  r.number = a.u16();
+  a.cstring();
+  a.cstring();
+  a.bytes(4);
+  static constexpr std::pair<std::uint16_t, int> kWords[] = {{DtBinary, 1}, {DtInteger, 1}, {DtTimer, 3}, {DtCounter, 3}, {DtControl, 3},
+                                                            {DtFloat, 2}, {DtLong, 2}, {DtString, 42}};
+  for (auto [t, w] : kWords)
+    if (t == r.type && w != r.words_per_element)
+      a.fail("data file " + std::to_string(r.number) + " has " + std::to_string(r.words_per_element) + " words per element", at);
+  if (r.elements > 256) a.fail("data file " + std::to_string(r.number) + " has " + std::to_string(r.elements) + " elements", at);
+  return r;
+}
+
+std::uint16_t word_at(std::string_view v, std::size_t w) {
+  return static_cast<std::uint16_t>(static_cast<unsigned char>(v[2 * w]) | static_cast<unsigned char>(v[2 * w + 1]) << 8);
+}
+
+void write_data_file(const DataFileRecord& r, Archive& a, std::string& out) {
+  if (r.elements == 0) return;
+  std::string letter;
+  switch (r.type) {
+    case DtBinary: letter = "B"; break;
+    case DtTimer: letter = "T"; break;
+    case DtCounter: letter = "C"; break;
+    case DtControl: letter = "R"; break;
+    case DtInteger: letter = "N"; break;
+    case DtFloat: letter = "F"; break;
+    case DtLong: letter = "L"; break;
+    case DtString: letter = "ST"; break;
+    default: return;  // O, I, S, MG, unused numbers: not carried (docs/program-format.md)
+  }
+  const std::string file = letter + std::to_string(r.number);
+  out += "\nDATA " + file + ":0\n";
+  auto element = [&](int e) { return "% " + file + ":" + std::to_string(e) + " %"; };
+  if (r.type == DtTimer || r.type == DtCounter || r.type == DtControl) {
+    out += r.type == DtControl ? "% .CTL .LEN .POS %\n" : "% .CTL .PRE .ACC %\n";
+    for (int e = 0; e < r.elements; ++e) {
+      char row[64];
+      std::snprintf(row, sizeof row, "0X%04X %d %d ", word_at(r.values, 3 * e), static_cast<std::int16_t>(word_at(r.values, 3 * e + 1)),
+                    static_cast<std::int16_t>(word_at(r.values, 3 * e + 2)));
+      out += row + element(e) + "\n";
+    }
+    return;
+  }
+  if (r.type == DtString) {
+    for (int e = 0; e < r.elements; ++e) {
+      std::size_t base = static_cast<std::size_t>(e) * 42;
+      std::size_t length = word_at(r.values, base);
+      if (length > 82) a.fail("string " + file + ":" + std::to_string(e) + " is " + std::to_string(length) + " characters long", a.offset());
+      std::string text;
+      for (std::size_t k = 0; k < length; ++k) {
+        std::uint16_t w = word_at(r.values, base + 1 + k / 2);
+        char c = static_cast<char>(k % 2 == 0 ? w >> 8 : w & 0xFF);
+        if (c == '"' || static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F)
+          a.fail("string " + file + ":" + std::to_string(e) + " holds a character the export text cannot carry", a.offset());
+        text += c;
+      }
+      out += element(e) + " \"" + text + "\"\n";
+    }
+    return;
+  }
+  const bool wide = r.type == DtFloat || r.type == DtLong;
+  const int per_row = wide ? 5 : 10;
+  for (int e = 0; e < r.elements; ++e) {
+    if (e % per_row == 0) out += (e ? "\n" : "") + element(e);
+    std::string v;
+    if (!wide) {
+      v = std::to_string(static_cast<std::int16_t>(word_at(r.values, e)));
+    } else {
+      std::uint32_t bits = word_at(r.values, 2 * e) | static_cast<std::uint32_t>(word_at(r.values, 2 * e + 1)) << 16;
+      if (r.type == DtLong) {
+        v = std::to_string(static_cast<std::int32_t>(bits));
+      } else {
+        float f;
+        std::memcpy(&f, &bits, sizeof f);
+        if (!std::isfinite(f)) a.fail(file + ":" + std::to_string(e) + " holds an infinity or NaN, which the export text cannot carry", a.offset());
+        char buf[32];
+        auto res = std::to_chars(buf, buf + sizeof buf, f);
+        v.assign(buf, res.ptr);
+        if (v.find_first_of(".e") == std::string::npos) v += ".0";
+      }
+    }
+    out += " " + v;
+  }
+  out += "\n";
+}
+
+void decode_data_files(std::string_view data, std::string& out) {
+  Archive a(data, "DATA FILES");
+  a.expect("CDataHolder");
+  std::uint16_t files = a.u16();
+  for (std::uint16_t i = 0; i < files; ++i) {
+    a.set_context("data file entry " + std::to_string(i));
+    a.expect("CDataFile");
+    DataFileRecord r = data_file_record(a);
+    write_data_file(r, a, out);
+  }
+  // The function files and M files that follow are not read (docs/program-format.md).
 }
 
 }  // namespace
@@ -505,9 +808,13 @@ ReadResult read_project(std::string_view bytes, std::string_view source_name) {
       if (static_cast<unsigned char>(ch) < 0x20 || ch == '%' || static_cast<unsigned char>(ch) >= 0x7F) ch = '_';
     std::string text = "% Converted from the RSLogix project file " + base + " by softslc %\n";
     text += decode_processor(payload(*proc, "PROCESSOR"));
+    MemDatabase db;
+    if (auto mem = c.object_data("MEM DATABASE")) db = decode_mem_database(payload(*mem, "MEM DATABASE"));
     std::string program = payload(*prog, "PROGRAM FILES");
     Archive a(program, "PROGRAM FILES");
-    ProgramDecoder(a).decode(text, result.origins);
+    ProgramDecoder(a, db.comments).decode(text, result.origins);
+    if (auto data = c.object_data("DATA FILES")) decode_data_files(payload(*data, "DATA FILES"), text);
+    write_symbols(db, text);
     // Every rung is one line starting with SOR, in the order of `origins`.
     std::uint32_t line = 1;
     std::size_t next = 0;

@@ -2,9 +2,10 @@
 //
 // A .RSS file is an OLE2 compound document (read with libolecf) whose streams hold the project
 // as an MFC archive, most of them zlib-compressed after a 16-byte header (inflated with zlib).
-// The reader decodes the parts softslc needs (the processor, and every ladder program file with
-// its rungs, branches, instructions and operands) and writes them as RSLogix 500 library export
-// text. The text then goes through the same loader and checker as a .SLC file, so the program
+// The reader decodes the parts softslc needs (the processor; every ladder program file with its
+// rungs, branches, instructions and operands; symbols, address descriptions and rung comments from
+// MEM DATABASE; every B/N/T/C/R/F/L/ST data file with its saved values from DATA FILES) and writes
+// them as RSLogix 500 library export text. The text then goes through the same loader and checker as a .SLC file, so the program
 // model, every check and every later stage are exactly those of the text front end, and
 // `softslc import` is simply this text, formatted.
 //

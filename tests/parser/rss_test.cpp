@@ -21,6 +21,7 @@
 
 #include <unistd.h>
 
+#include "instructions/processor.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
 #include "parser/rss/rss_reader.h"
@@ -291,4 +292,252 @@ TEST(RssReader, ConvertedTextChecksAndLoadsLikeTheProject) {
     }
   }
   fs::remove_all(dir);
+}
+
+namespace {
+
+// Collapses every run of blanks to one space, so text the report lays out in columns compares
+// with the reader's single-spaced text.
+std::string squeeze(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    bool blank = c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f';
+    if (blank) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// The reader's rung comments: file number → comment lines (the `% ... %` lines directly above
+// each SOR), and its SYMBOL lines: address → name.
+struct OurAnnotations {
+  std::map<int, std::vector<std::string>> comment_lines;
+  std::map<std::string, std::string> symbols;
+  int comments = 0;
+};
+OurAnnotations our_annotations(const std::string& text) {
+  OurAnnotations out;
+  std::istringstream in(text);
+  std::string line;
+  int file = -1;
+  std::vector<std::string> pending;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string w;
+    ls >> w;
+    if (w == "LADDER") {
+      ls >> file;
+      pending.clear();
+    } else if (w == "%" && file >= 0 && line.size() >= 4) {
+      pending.push_back(line.substr(2, line.size() - 4));
+    } else if (w == "SOR") {
+      if (!pending.empty()) ++out.comments;
+      for (auto& p : pending) out.comment_lines[file].push_back(p);
+      pending.clear();
+    } else if (w == "SYMBOL") {
+      std::string address, name;
+      ls >> address >> name;
+      out.symbols[address] = name;
+    } else {
+      pending.clear();
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+// Rung comments and symbols (MEM DATABASE) against the reports: every line of every rung comment
+// is printed in that ladder file's pages, and every operand that has a symbol is printed with
+// it (the report shows "LAMP_FLASH_TON" above T4:0). lecky_demo.pdf, LAD 2 rung 0001 starts
+// "Detect the rising edge (start) of a new failed can event"; single_timer_live.pdf LAD 2 rung
+// 0000 shows T4:0 as LAMP_FLASH_TON.
+TEST(RssReader, SymbolsAndRungCommentsAgreeWithTheRslogixReports) {
+  auto all = fixtures();
+  if (all.empty()) GTEST_SKIP() << "no fixtures at " << kFixtures;
+  int comments = 0, symbols_compared = 0;
+  for (const auto& f : all) {
+    auto pdf = report_for(f);
+    if (!pdf) continue;
+    SCOPED_TRACE(f.filename().string());
+    auto r = read_project(slurp(f), f.filename().string());
+    ASSERT_TRUE(r.text) << r.error;
+    auto theirs = report_files(pdftotext(*pdf));
+    auto ours = our_files(*r.text);
+    auto notes = our_annotations(*r.text);
+    comments += notes.comments;
+    for (const auto& [n, lines] : notes.comment_lines) {
+      auto it = theirs.find(n);
+      ASSERT_NE(it, theirs.end()) << "LAD " << n;
+      std::string report = squeeze(it->second.text);
+      for (const auto& line : lines) {
+        std::string want = squeeze(line);
+        if (want.empty() || want == " ") continue;
+        // The report wraps long comment lines; the first 40 characters stay on one line.
+        if (want.size() > 40) want = squeeze(want.substr(0, 40));
+        while (!want.empty() && want.back() == ' ') want.pop_back();
+        if (!want.empty() && want.front() == ' ') want.erase(0, 1);
+        EXPECT_NE(report.find(want), std::string::npos) << "LAD " << n << ": comment line '" << want << "'";
+      }
+    }
+    for (const auto& [n, rungs] : ours) {
+      auto it = theirs.find(n);
+      if (it == theirs.end()) continue;
+      // A contact or coil is always printed under its operand's symbol, a timer or counter box
+      // under its timer's; the other boxes' operands are printed with a symbol only where the
+      // column has room, so they are not compared.
+      static const std::set<std::string> labelled = {"XIC", "XIO", "OTE", "OTL", "OTU", "TON", "TOF", "RTO", "CTU", "CTD"};
+      for (const auto& rung : rungs)
+        for (std::size_t k = 0; k < rung.size(); ++k) {
+          const std::string& tok = rung[k];
+          if (k == 0 || !labelled.count(rung[k - 1])) continue;
+          auto s = notes.symbols.find(tok);
+          if (s == notes.symbols.end() && tok.find('/') != std::string::npos) s = notes.symbols.find(tok.substr(0, tok.find('/')));
+          if (s == notes.symbols.end()) continue;
+          EXPECT_NE(it->second.text.find(s->second), std::string::npos) << "LAD " << n << ": symbol " << s->second << " of " << tok;
+          ++symbols_compared;
+        }
+    }
+  }
+  EXPECT_GE(comments, 100) << "rung comments compared with a report";
+  EXPECT_GE(symbols_compared, 100) << "symbol uses compared with a report";
+}
+
+// A known rung comment and symbols, exactly (lecky_demo.pdf, LAD 2 rung 0001; its Data File
+// T4 page: T4:0 500 preset).
+TEST(RssReader, LeckyDemoCommentSymbolAndTimerPreset) {
+  fs::path f = kFixtures / "drbitboy-PLC_reject_timing" / "lecky_demo.RSS";
+  if (!fs::exists(f)) GTEST_SKIP() << "no fixture " << f;
+  auto r = read_project(slurp(f), "lecky_demo.RSS");
+  ASSERT_TRUE(r.text) << r.error;
+  EXPECT_NE(r.text->find("% Detect the rising edge (start) of a new failed can event %\nSOR "), std::string::npos);
+  EXPECT_NE(r.text->find("SYMBOL B103:0/0 FAIL_OS"), std::string::npos);
+  EXPECT_NE(r.text->find("SYMBOL T4:2 2560MS_TIMER"), std::string::npos) << "a symbol that starts with digits, as RSLogix allows";
+  EXPECT_NE(r.text->find("0X0100 500 0 % T4:0 %"), std::string::npos);
+  auto loaded = softslc::load_program_file(f);
+  ASSERT_TRUE(loaded.ok()) << loaded.render_diagnostics();
+  const auto* sym = loaded.program->find_symbol("FAIL_OS");
+  ASSERT_NE(sym, nullptr);
+}
+
+namespace {
+
+// The data values a report prints: "N7:0  v v v ..." rows (N, L, F files; B is printed in
+// bits and skipped) and T/C rows "T4:0  EN TT DN BASE PRE ACC" → "T4:0.PRE", "T4:0.ACC".
+std::map<std::string, std::string> report_values(const std::string& report) {
+  std::map<std::string, std::string> out;
+  std::istringstream in(report);
+  std::string line;
+  static const std::regex words(R"(^([NLF]\d+):(\d+)((\s+-?[0-9][0-9.e+-]*)+)\s*$)");
+  static const std::regex tc(R"(^([TC]\d+:\d+)\s+[01]\s+[01]\s+[01]\s.*?\s(-?\d+)\s+(-?\d+)\s*(\(.*)?$)");
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, words)) {
+      std::istringstream vs(m[3].str());
+      std::string v;
+      for (int k = std::stoi(m[2]); vs >> v; ++k) out[m[1].str() + ":" + std::to_string(k)] = v;
+    } else if (std::regex_match(line, m, tc)) {
+      out[m[1].str() + ".PRE"] = m[2];
+      out[m[1].str() + ".ACC"] = m[3];
+    }
+  }
+  return out;
+}
+
+// The reader's DATA blocks in the same form.
+std::map<std::string, std::string> our_values(const std::string& text) {
+  std::map<std::string, std::string> out;
+  std::istringstream in(text);
+  std::string line;
+  static const std::regex row(R"(^% ([BNLF]\d+):(\d+) %(.*)$)");
+  static const std::regex tcr(R"(^0X[0-9A-F]{4}\s+(-?\d+)\s+(-?\d+)\s+% ([TC]\d+:\d+) %$)");
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_match(line, m, row)) {
+      std::istringstream vs(m[3].str());
+      std::string v;
+      for (int k = std::stoi(m[2]); vs >> v; ++k) out[m[1].str() + ":" + std::to_string(k)] = v;
+    } else if (std::regex_match(line, m, tcr)) {
+      out[m[3].str() + ".PRE"] = m[1];
+      out[m[3].str() + ".ACC"] = m[2];
+    }
+  }
+  return out;
+}
+
+bool same_value(const std::string& key, const std::string& ours, const std::string& theirs) {
+  if (ours == theirs) return true;
+  if (key[0] != 'F') return false;
+  double a = std::stod(ours), b = std::stod(theirs);  // the report prints 6 or 7 significant digits
+  return std::abs(a - b) <= 1e-5 * std::max(1.0, std::abs(b));
+}
+
+}  // namespace
+
+// Data files (DATA FILES) against the reports' data-file pages. Where the report was printed
+// from this very file (its page header names the file), every N, L, F value and every timer and
+// counter PRE and ACC it shows is the reader's. Four lamp-flash reports were printed from a
+// later, online save ("SINGLE_TIMER_LIVE.RSS" for single_timer.RSS): there accumulators and
+// logged values moved on, and only the presets are compared.
+TEST(RssReader, DataValuesAgreeWithTheRslogixReports) {
+  auto all = fixtures();
+  if (all.empty()) GTEST_SKIP() << "no fixtures at " << kFixtures;
+  int exact = 0, presets = 0;
+  for (const auto& f : all) {
+    auto pdf = report_for(f);
+    if (!pdf) continue;
+    SCOPED_TRACE(f.filename().string());
+    std::string report = pdftotext(*pdf);
+    auto r = read_project(slurp(f), f.filename().string());
+    ASSERT_TRUE(r.text) << r.error;
+    std::string upper = f.filename().string();
+    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    bool same_save = report.find(" " + upper + "\n") != std::string::npos || report.find(" " + upper + " ") != std::string::npos;
+    auto theirs = report_values(report);
+    auto ours = our_values(*r.text);
+    for (const auto& [key, value] : theirs) {
+      bool preset = key.size() > 4 && key.substr(key.size() - 4) == ".PRE";
+      if (!same_save && !preset) continue;
+      auto it = ours.find(key);
+      ASSERT_NE(it, ours.end()) << key << " is in the report's data files";
+      EXPECT_TRUE(same_value(key, it->second, value)) << key << ": ours " << it->second << ", report " << value;
+      ++(same_save ? exact : presets);
+    }
+  }
+  EXPECT_GE(exact, 2000) << "values compared where the report is of the same save";
+  EXPECT_GE(presets, 8) << "presets compared where the report is of a later save";
+}
+
+// Pasted rungs (issue 14): bare SOR ... EOR lines are program file 2 of the processor named,
+// with its default data files and a MicroLogix's embedded I/O; line numbers are the text's own.
+TEST(PastedRungs, LoadAsProgramFileTwoOfTheNamedProcessor) {
+  const std::string rungs = "SOR XIC I:0/0 BST OTE O:0/0 NXB TON T4:0 1.0 10 0 BND EOR\nSOR XIC T4:0/DN OTL B3:0/1 EOR\n";
+  EXPECT_TRUE(softslc::is_pasted_rungs(rungs));
+  EXPECT_TRUE(softslc::is_pasted_rungs("% copied from RSLogix %\n\n" + rungs));
+  EXPECT_FALSE(softslc::is_pasted_rungs("START Bul.1766\nLADDER 2\n" + rungs));
+  EXPECT_FALSE(softslc::is_pasted_rungs("LADDER 2\n" + rungs));
+  EXPECT_FALSE(softslc::is_pasted_rungs(""));
+  auto ml = softslc::resolve_processor("Bul.1766", std::nullopt);
+  ASSERT_TRUE(ml);
+  auto r = softslc::load_pasted_rungs(rungs, "pasted.txt", *ml);
+  ASSERT_TRUE(r.ok()) << r.render_diagnostics();
+  ASSERT_EQ(r.program->files.size(), 1u);
+  EXPECT_EQ(r.program->files[0].number, 2);
+  EXPECT_EQ(r.program->files[0].rungs.size(), 2u);
+  // The same program as with the header written out.
+  auto full = softslc::load_program("START Bul.1766\nLADDER 2\n" + rungs, "full.slc");
+  ASSERT_TRUE(full.ok()) << full.render_diagnostics();
+  std::string diff;
+  EXPECT_TRUE(softslc::same_program(*r.program, *full.program, &diff)) << diff;
+  // A modular SLC 5/03 has no I/O in slot 0: the pasted text's own line 1 is named.
+  auto slc = softslc::resolve_processor("1747-L532", std::nullopt);
+  ASSERT_TRUE(slc);
+  auto bad = softslc::load_pasted_rungs(rungs, "pasted.txt", *slc);
+  ASSERT_FALSE(bad.ok());
+  ASSERT_FALSE(bad.diagnostics.items().empty());
+  EXPECT_EQ(bad.diagnostics.items()[0].line, 1u);
+  EXPECT_NE(bad.render_diagnostics().find("slot 0 has no module"), std::string::npos) << bad.render_diagnostics();
 }

@@ -60,10 +60,34 @@ std::optional<Program> retarget(const LoadResult& r, const ProcessorModel& p, co
   return std::nullopt;
 }
 
+std::optional<ProcessorModel> parse_processor_option(const std::string& text, std::string& error);
+
+// The program a command works on. Pasted rungs (bare `SOR ... EOR` lines, parser/loader.h) are
+// program file 2 of the processor `--processor` names; without one they are a single clear
+// error rather than one "rung before any LADDER statement" per rung.
+LoadResult load_input(const std::string& file, const std::string& processor_option, const char* command) {
+  InputFile in = read_input_file(file, InputKind::Binary);
+  if (!in.ok || !is_pasted_rungs(in.contents)) return load_program_file(file);  // a project file never starts with SOR
+  LoadResult r;
+  r.source_name = file;
+  if (processor_option.empty()) {
+    r.diagnostics.error(0, 0, std::string("these are pasted rungs (no START or LADDER statement): name the processor, for example `softslc ") +
+                                  command + " --processor Bul.1763 " + file + "`");
+    return r;
+  }
+  std::string error;
+  auto m = parse_processor_option(processor_option, error);
+  if (!m) {
+    r.diagnostics.error(0, 0, error);
+    return r;
+  }
+  return load_pasted_rungs(std::move(in.contents), file, *m);
+}
+
 }  // namespace
 
 int run_check(const CheckOptions& o) {
-  auto r = load_program_file(o.file);
+  auto r = load_input(o.file, o.processor, "check");
   report(r);
   if (!r.ok()) return kInputError;
   // The specialty modules' own configuration rules (G files, M-file sizes, ID codes), each
@@ -287,7 +311,7 @@ std::string fault_code_text(std::uint16_t code) {
 }  // namespace
 
 int run_run(const RunOptions& o) {
-  auto r = load_program_file(o.file);
+  auto r = load_input(o.file, o.processor, "run");
   report(r);
   if (!r.ok()) return kInputError;
   spdlog::debug("{}: loaded, {} bytes, {} program files", o.file, r.source.size(), r.program->files.size());

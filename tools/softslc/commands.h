@@ -13,6 +13,7 @@ enum ExitCode : int { kOk = 0, kInputError = 1, kUsage = 2, kProgramFault = 3 };
 
 struct CheckOptions {
   std::string file;
+  std::string processor;  // --processor: the processor of pasted rungs (CATALOG or CATALOG:SERIES)
 };
 int run_check(const CheckOptions& o);
 

@@ -253,7 +253,6 @@ class Checker {
     return true;
   }
 
-  // Checks an address on its own. `kind` and `mfile` say where it stands (for M-file rules).
   // Function files (RTC:0.YR ...): MicroLogix 1100-class only, and only the ones softslc models.
   void check_function_file_address(const Address& a, SourcePos pos) {
     const auto& proc = program_.processor;
@@ -274,6 +273,7 @@ class Checker {
                      std::to_string(function_file_words_per_element(a.file) - 1));
   }
 
+  // Checks an address on its own. `kind` and `mfile` say where it stands (for M-file rules).
   void check_address(const Address& a, SourcePos pos, OperandKind kind, MFileAccess mfile, bool record_type = true) {
     const auto& proc = program_.processor;
     if (is_function_file(a.type)) {

@@ -58,7 +58,11 @@ bool ProcessorModel::has_float_files() const {
 
 bool ProcessorModel::has_indirect_addressing() const {
   if (is_modular_503_or_later(family)) return series >= 'C';
-  return micrologix == MicroLogixModel::ML1400;
+  // MicroLogix 1100 Series B: a real controller of that series runs N9:[N7:0] in the fixture
+  // rtc_bit_1_live.RSS (its live report shows the indirect MOV and SUB with values), and
+  // 1763-RM001 describes indirect addressing as the 1400's 1766-RM001 does. The 1200 and 1500 stay
+  // refused until a source says otherwise.
+  return micrologix == MicroLogixModel::ML1400 || micrologix == MicroLogixModel::ML1100;
 }
 
 bool ProcessorModel::supports(Requirement r) const {

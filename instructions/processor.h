@@ -54,7 +54,7 @@ struct ProcessorModel {
   int max_subroutine_depth() const;
   // F files and float math: SLC 5/03 OS301 and later, 5/04, 5/05, MicroLogix 1200/1400/1500.
   bool has_float_files() const;
-  // Indirect addressing N7:[N10:1]: 5/03 OS302, 5/04 OS401, 5/05 (and MicroLogix 1400).
+  // Indirect addressing N7:[N10:1]: 5/03 OS302, 5/04 OS401, 5/05, MicroLogix 1100 and 1400.
   bool has_indirect_addressing() const;
   // Whether the processor implements an instruction row's Requirement.
   bool supports(Requirement r) const;

@@ -37,7 +37,67 @@ constexpr std::array kNamedWords{
     NamedWord{FileType::Control, "LEN", 1}, NamedWord{FileType::Control, "POS", 2},
 };
 
+constexpr std::array<std::string_view, kFunctionFileCount> kFunctionFileNames{
+    "RTC", "HSC", "PTOX", "PWMX", "STI", "EII", "BHI", "MMI", "DAT", "TPI", "CS", "IOS", "LCD"};
+
+// The RTC element's named words and bits (1762-RM001C p. 3-3 Table 3.2; see rtc:: in address.h).
+constexpr std::array<std::string_view, rtc::kDayOfWeek + 1> kRtcWords{"YR", "MON", "DAY", "HR", "MIN", "SEC", "DOW"};
+
+struct FunctionBit {
+  std::string_view name;
+  int word;
+  int bit;
+};
+constexpr std::array kRtcBits{FunctionBit{"DS", rtc::kStatusWord, rtc::kDisabledBit},
+                              FunctionBit{"BL", rtc::kStatusWord, rtc::kBatteryLowBit}};
+
+bool is_rtc(int id) { return id == static_cast<int>(FunctionFile::RTC); }
+
 }  // namespace
+
+std::string_view function_file_name(int id) {
+  return id >= 0 && id < kFunctionFileCount ? kFunctionFileNames[static_cast<std::size_t>(id)] : "?";
+}
+
+int function_file_id(std::string_view name) {
+  for (std::size_t i = 0; i < kFunctionFileNames.size(); ++i)
+    if (kFunctionFileNames[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+bool function_file_simulated(int id) { return is_rtc(id); }
+int function_file_elements(int id) { return is_rtc(id) ? 1 : 0; }
+int function_file_words_per_element(int id) { return is_rtc(id) ? rtc::kWords : 0; }
+
+int function_word_number(int id, std::string_view name) {
+  if (!is_rtc(id)) return -1;
+  for (std::size_t i = 0; i < kRtcWords.size(); ++i)
+    if (kRtcWords[i] == name) return static_cast<int>(i);
+  return -1;
+}
+
+std::string_view function_word_name(int id, int word) {
+  if (!is_rtc(id) || word < 0 || word >= static_cast<int>(kRtcWords.size())) return {};
+  return kRtcWords[static_cast<std::size_t>(word)];
+}
+
+bool function_bit_number(int id, std::string_view name, int& word, int& bit) {
+  if (!is_rtc(id)) return false;
+  for (const auto& b : kRtcBits)
+    if (b.name == name) {
+      word = b.word;
+      bit = b.bit;
+      return true;
+    }
+  return false;
+}
+
+std::string_view function_bit_name(int id, int word, int bit) {
+  if (!is_rtc(id)) return {};
+  for (const auto& b : kRtcBits)
+    if (b.word == word && b.bit == bit) return b.name;
+  return {};
+}
 
 std::string_view file_letter(FileType t) {
   switch (t) {
@@ -55,6 +115,7 @@ std::string_view file_letter(FileType t) {
     case FileType::Ascii: return "A";
     case FileType::M0: return "M0";
     case FileType::M1: return "M1";
+    case FileType::Function: return "FN";
   }
   return "?";
 }
@@ -120,6 +181,21 @@ std::string to_string(const IndirectRef& r) {
 std::string to_string(const Address& a) {
   std::string s;
   if (a.indexed) s += '#';
+  if (is_function_file(a.type)) {
+    // RTC:0.YR, RTC:0/DS, RTC:0.SEC/1: no file number, named words and bits where they exist.
+    const int id = a.file;
+    s += function_file_name(id);
+    s += ':' + std::to_string(a.element);
+    auto bit_name = a.bit >= 0 ? function_bit_name(id, a.word, a.bit) : std::string_view{};
+    if (!bit_name.empty()) return s + '/' + std::string(bit_name);
+    if (a.word >= 0) {
+      auto name = function_word_name(id, a.word);
+      s += '.';
+      s += name.empty() ? std::to_string(a.word) : std::string(name);
+    }
+    if (a.bit >= 0) s += '/' + std::to_string(a.bit);
+    return s;
+  }
   s += file_letter(a.type);
   if (a.indirect_file) {
     s += '[' + to_string(*a.indirect_file) + ']';

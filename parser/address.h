@@ -13,6 +13,10 @@
 //   B files:     B3/62 (bit-offset form) is normalised to element 3 bit 14; `bit_offset_form`
 //                remembers the spelling only where it matters (an indirect bit offset).
 //   Other files: element = e, word = -1.
+//   Function files (MicroLogix RTC:0.YR, HSC:0/FE, ...): type Function, `file` = the
+//                FunctionFile kind, element = e, word = the named sub-element's word (a named
+//                bit also sets its word). They have no file number: RSLogix writes RTC:0, never
+//                RTC9:0 (1762-RM001C ch. 3 "Function Files").
 #pragma once
 
 #include <cstdint>
@@ -37,7 +41,42 @@ enum class FileType : std::uint8_t {
   Ascii,    // A
   M0,       // specialty-module output file (module memory, no image in the processor)
   M1,       // specialty-module input file
+  Function, // MicroLogix function file (RTC, HSC, STI, ...): Address::file says which
 };
+
+// The MicroLogix function files, by the names RSLogix gives them (1762-RM001C ch. 3, 1763-RM001,
+// 1766-RM001 "Function Files"). Only the real-time clock is simulated; the others are recognised
+// so that a program naming them gets a clear diagnostic instead of a syntax error.
+enum class FunctionFile : std::uint8_t { RTC, HSC, PTOX, PWMX, STI, EII, BHI, MMI, DAT, TPI, CS, IOS, LCD };
+inline constexpr int kFunctionFileCount = 13;
+// "RTC", "HSC", ... for a FunctionFile number; "?" when out of range.
+std::string_view function_file_name(int id);
+// The FunctionFile number of a name ("RTC" -> 0), or -1.
+int function_file_id(std::string_view name);
+// Whether softslc simulates the function file (has its layout and behaviour): RTC only.
+bool function_file_simulated(int id);
+// Elements and words per element of a simulated function file (RTC: 1 element of 8 words).
+int function_file_elements(int id);
+int function_file_words_per_element(int id);
+// Named sub-elements of a function file element: word number, or -1 when unknown.
+int function_word_number(int id, std::string_view name);
+std::string_view function_word_name(int id, int word);
+// Named bits: sets `word` and `bit` and returns true when known.
+bool function_bit_number(int id, std::string_view name, int& word, int& bit);
+std::string_view function_bit_name(int id, int word, int bit);
+
+// The real-time clock function file's words (1762-RM001C p. 3-3 Table 3.2, same in 1763-RM001 and
+// 1766-RM001): YR 1998-2097, MON 1-12, DAY 1-31, HR 0-23, MIN 0-59, SEC 0-59, DOW 0-6 (Sunday =
+// 0), then the status word holding DS (clock disabled) and BL (battery low). The order of the
+// seven value words is the order the table lists them, which is what `CPW N:0 RTC:0.YR 6`
+// (slc_adjust_clock.RSS) relies on; the bit positions of DS and BL in word 7 are softslc's choice
+// (the manual names the bits, not their positions).
+namespace rtc {
+inline constexpr int kYear = 0, kMonth = 1, kDay = 2, kHour = 3, kMinute = 4, kSecond = 5, kDayOfWeek = 6;
+inline constexpr int kStatusWord = 7;
+inline constexpr int kDisabledBit = 0, kBatteryLowBit = 1;
+inline constexpr int kWords = 8;
+}  // namespace rtc
 
 // The letter(s) of a file type as written in addresses: "O", "I", "S", "B", ..., "ST", "M0".
 std::string_view file_letter(FileType t);
@@ -49,6 +88,7 @@ inline bool is_structured(FileType t) {
 }
 inline bool is_io(FileType t) { return t == FileType::Output || t == FileType::Input; }
 inline bool is_mfile(FileType t) { return t == FileType::M0 || t == FileType::M1; }
+inline bool is_function_file(FileType t) { return t == FileType::Function; }
 // The fixed file number of O/I/S (0/1/2); -1 for the others.
 int fixed_file_number(FileType t);
 

@@ -224,7 +224,7 @@ class Checker {
   // ---- File numbers and types ---------------------------------------------------------------------------
 
   void note_file_use(const Address& a, SourcePos pos) {
-    if (is_mfile(a.type) || a.indirect_file) return;
+    if (is_mfile(a.type) || is_function_file(a.type) || a.indirect_file) return;
     auto [it, inserted] = file_types_.emplace(a.file, FileUse{a.type, pos});
     if (!inserted && it->second.type != a.type)
       error(pos, "file " + std::to_string(a.file) + " is used as " + std::string(file_letter(a.type)) +
@@ -253,14 +253,39 @@ class Checker {
     return true;
   }
 
+  // Function files (RTC:0.YR ...): MicroLogix 1100-class only, and only the ones softslc models.
+  void check_function_file_address(const Address& a, SourcePos pos) {
+    const auto& proc = program_.processor;
+    const std::string name(function_file_name(a.file));
+    if (!proc.is_micrologix_1100_class()) {
+      error(pos, "function file " + name + " exists on the MicroLogix 1100, 1200, 1400 and 1500 only; this "
+                 "program's processor is " + proc.display_name);
+      return;
+    }
+    if (!function_file_simulated(a.file)) {
+      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC is");
+      return;
+    }
+    if (a.element >= function_file_elements(a.file))
+      error(pos, to_string(a) + ": " + name + " has element 0 only");
+    if (a.word >= function_file_words_per_element(a.file))
+      error(pos, to_string(a) + ": " + name + " elements have words 0-" +
+                     std::to_string(function_file_words_per_element(a.file) - 1));
+  }
+
   // Checks an address on its own. `kind` and `mfile` say where it stands (for M-file rules).
   void check_address(const Address& a, SourcePos pos, OperandKind kind, MFileAccess mfile, bool record_type = true) {
     const auto& proc = program_.processor;
+    if (is_function_file(a.type)) {
+      if (a.bit > 15) error(pos, "bit number " + std::to_string(a.bit) + " is out of range 0-15");
+      check_function_file_address(a, pos);
+      return;
+    }
     if (record_type) note_file_use(a, pos);
     if (a.bit > 15) error(pos, "bit number " + std::to_string(a.bit) + " is out of range 0-15");
     if (a.is_indirect() && !proc.has_indirect_addressing())
-      error(pos, "indirect addressing needs SLC 5/03 OS302, 5/04 OS401 or 5/05; this program's processor is " +
-                     proc.display_name);
+      error(pos, "indirect addressing needs SLC 5/03 OS302, 5/04 OS401, 5/05, MicroLogix 1100 or 1400; this "
+                 "program's processor is " + proc.display_name);
     for (const auto* r : {&a.indirect_file, &a.indirect_element, &a.indirect_word, &a.indirect_bit})
       if (*r) check_indirect_ref(**r, pos);
     switch (a.type) {

@@ -66,12 +66,20 @@ struct word : plus<not_one<' ', '\t', '\r', '\n', '%', '"'>> {};
 
 // ---- Addresses -----------------------------------------------------------------------------------
 // I:1/3  I:1.0/3  O:2.1/15  S:1/15  B3:0/7  B3/62  N7:10/4  F8:2  T4:0.ACC  T4:0/DN  C5:1/OV
-// R6:0.LEN  #N7:10  N7:[N10:1]  N[N10:0]:5  B3/[N7:0]  M0:1.100/13  M1:3.210  L41:0  ST9:0
+// R6:0.LEN  #N7:10  N7:[N10:1]  N[N10:0]:5  B3/[N7:0]  M0:1.100/13  M1:3.210  L41:0  ST9:0  RTC:0.YR
 
 struct file_type_st : string<'S', 'T'> {};
 struct file_type_m : seq<one<'M'>, one<'0', '1'>> {};
 struct file_type_letter : one<'O', 'I', 'S', 'B', 'T', 'C', 'R', 'N', 'F', 'L', 'A'> {};
-struct file_type : sor<file_type_st, file_type_m, file_type_letter> {};
+// MicroLogix function files (RTC:0.YR, HSC:0/FE): a name and no file number, so the name must
+// be followed by ':' (that keeps STI from swallowing ST9:0 and CS from C5:0).
+struct file_type_function
+    : seq<sor<TAO_PEGTL_STRING("RTC"), TAO_PEGTL_STRING("HSC"), TAO_PEGTL_STRING("PTOX"), TAO_PEGTL_STRING("PWMX"),
+              TAO_PEGTL_STRING("STI"), TAO_PEGTL_STRING("EII"), TAO_PEGTL_STRING("BHI"), TAO_PEGTL_STRING("MMI"),
+              TAO_PEGTL_STRING("DAT"), TAO_PEGTL_STRING("TPI"), TAO_PEGTL_STRING("CS"), TAO_PEGTL_STRING("IOS"),
+              TAO_PEGTL_STRING("LCD")>,
+          at<one<':'>>> {};
+struct file_type : sor<file_type_function, file_type_st, file_type_m, file_type_letter> {};
 
 // The word address inside brackets (no nesting, no expressions).
 struct ref_type : file_type {};

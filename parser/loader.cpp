@@ -116,6 +116,7 @@ std::optional<FileType> file_type_from_letters(std::string_view s) {
   };
   for (const auto& [letters, type] : kTypes)
     if (letters == s) return type;
+  if (function_file_id(s) >= 0) return FileType::Function;
   return std::nullopt;
 }
 
@@ -220,6 +221,11 @@ template <> struct action<file_type> {
   template <typename Input>
   static void apply(const Input& in, AddressBuilder& b) {
     b.a.type = *file_type_from_letters(in.string_view());
+    if (is_function_file(b.a.type)) {
+      // The function file's name is its whole file part: RTC:0, never RTC9:0.
+      b.a.file = static_cast<std::uint16_t>(function_file_id(in.string_view()));
+      b.has_file_number = true;
+    }
     int fixed = fixed_file_number(b.a.type);
     if (fixed >= 0) b.a.file = static_cast<std::uint16_t>(fixed);
     if (b.a.type == FileType::M0) b.a.file = 0;
@@ -282,6 +288,18 @@ template <> struct action<word_number> {
 template <> struct action<word_name> {
   template <typename Input>
   static void apply(const Input& in, AddressBuilder& b) {
+    if (is_function_file(b.a.type)) {
+      const int id = b.a.file;
+      int w = function_word_number(id, in.string_view());
+      if (w < 0)
+        throw pegtl::parse_error("unknown sub-element '" + in.string() + "' of function file " +
+                                     std::string(function_file_name(id)) +
+                                     (function_file_simulated(id) ? " (RTC has YR, MON, DAY, HR, MIN, SEC, DOW)"
+                                                                  : " (softslc does not model this function file)"),
+                                 in);
+      b.a.word = w;
+      return;
+    }
     int w = structured_word_number(b.a.type, in.string_view());
     if (w < 0) {
       std::string msg = "unknown sub-element '" + in.string() + "'";
@@ -310,6 +328,19 @@ template <> struct action<bit_number> {
 template <> struct action<bit_name> {
   template <typename Input>
   static void apply(const Input& in, AddressBuilder& b) {
+    if (is_function_file(b.a.type)) {
+      const int id = b.a.file;
+      int word = -1, bit = -1;
+      if (b.a.word >= 0 || !function_bit_number(id, in.string_view(), word, bit))
+        throw pegtl::parse_error("unknown bit name '" + in.string() + "' of function file " +
+                                     std::string(function_file_name(id)) +
+                                     (function_file_simulated(id) ? " (RTC has bits DS and BL)"
+                                                                  : " (softslc does not model this function file)"),
+                                 in);
+      b.a.word = word;
+      b.a.bit = bit;
+      return;
+    }
     int bit = b.a.word <= 0 ? structured_bit_number(b.a.type, in.string_view()) : -1;
     if (bit < 0) {
       std::string msg = "unknown bit name '" + in.string() + "'";
@@ -374,6 +405,9 @@ template <> struct action<ref_type> {
   static void apply(const Input& in, AddressBuilder& b) {
     b.ref = {};
     b.ref.type = *file_type_from_letters(in.string_view());
+    if (is_function_file(b.ref.type))
+      throw pegtl::parse_error("a function file word cannot be a pointer inside brackets; copy it to an N word first",
+                               in);
     int fixed = fixed_file_number(b.ref.type);
     if (fixed >= 0) b.ref.file = static_cast<std::uint16_t>(fixed);
     b.ref_has_file_number = false;
@@ -779,7 +813,7 @@ template <> struct action<data_header> {
     s.data.start_element = std::stoi(std::string(text.substr(colon + 1)).substr(0, 9));
     auto type = file_type_from_letters(letters);
     int fixed = type ? fixed_file_number(*type) : -1;
-    s.data_opaque = !type || is_mfile(*type);
+    s.data_opaque = !type || is_mfile(*type) || is_function_file(*type);
     if (!s.data_opaque) {
       s.data.type = type;
       if (fixed >= 0) {

@@ -155,7 +155,7 @@ class Compiler {
     if (a.indirect_element) note_ref(*a.indirect_element, pos);
     if (a.indirect_word) note_ref(*a.indirect_word, pos);
     if (a.indirect_bit) note_ref(*a.indirect_bit, pos);
-    if (is_io(a.type) || is_mfile(a.type) || a.type == FileType::Status) return;
+    if (is_io(a.type) || is_mfile(a.type) || a.type == FileType::Status || is_function_file(a.type)) return;
     if (a.indirect_file) return;  // which file is only known at run time
     std::uint32_t elements = 1;
     if (!a.indirect_element && !(a.bit_offset_form && a.indirect_bit)) {
@@ -315,6 +315,19 @@ class Compiler {
       f.words_per_element = static_cast<std::uint8_t>(wpe_of(u.type));
       next += f.words();
     }
+    // The real-time clock function file: built into the MicroLogix 1100 and 1400, a plug-in on the
+    // 1200 and 1500 (1762-RM001C p. 3-3), present in the data table of all four so that a program
+    // and a test can read and set it. It starts at softslc's fixed power-up date (docs/semantics.md
+    // "Real-time clock") and runs in virtual time (Runtime::advance_rtc).
+    if (proc_.is_micrologix_1100_class()) {
+      FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(FunctionFile::RTC)];
+      f.present = true;
+      f.type = FileType::Function;
+      f.base = next;
+      f.elements = static_cast<std::uint32_t>(function_file_elements(static_cast<int>(FunctionFile::RTC)));
+      f.words_per_element = static_cast<std::uint8_t>(rtc::kWords);
+      next += f.words();
+    }
     layout_.total_words = next;
     if (next > bc::kMaxWordIndex) error({}, "the data table is too large to address");
   }
@@ -329,6 +342,14 @@ class Compiler {
   void load_data() {
     init_.assign(layout_.total_words, 0);
     initialised_.assign(layout_.total_words, false);
+    if (const FileLayout& clock = layout_.function_file(FunctionFile::RTC); clock.present) {
+      // softslc's power-up date: Saturday 2000-01-01 00:00:00 (a fixed date keeps runs
+      // deterministic; a test sets the clock it needs with --set or a .test SET line).
+      set_init(clock.base + rtc::kYear, 2000);
+      set_init(clock.base + rtc::kMonth, 1);
+      set_init(clock.base + rtc::kDay, 1);
+      set_init(clock.base + rtc::kDayOfWeek, 6);
+    }
     for (const auto& d : prog_.data) {
       if (!d.type || is_mfile(*d.type)) continue;
       const FileType t = *d.type;
@@ -460,6 +481,8 @@ class Compiler {
       else if (a.word_in_element() >= size)
         error(pos, to_string(a) + " is beyond the module's " + std::string(file_letter(a.type)) + " file (" +
                        std::to_string(size) + " words)");
+    } else if (is_function_file(a.type)) {
+      error(pos, "function file addresses cannot be indexed or indirect: " + to_string(a));
     } else if (!a.indirect_file) {
       // The file itself must exist even when the element is computed at run time.
       if (!is_io(a.type) && a.type != FileType::Status) {

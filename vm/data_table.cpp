@@ -34,6 +34,26 @@ std::optional<Location> DataTableLayout::locate(const Address& a, std::string* e
   }
   Location loc;
   loc.type = a.type;
+  if (is_function_file(a.type)) {
+    const std::size_t index = kFunctionFileIndex + a.file;
+    if (a.file >= kFunctionFileCount || !files[index].present) {
+      set_error(error, to_string(a) + ": function file " + std::string(function_file_name(a.file)) +
+                           " is not simulated on this processor");
+      return std::nullopt;
+    }
+    const FileLayout& f = files[index];
+    const int word = a.word < 0 ? 0 : a.word;
+    if (a.element < 0 || static_cast<std::uint32_t>(a.element) >= f.elements || word >= f.words_per_element ||
+        a.bit > 15) {
+      set_error(error, to_string(a) + " is beyond the " + std::string(function_file_name(a.file)) + " function file");
+      return std::nullopt;
+    }
+    loc.file = static_cast<int>(index);
+    loc.word = f.base + static_cast<std::uint32_t>(a.element) * f.words_per_element + static_cast<std::uint32_t>(word);
+    loc.bit = a.bit;
+    loc.vtype = ValueType::Int16;
+    return loc;
+  }
   if (is_io(a.type)) {
     const int file = fixed_file_number(a.type);
     const auto& slots = a.type == FileType::Input ? input_slots : output_slots;
@@ -107,9 +127,9 @@ std::optional<Location> DataTableLayout::locate(const Address& a, std::string* e
 int DataTableLayout::file_containing(std::uint32_t word) const {
   // Files lie in file-number order (see the layout in data_table.h), so the first present file
   // that ends after `word` is the only one that can hold it.
-  for (int f = 0; f < 256; ++f) {
-    const auto& fl = files[static_cast<std::size_t>(f)];
-    if (fl.present && word < fl.end()) return word >= fl.base ? f : -1;
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    const auto& fl = files[f];
+    if (fl.present && word < fl.end()) return word >= fl.base ? static_cast<int>(f) : -1;
   }
   return -1;
 }
@@ -123,6 +143,12 @@ std::string DataTableLayout::describe(std::uint32_t word, int bit) const {
   a.type = fl.type;
   a.file = static_cast<std::uint16_t>(f);
   a.bit = bit;
+  if (is_function_file(fl.type)) {
+    a.file = static_cast<std::uint16_t>(static_cast<std::size_t>(f) - kFunctionFileIndex);
+    a.element = static_cast<std::int32_t>(off / fl.words_per_element);
+    a.word = static_cast<std::int32_t>(off % fl.words_per_element);
+    return to_string(a);
+  }
   if (is_io(fl.type)) {
     const auto& slots = fl.type == FileType::Input ? input_slots : output_slots;
     for (int s = 0; s < kMaxSlots; ++s) {

@@ -10,7 +10,7 @@
 //
 //   word 0                                                              total_words
 //   +---------+---------+----------------+------+-------+-------+------+-----+------+----
-//   | O0      | I1      | S2 (164 words) | B3   | T4    | C5    | R6   | N7  | F8   | 9..
+//   | O0      | I1      | S2 (164 words) | B3   | T4    | C5    | R6   | N7  | F8   | 9.. (then RTC)
 //   | SCAN_OUT| SCAN_IN |                | 1/el | 3/el  | 3/el  | 3/el | 1/el| 2/el |
 //   +---------+---------+----------------+------+-------+-------+------+-----+------+----
 //
@@ -136,13 +136,21 @@ struct Location {
   int file = 0;
 };
 
+// Where the function files sit in DataTableLayout::files: after the 256 data files, one entry per
+// FunctionFile (files[kFunctionFileIndex + RTC] is the real-time clock). Only simulated function
+// files are present; they follow the data files in the word array, so the file-number order of
+// `files` is still the word order.
+inline constexpr std::size_t kFunctionFileIndex = 256;
+
 struct DataTableLayout {
-  std::array<FileLayout, 256> files{};
+  std::array<FileLayout, kFunctionFileIndex + kFunctionFileCount> files{};
   std::array<SlotImage, kMaxSlots> input_slots{};
   std::array<SlotImage, kMaxSlots> output_slots{};
   std::uint32_t total_words = 0;
 
   std::uint32_t status_word(int n) const { return files[2].base + static_cast<std::uint32_t>(n); }
+  // The layout of a function file (present only when softslc simulates it on this processor).
+  const FileLayout& function_file(FunctionFile f) const { return files[kFunctionFileIndex + static_cast<std::size_t>(f)]; }
 
   // Resolves a direct address (no '#' index, no [indirection], not M0/M1) to its location.
   // `as_file_start` treats a leading '#' as the file marker of file instructions rather than as

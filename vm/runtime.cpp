@@ -10,6 +10,7 @@
 #include "parser/checker.h"
 #include "parser/loader.h"
 #include "vm/discrete_io.h"
+#include "vm/real_time_clock.h"
 
 namespace softslc {
 
@@ -224,11 +225,20 @@ ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elap
   const std::int64_t tick = (scan_start + elapsed) / kTick;
   data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
   s4_tick_ = tick;
+  advance_rtc(scan_start + elapsed);
   std::uint16_t s1 = data_.status(status::kMode);
   data_.set_status(status::kMode, static_cast<std::uint16_t>(first_pass_ ? (s1 | status::kFirstPass)
                                                                          : (s1 & ~status::kFirstPass)));
   const Nanoseconds watchdog = static_cast<Nanoseconds>(data_.status(status::kWatchdog) >> 8) * kTick;
   return interp_->program_scan(scan_start, elapsed, first_pass_, watchdog);
+}
+
+void Runtime::advance_rtc(VirtualTime now) {
+  const FileLayout& clock = program_->layout->function_file(FunctionFile::RTC);
+  if (!clock.present) return;
+  const std::int64_t second = now / kNsPerS;
+  advance_real_time_clock(data_.words() + clock.base, second - rtc_second_);
+  rtc_second_ = second;
 }
 
 Nanoseconds Runtime::output_scan() {

@@ -179,6 +179,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   Nanoseconds input_scan();
   ProgramScanResult program_scan(VirtualTime scan_start, Nanoseconds elapsed);
   Nanoseconds output_scan();
+  // Advances the RTC function file (when the processor has one) to virtual time `now`.
+  void advance_rtc(VirtualTime now);
   Nanoseconds housekeeping(Nanoseconds scan_time, bool executed);
   void enter_fault(const FaultInfo& f);
   void apply_input_forces(std::uint32_t first, std::uint32_t count);
@@ -218,6 +220,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::optional<FaultInfo> fault_;
   ScanStats stats_;
   std::int64_t s4_tick_ = 0;  // tick count when S:4 was last advanced
+  std::int64_t rtc_second_ = 0;  // whole seconds of virtual time when the RTC was last advanced
   // A module fault raised while modules are being told of a mode change waits here until every
   // module has seen the change.
   bool notifying_ = false;

@@ -166,9 +166,11 @@ std::string encode_state(const DataTable& table, std::uint64_t fingerprint, cons
   put_u32(out, kStateFormatVersion);
   put_u64(out, fingerprint);
   std::uint32_t count = 0;
-  for (const auto& f : layout.files) count += f.present ? 1 : 0;
+  // Data files only: a function file (the RTC) is a clock, not program data, and the record's
+  // file number is one byte.
+  for (std::size_t n = 0; n < kFunctionFileIndex; ++n) count += layout.files[n].present ? 1 : 0;
   put_u32(out, count);
-  for (std::size_t n = 0; n < layout.files.size(); ++n) {
+  for (std::size_t n = 0; n < kFunctionFileIndex; ++n) {
     const auto& f = layout.files[n];
     if (!f.present) continue;
     put_u8(out, static_cast<std::uint8_t>(n));

@@ -15,6 +15,7 @@
 #include "parser/checker.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
+#include "parser/address.h"
 #include "tools/controller/controller.h"
 #include "vm/scantime.h"
 #include "vm/timing_profile.h"
@@ -419,6 +420,183 @@ TEST(MicroLogixTiming, ScantimePredictsBothBsgsExports) {
     EXPECT_TRUE(t.uses_estimates);
     EXPECT_GT(t.total_best, t.housekeeping);
     EXPECT_GT(t.total_worst, t.total_best);
+  }
+}
+
+// ---- Function files: the real-time clock (1762-RM001C p. 3-3 Table 3.2: RTC:0.YR 1998-2097,
+// .MON 1-12, .DAY 1-31, .HR 0-23, .MIN 0-59, .SEC 0-59, .DOW 0-6 Sunday to Saturday, /DS, /BL) -------
+
+TEST(MicroLogixFunctionFiles, RtcAddressesParseAndPrintAsRsLogixWritesThem) {
+  for (const char* text : {"RTC:0.YR", "RTC:0.MON", "RTC:0.DAY", "RTC:0.HR", "RTC:0.MIN", "RTC:0.SEC", "RTC:0.DOW",
+                           "RTC:0/DS", "RTC:0/BL", "RTC:0.SEC/1"}) {
+    std::string err;
+    auto a = parse_address(text, &err);
+    ASSERT_TRUE(a.has_value()) << text << ": " << err;
+    EXPECT_EQ(a->type, FileType::Function) << text;
+    EXPECT_EQ(to_string(*a), text);
+  }
+  auto sec = *parse_address("RTC:0.SEC/1");
+  EXPECT_EQ(sec.word, rtc::kSecond);
+  EXPECT_EQ(sec.bit, 1);
+  // The table's order is the word order (CPW from RTC:0.YR copies YR, MON, DAY, ...).
+  EXPECT_EQ(parse_address("RTC:0.YR")->word, 0);
+  EXPECT_EQ(parse_address("RTC:0.DOW")->word, 6);
+  std::string err;
+  EXPECT_FALSE(parse_address("RTC:0.FOO", &err).has_value());
+  EXPECT_NE(err.find("unknown sub-element 'FOO' of function file RTC"), std::string::npos) << err;
+  // Names that are not followed by ':' are not function files: ST9:0 is still a string file.
+  EXPECT_EQ(parse_address("ST9:0")->type, FileType::String);
+  EXPECT_EQ(parse_address("C5:0.ACC")->type, FileType::Counter);
+}
+
+TEST(MicroLogixFunctionFiles, CheckerAcceptsRtcOnlyWhereItExistsAndNamesUnmodelledFiles) {
+  EXPECT_EQ(load_errors("START Bul.1763\nLADDER 2\nSOR MOV RTC:0.SEC N7:0 EOR\n"), "");
+  EXPECT_EQ(load_errors("START Bul.1766\nLADDER 2\nSOR XIC RTC:0.SEC/1 OTE O:0/0 EOR\n"), "");
+  EXPECT_NE(load_errors("START 1747-L532\nLADDER 2\nSOR MOV RTC:0.SEC N7:0 EOR\n")
+                .find("function file RTC exists on the MicroLogix 1100, 1200, 1400 and 1500 only"),
+            std::string::npos);
+  EXPECT_NE(load_errors("START Bul.1761\nLADDER 2\nSOR MOV RTC:0.SEC N7:0 EOR\n").find("function file RTC"),
+            std::string::npos);
+  // HSC is recognised and named, not simulated yet.
+  EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR XIC HSC:0/0 OTE O:0/0 EOR\n")
+                .find("function file HSC (HSC:0/0) is not simulated by softslc yet"),
+            std::string::npos);
+  EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR MOV RTC:1.SEC N7:0 EOR\n").find("RTC has element 0 only"),
+            std::string::npos);
+  // A function file's DATA block still loads, kept as opaque data with a warning naming it.
+  LoadResult r = load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 OTE O:0/0 EOR\nDATA HSC:0\n1 2 3\n", "t.slc");
+  ASSERT_TRUE(r.ok()) << r.render_diagnostics();
+  EXPECT_NE(r.render_diagnostics().find("data file 'HSC:0'"), std::string::npos) << r.render_diagnostics();
+}
+
+// Runs scans until RTC:0.SEC differs from `from` (at most 2 s), i.e. up to the next whole second.
+void next_second(Controller& plc, std::int64_t from) {
+  ASSERT_TRUE(plc.run_until([&](const Controller& c) { return c.get_int("RTC:0.SEC") != from; }, seconds(2)));
+}
+
+TEST(MicroLogixFunctionFiles, RtcRunsInVirtualTimeFromItsPowerUpDate) {
+  Controller plc = Controller::from_text("START Bul.1763\nLADDER 2\nSOR MOV RTC:0.SEC N7:0 EOR\n");
+  plc.scan(1);
+  // softslc's fixed power-up date (docs/semantics.md "Real-time clock"): Saturday 2000-01-01.
+  EXPECT_EQ(plc.get_int("RTC:0.YR"), 2000);
+  EXPECT_EQ(plc.get_int("RTC:0.MON"), 1);
+  EXPECT_EQ(plc.get_int("RTC:0.DAY"), 1);
+  EXPECT_EQ(plc.get_int("RTC:0.DOW"), 6);
+  plc.run_for(seconds(61));
+  EXPECT_EQ(plc.get_int("RTC:0.MIN"), 1);
+  EXPECT_EQ(plc.get_int("RTC:0.SEC"), plc.now() / kNsPerS - 60);
+  EXPECT_EQ(plc.get_int("N7:0"), plc.get_int("RTC:0.SEC")) << "the program reads the running clock";
+}
+
+TEST(MicroLogixFunctionFiles, RtcCarriesIntoDaysMonthsLeapYearsAndTheDayOfWeek) {
+  Controller plc = Controller::from_text("START Bul.1766\nLADDER 2\nSOR MOV RTC:0.SEC N7:0 EOR\n");
+  plc.scan(1);
+  // Wednesday 2024-02-28 23:59:59 (2024 is a leap year): the next second is Thursday the 29th.
+  auto set_clock = [&](int yr, int mon, int day, int hr, int min, int sec, int dow) {
+    plc.set("RTC:0.YR", yr);
+    plc.set("RTC:0.MON", mon);
+    plc.set("RTC:0.DAY", day);
+    plc.set("RTC:0.HR", hr);
+    plc.set("RTC:0.MIN", min);
+    plc.set("RTC:0.SEC", sec);
+    plc.set("RTC:0.DOW", dow);
+  };
+  // The date words after the next second: YR MON DAY HR DOW.
+  auto after_next_second = [&] {
+    next_second(plc, 59);
+    return std::vector<std::int64_t>{plc.get_int("RTC:0.YR"), plc.get_int("RTC:0.MON"), plc.get_int("RTC:0.DAY"),
+                                     plc.get_int("RTC:0.HR"), plc.get_int("RTC:0.DOW")};
+  };
+  set_clock(2024, 2, 28, 23, 59, 59, 3);
+  EXPECT_EQ(after_next_second(), (std::vector<std::int64_t>{2024, 2, 29, 0, 4}));
+  // Sunday 2023-12-31 23:59:59 (Sunday = 0): the next second is Monday 2024-01-01.
+  set_clock(2023, 12, 31, 23, 59, 59, 0);
+  EXPECT_EQ(after_next_second(), (std::vector<std::int64_t>{2024, 1, 1, 0, 1}));
+  // Tuesday 2023-02-28: 2023 is not a leap year, so Wednesday 03-01 follows.
+  set_clock(2023, 2, 28, 23, 59, 59, 2);
+  EXPECT_EQ(after_next_second(), (std::vector<std::int64_t>{2023, 3, 1, 0, 3}));
+  // RTC:0/DS (disabled): the clock stands still.
+  plc.set("RTC:0/DS", 1);
+  const auto held = plc.get_int("RTC:0.SEC");
+  plc.run_for(seconds(3));
+  EXPECT_EQ(plc.get_int("RTC:0.SEC"), held);
+}
+
+// slc_adjust_clock.RSS sets the clock with CPW #N101:0 #RTC:0.YR 6 (1763-RM001 "CPW"): six words
+// from YR on are YR, MON, DAY, HR, MIN, SEC.
+TEST(MicroLogixFunctionFiles, CpwIntoTheRtcSetsTheClock) {
+  Controller plc = Controller::from_text(
+      "START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 CPW #N7:0 #RTC:0.YR 6 OTU B3:0/0 EOR\n"
+      "DATA N7:0\n2021 7 4 12 30 0\n");
+  plc.scan(1);
+  plc.set("B3:0/0", 1);
+  plc.scan(1);
+  EXPECT_EQ(plc.get_int("RTC:0.YR"), 2021);
+  EXPECT_EQ(plc.get_int("RTC:0.MON"), 7);
+  EXPECT_EQ(plc.get_int("RTC:0.DAY"), 4);
+  EXPECT_EQ(plc.get_int("RTC:0.HR"), 12);
+  EXPECT_EQ(plc.get_int("RTC:0.MIN"), 30);
+  EXPECT_LE(plc.get_int("RTC:0.SEC"), 1);
+}
+
+// ---- The .RSS fixtures (issue 16 "Done when"): every project the .RSS reader reads passes check
+// and runs 10 s of virtual time without a fault. The ones still blocked are listed with what
+// blocks them; the test fails when one of them starts to load, so the list only shrinks. --------
+
+struct RssFixture {
+  const char* path;                   // under fixtures/rss/
+  const char* blocked = nullptr;      // a phrase of the load error, when it does not load yet
+  const char* run_fault = nullptr;    // a phrase of the fault it still stops with in 10 s
+};
+
+// The .RSS reader does not yet give data files their size (the project's DATA FILES stream, the
+// rss helper's work): an indexed pointer walking N9:0-255 then faults at N9:1 although the real
+// file has 256 elements.
+constexpr const char* kNoDataFileSizes = "is beyond the end of N9 (elements 0-0)";
+
+const std::vector<RssFixture> kRssFixtures = {
+    {"drbitboy-PLC_2s_lamp_flash/cascading_timers.RSS", nullptr, kNoDataFileSizes},
+    {"drbitboy-PLC_2s_lamp_flash/free_running_clock_bit_14.RSS", nullptr},
+    {"drbitboy-PLC_2s_lamp_flash/rtc_bit_1.RSS", nullptr, kNoDataFileSizes},
+    {"drbitboy-PLC_2s_lamp_flash/single_timer.RSS", nullptr, kNoDataFileSizes},
+    {"drbitboy-PLC_2s_lamp_flash/sti_1000ms_live.RSS", "instruction STS is not supported"},
+    {"drbitboy-PLC_SLC_adjust_clock/slc_adjust_clock.RSS", nullptr},
+    {"drbitboy-PLC_lowpass/training_bubble_sort_running.RSS", nullptr},
+    {"drbitboy-PLC_lowpass/training_two_setpoints_running_0.965.RSS", nullptr},
+    // PTO:0/CS: the 1100/1200/1500 name of the pulse-train function file, not parsed yet.
+    {"drbitboy-PLC_reject_timing/20230719_MicroLogix_1100_driver_of_Micro8xx_2080-MOT-HSC.RSS", "expected an operand"},
+    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02.RSS", "of function file HSC"},
+    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02_LatchmoorAnnotations.RSS", "of function file HSC"},
+    {"drbitboy-PLC_reject_timing/lecky_demo.RSS", nullptr},
+    {"drbitboy-PLC_reject_timing/lecky_demo_tof.RSS", nullptr},
+    // B103:10/[N7:0] with N7:0 up to 111: the program walks bits past the element's 16, which
+    // softslc faults on; whether a MicroLogix B-file indirect bit runs on into the next words is
+    // not in the project's sources yet (L105 also needs its data-file size, see above).
+    {"drbitboy-PLC_reject_timing/lecky_demo_tof_loop.RSS", nullptr, "B103:10/[N7:0] (N7:0 = 16): bit 16 does not exist"},
+    {"mitagorashi-Water_Filtration/water_filtration_system.RSS", nullptr},
+};
+
+TEST(MicroLogixFixtures, EveryRssFixtureChecksAndRunsTenSecondsOrIsListedAsBlocked) {
+  for (const auto& f : kRssFixtures) {
+    const std::string path = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rss/" + f.path;
+    SCOPED_TRACE(f.path);
+    LoadResult r = load_program_file(path);
+    if (f.blocked) {
+      EXPECT_FALSE(r.ok()) << "now loads: move it to the running list";
+      EXPECT_NE(r.render_diagnostics().find(f.blocked), std::string::npos) << r.render_diagnostics();
+      continue;
+    }
+    EXPECT_TRUE(r.ok()) << r.render_diagnostics();
+    if (!r.ok()) continue;
+    Controller plc = Controller::load(path);
+    plc.run_for(seconds(10));
+    if (f.run_fault) {
+      ASSERT_TRUE(plc.fault().has_value()) << "now runs 10 s: move it to the running list";
+      EXPECT_NE(plc.fault()->to_string().find(f.run_fault), std::string::npos) << plc.fault()->to_string();
+      continue;
+    }
+    EXPECT_FALSE(plc.fault().has_value()) << plc.fault()->to_string();
+    EXPECT_GE(plc.now(), seconds(10));
   }
 }
 

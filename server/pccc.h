@@ -31,14 +31,14 @@
 //
 // M0/M1 files (specialty-module files, 1747-SN manual appendix B: "M0 and M1 files are data files
 // that reside in specialty I/O modules only"). The SLC's typed-read file type code for them is not
-// in our sources (the DF1 manual's table p. 7-17 stops at 8Fh, and no PCCC client we know of has
-// an M address syntax), so softslc chooses one and docs/serve.md says so: file type F0h is M0,
-// F1h is M1; the file field is the module's slot, the element the word (M0:1.100 is file 1
-// element 100), the sub-element must be 0. The file has as many elements as the module's M file
-// has words. Every word is read or written through the module, as the ladder and `run --set`
-// reach it (Target::read_module / write_module), so the module's refusal — a word it does not
-// have, a file it does not let the processor write — is the client's error: EXT STS 10h (no
-// access), or 06h when the slot has no module with that M file at all.
+// in our sources (the DF1 manual's file-type table, p. 7-17 as drivers quote it, stops at 8Fh;
+// no PCCC client we know of has an M address syntax), so softslc chooses one and docs/serve.md
+// says so: file type F0h is M0, F1h is M1; the file field is the module's slot, the element the
+// word (M0:1.100 is file 1 element 100), the sub-element must be 0. The file has as many elements
+// as the module's M file has words. Every word is read or written through the module, as the
+// ladder and `run --set` reach it (Target::read_module / write_module), so the module's refusal —
+// a word it does not have, a file it does not let the processor write — is the client's error:
+// EXT STS 10h (no access), or 06h when the slot has no module with that M file at all.
 #pragma once
 
 #include <cstdint>

@@ -168,7 +168,7 @@ std::optional<std::vector<std::uint8_t>> handle(std::span<const std::uint8_t> fr
   const auto pdu = frame.subspan(kHeaderSize);
   const std::uint8_t fc = pdu[0];
   Reply reply(*h, fc);
-  const auto refuse = [&](std::uint8_t code, std::string why) {
+  const auto refuse = [&](std::uint8_t code, const std::string& why) {
     if (refusal) *refusal = "function " + std::to_string(fc) + ": " + why;
     return reply.exception(code);
   };
@@ -248,7 +248,7 @@ std::optional<std::vector<std::uint8_t>> handle(std::span<const std::uint8_t> fr
         why = write_bits(target, *r.place, quantity, [&](std::uint32_t i) { return (data[i / 8] >> (i % 8)) & 1u; });
       } else {
         std::vector<std::uint16_t> values(quantity), masks(quantity, 0xFFFF);
-        for (std::uint32_t i = 0; i < quantity; ++i) values[i] = be16(data, i * 2);
+        for (std::uint32_t i = 0; i < quantity; ++i) values[i] = be16(data, static_cast<std::size_t>(i) * 2);
         why = target.write(r.place->file, r.place->first, values, masks);
       }
       if (!why.empty()) return refuse(kServerDeviceFailure, why);

@@ -52,9 +52,9 @@ struct Server::Link : std::enable_shared_from_this<Server::Link> {
                        then();
                      });
   }
-  // Sends `reply`, then closes the connection or calls `then`.
+  // Sends `bytes`, then closes the connection or calls `then`.
   template <typename Self, typename Then>
-  static void send(const std::shared_ptr<Self>& self, std::vector<std::uint8_t> bytes, bool close_after, Then then) {
+  static void send(const std::shared_ptr<Self>& self, std::vector<std::uint8_t>&& bytes, bool close_after, Then then) {
     self->reply = std::move(bytes);
     asio::async_write(self->socket, asio::buffer(self->reply),
                       [self, close_after, then](const std::error_code& ec, std::size_t) {

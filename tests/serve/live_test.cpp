@@ -98,7 +98,7 @@ namespace {
 // and writes go through the module, as the ladder's M0/M1 addresses and `run --set` do, so the
 // module's rules are the client's: the SLC may not write the scanner's M1 (status) file (1747-SN
 // manual p. B-1: "the M1 file is a module input file (a read only file)").
-Bytes m_request(std::uint8_t fnc, std::uint8_t type, std::uint8_t slot, std::uint8_t word, Bytes data = {},
+Bytes m_request(std::uint8_t fnc, std::uint8_t type, std::uint8_t slot, std::uint8_t word, const Bytes& data = {},
                 std::uint8_t size = 2) {
   // Built byte by byte: GCC 12 warns falsely (-Warray-bounds) on inserting into a 9-byte vector.
   Bytes r;

@@ -31,7 +31,7 @@ constexpr modbus::Map kBatchMap{3, 3, 7, 7};
 
 class ModbusServerTest : public ::testing::Test {
  protected:
-  void start(LiveOptions lo = {}) {
+  void start(const LiveOptions& lo = {}) {
     live_.emplace(batch_program(), std::nullopt, lo);
     // HIGH_LEVEL (I:0/5): the tank is full, so a batch goes straight to mixing (rungs 1-3).
     live_->controller().set("HIGH_LEVEL", 1);

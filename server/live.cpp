@@ -6,6 +6,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "parser/checker.h"
 #include "vm/state_file.h"
 
 namespace softslc::serve {
@@ -131,7 +132,12 @@ std::string LiveController::write(int number, std::uint32_t offset, std::span<co
   // A write refused half-way (a module refusing its word) has performed the calls before it: they
   // are journaled all the same, so the journal holds every change the data table saw.
   auto [calls, error] = controller_.write_file_words(number, offset, values, masks);
-  if (calls.empty()) return error;
+  journal_calls(calls);
+  return error;
+}
+
+void LiveController::journal_calls(const std::vector<ControllerCall>& calls) {
+  if (calls.empty()) return;
   flush_scans();
   const VirtualTime now = controller_.now();
   if (journal_) {
@@ -151,6 +157,66 @@ std::string LiveController::write(int number, std::uint32_t offset, std::span<co
     journal_->flush();
   }
   writes_ += calls.size();
+}
+
+namespace {
+
+std::string m_address(int slot, bool m1, std::uint32_t word, int bit = -1) {
+  return std::string(m1 ? "M1:" : "M0:") + std::to_string(slot) + "." + std::to_string(word) +
+         (bit >= 0 ? "/" + std::to_string(bit) : std::string());
+}
+
+}  // namespace
+
+std::optional<std::uint32_t> LiveController::module_file_words(int slot, bool m1) const {
+  const SlotConfig* config = controller_.program().find_slot(slot);
+  if (!config || !controller_.runtime().module(slot)) return std::nullopt;
+  const int words = m1 ? m1_words(*config) : m0_words(*config);
+  if (words <= 0) return std::nullopt;
+  return static_cast<std::uint32_t>(words);
+}
+
+std::string LiveController::read_module(int slot, bool m1, std::uint32_t word, std::span<std::uint16_t> out) {
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    try {
+      out[i] = static_cast<std::uint16_t>(controller_.get(m_address(slot, m1, word + static_cast<std::uint32_t>(i))).as_int());
+    } catch (const ControllerError& e) {
+      return e.what();
+    }
+  }
+  return {};
+}
+
+std::string LiveController::write_module(int slot, bool m1, std::uint32_t word, std::span<const std::uint16_t> values,
+                                         std::span<const std::uint16_t> masks) {
+  if (options_.read_only) return "the server is read-only (--read-only)";
+  // The same calls `run --set` makes: a whole word, or one bit at a time for a masked write.
+  std::vector<ControllerCall> calls;
+  std::string error;
+  const auto perform = [&](std::string target, std::int64_t value) {
+    ControllerCall c;
+    c.kind = ControllerCall::Kind::Set;
+    c.target = std::move(target);
+    c.integer = value;
+    try {
+      controller_.perform(c);
+    } catch (const ControllerError& e) {
+      error = e.what();
+      return false;
+    }
+    calls.push_back(std::move(c));
+    return true;
+  };
+  for (std::size_t i = 0; i < values.size() && error.empty(); ++i) {
+    const auto w = word + static_cast<std::uint32_t>(i);
+    if (masks[i] == 0xFFFF) {
+      perform(m_address(slot, m1, w), static_cast<std::int16_t>(values[i]));
+      continue;
+    }
+    for (int b = 0; b < 16 && error.empty(); ++b)
+      if ((masks[i] >> b) & 1u) perform(m_address(slot, m1, w, b), (values[i] >> b) & 1u);
+  }
+  journal_calls(calls);
   return error;
 }
 

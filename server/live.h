@@ -78,9 +78,16 @@ class LiveController final : public pccc::Target {
   std::string write(int number, std::uint32_t offset, std::span<const std::uint16_t> values,
                     std::span<const std::uint16_t> masks) override;
   std::vector<std::uint8_t> diagnostic_status() const override;
+  // M0/M1 through the module, as `run --set M0:1.100=5` and `get` reach them.
+  std::optional<std::uint32_t> module_file_words(int slot, bool m1) const override;
+  std::string read_module(int slot, bool m1, std::uint32_t word, std::span<std::uint16_t> out) override;
+  std::string write_module(int slot, bool m1, std::uint32_t word, std::span<const std::uint16_t> values,
+                           std::span<const std::uint16_t> masks) override;
 
  private:
   void flush_scans();
+  // Journals the calls one request performed, with the digest after them.
+  void journal_calls(const std::vector<ControllerCall>& calls);
   void run_scans(int n);
 
   Controller controller_;

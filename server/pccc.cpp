@@ -18,8 +18,8 @@ std::optional<std::uint8_t> type_code(FileType t) {
     case FileType::String: return 0x8D;
     case FileType::Ascii: return 0x8E;
     case FileType::Long: return 0x91;
-    case FileType::M0:
-    case FileType::M1: return std::nullopt;
+    case FileType::M0: return kTypeM0;
+    case FileType::M1: return kTypeM1;
   }
   return std::nullopt;
 }
@@ -75,6 +75,47 @@ std::vector<std::uint8_t> extended(const Request& r, std::uint8_t ext, std::stri
   out.push_back(ext);
   if (refusal) *refusal = std::move(why);
   return out;
+}
+
+// Packs words into a read reply's data, low byte first, `size` bytes.
+void append_bytes(std::vector<std::uint8_t>& out, std::span<const std::uint16_t> words, std::size_t size) {
+  for (std::size_t i = 0; i < size; ++i)
+    out.push_back(static_cast<std::uint8_t>((i % 2) ? words[i / 2] >> 8 : words[i / 2] & 0xFF));
+}
+
+// Unpacks a write's data into words and masks (an odd size writes only the low byte of its last
+// word), `mask` applying to every word.
+void unpack_write(const Request& r, std::vector<std::uint16_t>& values, std::vector<std::uint16_t>& masks) {
+  const std::size_t bytes = std::min<std::size_t>(r.size, values.size() * 2);
+  for (std::size_t i = 0; i < bytes; ++i)
+    values[i / 2] = static_cast<std::uint16_t>(values[i / 2] | (r.data[i] << ((i % 2) ? 8 : 0)));
+  masks.assign(values.size(), r.mask);
+  if (bytes % 2) masks.back() = static_cast<std::uint16_t>(masks.back() & 0x00FF);
+}
+
+// A typed read or write of an M0/M1 file: file = slot, element = word, through the module.
+std::vector<std::uint8_t> execute_module(const Request& r, Target& target, std::string* refusal, const std::string& what) {
+  const bool m1 = r.type == kTypeM1;
+  const auto words_in_file = target.module_file_words(r.file, m1);
+  if (!words_in_file)
+    return extended(r, kExtAddressUnusable, refusal, what + ": no module with an " + (m1 ? "M1" : "M0") + " file in that slot");
+  if (r.sub != 0 || r.element >= *words_in_file)
+    return extended(r, kExtAddressUnusable, refusal, what + ": no such word in the module's file");
+  const std::uint32_t words = (static_cast<std::uint32_t>(r.size) + 1) / 2;
+  if (r.element + words > *words_in_file) return extended(r, kExtPastEnd, refusal, what + ": past the end of the M file");
+  std::vector<std::uint16_t> buf(words);
+  if (r.kind == Kind::Read) {
+    if (auto why = target.read_module(r.file, m1, r.element, buf); !why.empty())
+      return extended(r, kExtNoAccess, refusal, what + ": " + why);
+    auto out = reply_header(r, kStsOk);
+    append_bytes(out, buf, r.size);
+    return out;
+  }
+  std::vector<std::uint16_t> masks;
+  unpack_write(r, buf, masks);
+  if (auto why = target.write_module(r.file, m1, r.element, buf, masks); !why.empty())
+    return extended(r, kExtNoAccess, refusal, what + ": " + why);
+  return reply_header(r, kStsOk);
 }
 
 }  // namespace
@@ -176,6 +217,7 @@ std::vector<std::uint8_t> execute(const Request& r, Target& target, std::string*
                            " sub-element " + std::to_string(r.sub);
   if (r.size > kMaxDataBytes) return extended(r, kExtTooLarge, refusal, what + ": more than 236 data bytes");
   if (r.size == 0) return extended(r, kExtAddressUnusable, refusal, what + ": a transfer of no bytes");
+  if (r.type == kTypeM0 || r.type == kTypeM1) return execute_module(r, target, refusal, what);
   const auto file = target.file(r.file);
   if (!file) return extended(r, kExtAddressUnusable, refusal, what + ": no such file");
   if (type_code(file->type) != r.type) return extended(r, kExtIllegalType, refusal, what + ": wrong file type code");
@@ -198,16 +240,11 @@ std::vector<std::uint8_t> execute(const Request& r, Target& target, std::string*
   if (r.kind == Kind::Read) {
     target.read(r.file, offset, buf);
     auto out = reply_header(r, kStsOk);
-    for (std::size_t i = 0; i < r.size; ++i)
-      out.push_back(static_cast<std::uint8_t>((i % 2) ? buf[i / 2] >> 8 : buf[i / 2] & 0xFF));
+    append_bytes(out, buf, r.size);
     return out;
   }
-  std::vector<std::uint16_t> masks(words, r.mask);
-  const std::size_t bytes = std::min<std::size_t>(r.size, static_cast<std::size_t>(words) * 2);
-  for (std::size_t i = 0; i < bytes; ++i)
-    buf[i / 2] = static_cast<std::uint16_t>(buf[i / 2] | (r.data[i] << ((i % 2) ? 8 : 0)));
-  // An odd size writes only the low byte of its last word.
-  if (bytes % 2) masks.back() = static_cast<std::uint16_t>(masks.back() & 0x00FF);
+  std::vector<std::uint16_t> masks;
+  unpack_write(r, buf, masks);
   const std::string why = target.write(r.file, offset, buf, masks);
   if (!why.empty()) return extended(r, kExtNoAccess, refusal, what + ": " + why);
   return reply_header(r, kStsOk);

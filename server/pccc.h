@@ -28,6 +28,17 @@
 //   10h  no access — a write refused by --read-only or by the controller (a module's rule)
 //   11h  illegal data type — the file type code does not match the file
 //   09h  data too large — more than kMaxDataBytes in one request
+//
+// M0/M1 files (specialty-module files, 1747-SN manual appendix B: "M0 and M1 files are data files
+// that reside in specialty I/O modules only"). The SLC's typed-read file type code for them is not
+// in our sources (the DF1 manual's file-type table, p. 7-17 as drivers quote it, stops at 8Fh;
+// no PCCC client we know of has an M address syntax), so softslc chooses one and docs/serve.md
+// says so: file type F0h is M0, F1h is M1; the file field is the module's slot, the element the
+// word (M0:1.100 is file 1 element 100), the sub-element must be 0. The file has as many elements
+// as the module's M file has words. Every word is read or written through the module, as the
+// ladder and `run --set` reach it (Target::read_module / write_module), so the module's refusal —
+// a word it does not have, a file it does not let the processor write — is the client's error:
+// EXT STS 10h (no access), or 06h when the slot has no module with that M file at all.
 #pragma once
 
 #include <cstdint>
@@ -69,8 +80,10 @@ inline constexpr std::uint8_t kExtIllegalType = 0x11;
 
 // The file type code of a typed read/write for each SLC file type (the codes SLC/MicroLogix
 // drivers send: 84h S, 85h B, 86h T, 87h C, 88h R, 89h N, 8Ah F, 8Bh O, 8Ch I, 8Dh ST, 8Eh A,
-// 91h L); nullopt for M0/M1, which have no typed-read code.
+// 91h L); for M0/M1, softslc's own codes (F0h, F1h; see above).
 std::optional<std::uint8_t> type_code(FileType t);
+inline constexpr std::uint8_t kTypeM0 = 0xF0;
+inline constexpr std::uint8_t kTypeM1 = 0xF1;
 
 enum class Kind : std::uint8_t { Echo, DiagnosticStatus, Read, Write, WriteMask, Unsupported };
 
@@ -112,6 +125,19 @@ class Target {
                             std::span<const std::uint16_t> masks) = 0;
   // The diagnostic status block (CMD 06 FNC 03 reply data).
   virtual std::vector<std::uint8_t> diagnostic_status() const = 0;
+  // The M0 (m1 false) or M1 file of the module in `slot`: its size in words, or nullopt when the
+  // slot has no module with such a file. The default: no module has M files.
+  virtual std::optional<std::uint32_t> module_file_words(int /*slot*/, bool /*m1*/) const { return std::nullopt; }
+  // Reads or writes M-file words through the module, one word at a time in order; an empty string
+  // on success, else the module's refusal (a read stops at the refused word; a write has
+  // performed the words before it).
+  virtual std::string read_module(int /*slot*/, bool /*m1*/, std::uint32_t /*word*/, std::span<std::uint16_t> /*out*/) {
+    return "no module M files";
+  }
+  virtual std::string write_module(int /*slot*/, bool /*m1*/, std::uint32_t /*word*/,
+                                   std::span<const std::uint16_t> /*values*/, std::span<const std::uint16_t> /*masks*/) {
+    return "no module M files";
+  }
 };
 
 // Runs a request and returns the whole reply (CMD|40h, STS, TNS, data or EXT STS). `refusal`, when

@@ -6,28 +6,19 @@
 
 namespace softslc::serve {
 
-// One TCP connection: read a 24-byte header, check its length against the bound, read the data,
-// hand the frame to its EipSession, write the reply, repeat. An idle timer closes it when the
-// client goes quiet.
-struct Server::Connection : std::enable_shared_from_this<Server::Connection> {
-  Connection(asio::ip::tcp::socket s, LiveController& live, eip::Identity identity, std::uint32_t session,
-             const ServerOptions& o, std::shared_ptr<std::size_t> count)
-      : socket(std::move(s)),
-        idle(socket.get_executor()),
-        eip(live, std::move(identity), session),
-        options(o),
-        connections(std::move(count)) {
+// What every TCP connection has, whatever its protocol: the socket, the idle timer that closes it
+// when the client goes quiet, the bounds (a copy: a connection's handlers may outlive the
+// Server) and its place in the connection count.
+struct Server::Link : std::enable_shared_from_this<Server::Link> {
+  Link(asio::ip::tcp::socket s, const ServerOptions& o, std::shared_ptr<std::size_t> count, std::string_view protocol)
+      : socket(std::move(s)), idle(socket.get_executor()), options(o), connections(std::move(count)) {
     ++*connections;
     std::error_code ec;
     auto ep = socket.remote_endpoint(ec);
     peer = ec ? std::string("?") : ep.address().to_string() + ":" + std::to_string(ep.port());
+    if (!protocol.empty()) peer += " (" + std::string(protocol) + ")";
   }
-  ~Connection() { --*connections; }
-
-  void start() {
-    arm_idle();
-    read_header();
-  }
+  virtual ~Link() { --*connections; }
 
   void arm_idle() {
     idle.expires_after(options.idle_timeout);
@@ -37,23 +28,69 @@ struct Server::Connection : std::enable_shared_from_this<Server::Connection> {
       self->close();
     });
   }
-
   void close() {
     std::error_code ignored;
     socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
     socket.close(ignored);
     idle.cancel();
   }
+  // Reads exactly `n` bytes into `frame` from `at`, then calls `then` — or closes the connection
+  // (logged) when the client goes away, in the middle of a frame or not.
+  template <typename Self, typename Then>
+  static void read_into(const std::shared_ptr<Self>& self, std::size_t at, std::size_t n, Then then) {
+    self->frame.resize(at + n);
+    asio::async_read(self->socket, asio::buffer(self->frame.data() + at, n),
+                     [self, at, then](const std::error_code& ec, std::size_t) {
+                       if (ec) {
+                         if (at > 0)
+                           spdlog::info("{}: connection closed in the middle of a frame: {}", self->peer, ec.message());
+                         else if (ec != asio::error::eof && ec != asio::error::operation_aborted)
+                           spdlog::debug("{}: connection closed: {}", self->peer, ec.message());
+                         self->close();
+                         return;
+                       }
+                       then();
+                     });
+  }
+  // Sends `bytes`, then closes the connection or calls `then`.
+  template <typename Self, typename Then>
+  static void send(const std::shared_ptr<Self>& self, std::vector<std::uint8_t>&& bytes, bool close_after, Then then) {
+    self->reply = std::move(bytes);
+    asio::async_write(self->socket, asio::buffer(self->reply),
+                      [self, close_after, then](const std::error_code& ec, std::size_t) {
+                        if (ec || close_after) {
+                          self->close();
+                          return;
+                        }
+                        then();
+                      });
+  }
+
+  asio::ip::tcp::socket socket;
+  asio::steady_timer idle;
+  const ServerOptions options;
+  std::shared_ptr<std::size_t> connections;
+  std::vector<std::uint8_t> frame;
+  std::vector<std::uint8_t> reply;
+  std::string peer;
+};
+
+// One EtherNet/IP connection: read a 24-byte header, check its length against the bound, read the
+// data, hand the frame to its EipSession, write the reply, repeat.
+struct Server::Connection : Server::Link {
+  Connection(asio::ip::tcp::socket s, LiveController& live, eip::Identity identity, std::uint32_t session,
+             const ServerOptions& o, std::shared_ptr<std::size_t> count)
+      : Link(std::move(s), o, std::move(count), ""), eip(live, std::move(identity), session) {}
+
+  std::shared_ptr<Connection> self() { return std::static_pointer_cast<Connection>(shared_from_this()); }
+
+  void start() {
+    arm_idle();
+    read_header();
+  }
 
   void read_header() {
-    frame.resize(eip::kHeaderSize);
-    asio::async_read(socket, asio::buffer(frame), [self = shared_from_this()](const std::error_code& ec, std::size_t) {
-      if (ec) {
-        if (ec != asio::error::eof && ec != asio::error::operation_aborted)
-          spdlog::debug("{}: connection closed: {}", self->peer, ec.message());
-        self->close();
-        return;
-      }
+    read_into(self(), 0, eip::kHeaderSize, [self = self()] {
       self->arm_idle();
       const auto h = eip::decode_header(self->frame);
       if (!h) {  // cannot happen: 24 bytes were read; closing is the safe answer all the same
@@ -66,24 +103,13 @@ struct Server::Connection : std::enable_shared_from_this<Server::Connection> {
         self->close();
         return;
       }
-      self->frame.resize(eip::kHeaderSize + h->length);
       if (h->length == 0) {
         self->handle();
         return;
       }
-      asio::async_read(socket_of(self), asio::buffer(self->frame.data() + eip::kHeaderSize, h->length),
-                       [self](const std::error_code& ec2, std::size_t) {
-                         if (ec2) {
-                           spdlog::info("{}: connection closed in the middle of a frame: {}", self->peer, ec2.message());
-                           self->close();
-                           return;
-                         }
-                         self->handle();
-                       });
+      read_into(self, eip::kHeaderSize, h->length, [self] { self->handle(); });
     });
   }
-
-  static asio::ip::tcp::socket& socket_of(const std::shared_ptr<Connection>& c) { return c->socket; }
 
   void handle() {
     eip::Outcome out = eip.handle(frame);
@@ -100,44 +126,82 @@ struct Server::Connection : std::enable_shared_from_this<Server::Connection> {
         read_header();
       return;
     }
-    reply = std::move(out.reply);
-    asio::async_write(socket, asio::buffer(reply),
-                      [self = shared_from_this(), close_after = out.close](const std::error_code& ec, std::size_t) {
-                        if (ec || close_after) {
-                          self->close();
-                          return;
-                        }
-                        self->read_header();
-                      });
+    send(self(), std::move(out.reply), out.close, [self = self()] { self->read_header(); });
   }
 
-  asio::ip::tcp::socket socket;
-  asio::steady_timer idle;
   eip::EipSession eip;
-  const ServerOptions options;  // a copy: a connection's handlers may outlive the Server
-  std::shared_ptr<std::size_t> connections;
-  std::vector<std::uint8_t> frame;
-  std::vector<std::uint8_t> reply;
-  std::string peer;
+};
+
+// One Modbus TCP connection: read the 7-byte MBAP header, check its length, read the PDU, hand
+// the frame to modbus::handle, write the reply, repeat.
+struct Server::ModbusConnection : Server::Link {
+  ModbusConnection(asio::ip::tcp::socket s, LiveController& l, const ServerOptions& o, std::shared_ptr<std::size_t> count)
+      : Link(std::move(s), o, std::move(count), "Modbus"), live(l) {}
+
+  std::shared_ptr<ModbusConnection> self() { return std::static_pointer_cast<ModbusConnection>(shared_from_this()); }
+
+  void start() {
+    arm_idle();
+    read_header();
+  }
+
+  void read_header() {
+    read_into(self(), 0, modbus::kHeaderSize, [self = self()] {
+      self->arm_idle();
+      std::string error;
+      const auto h = modbus::decode_header(self->frame, &error);
+      if (!h) {  // the length is checked here, before any of the PDU is read
+        spdlog::warn("{}: {}; connection closed", self->peer, error);
+        self->close();
+        return;
+      }
+      read_into(self, modbus::kHeaderSize, h->length - 1u, [self] { self->handle(); });
+    });
+  }
+
+  void handle() {
+    std::string error, refusal;
+    auto out = modbus::handle(frame, options.modbus_map, live, &error, &refusal);
+    if (!out) {
+      spdlog::warn("{}: {}; connection closed", peer, error);
+      close();
+      return;
+    }
+    if (!refusal.empty()) spdlog::debug("{}: {}", peer, refusal);
+    send(self(), std::move(*out), false, [self = self()] { self->read_header(); });
+  }
+
+  LiveController& live;
 };
 
 Server::Server(asio::io_context& io, LiveController& live, ServerOptions options)
-    : live_(live), options_(std::move(options)), acceptor_(io), udp_(io), timer_(io) {}
+    : live_(live), options_(std::move(options)), acceptor_(io), modbus_acceptor_(io), udp_(io), timer_(io) {}
 
 Server::~Server() = default;
 
+namespace {
+
+void listen_on(asio::ip::tcp::acceptor& acceptor, const asio::ip::tcp::endpoint& ep) {
+  acceptor.open(ep.protocol());
+  acceptor.set_option(asio::ip::tcp::acceptor::reuse_address(true));
+  acceptor.bind(ep);
+  acceptor.listen();
+}
+
+}  // namespace
+
 void Server::start() {
   const auto address = asio::ip::make_address(options_.listen);
-  const asio::ip::tcp::endpoint tcp_ep(address, options_.port);
-  acceptor_.open(tcp_ep.protocol());
-  acceptor_.set_option(asio::ip::tcp::acceptor::reuse_address(true));
-  acceptor_.bind(tcp_ep);
-  acceptor_.listen();
+  listen_on(acceptor_, asio::ip::tcp::endpoint(address, options_.port));
   // ListIdentity is also answered on UDP, on the same port number as TCP.
   const asio::ip::udp::endpoint udp_ep(address, acceptor_.local_endpoint().port());
   udp_.open(udp_ep.protocol());
   udp_.set_option(asio::ip::udp::socket::reuse_address(true));
   udp_.bind(udp_ep);
+  if (options_.modbus_port) {
+    listen_on(modbus_acceptor_, asio::ip::tcp::endpoint(address, *options_.modbus_port));
+    accept_modbus();
+  }
   accept();
   receive_udp();
   restart_pacing();
@@ -148,12 +212,17 @@ void Server::stop() {
   stopped_ = true;
   std::error_code ignored;
   acceptor_.close(ignored);
+  modbus_acceptor_.close(ignored);
   udp_.close(ignored);
   timer_.cancel();
 }
 
 std::uint16_t Server::tcp_port() const { return acceptor_.local_endpoint().port(); }
 std::size_t Server::connections() const { return *live_connections_; }
+std::uint16_t Server::modbus_port() const {
+  std::error_code ec;
+  return modbus_acceptor_.is_open() ? modbus_acceptor_.local_endpoint(ec).port() : 0;
+}
 
 eip::Identity Server::identity() const {
   // The socket address item carries the address and port clients reach this server on.
@@ -167,24 +236,41 @@ eip::Identity Server::identity() const {
 
 void Server::restart_pacing() { pacing_start_ = std::chrono::steady_clock::now(); }
 
-void Server::accept() {
-  acceptor_.async_accept([this](const std::error_code& ec, asio::ip::tcp::socket socket) {
+// Accepts on `acceptor` until it closes: past the connection limit a new connection is closed at
+// once (logged); otherwise `open(socket)` starts its protocol.
+template <typename Open>
+void Server::accept_on(asio::ip::tcp::acceptor& acceptor, std::string_view protocol, Open open) {
+  acceptor.async_accept([this, &acceptor, protocol, open](const std::error_code& ec, asio::ip::tcp::socket socket) {
     if (ec) {
       if (ec == asio::error::operation_aborted || stopped_) return;
-      spdlog::warn("accept failed: {}", ec.message());
+      spdlog::warn("{} accept failed: {}", protocol, ec.message());
     } else if (*live_connections_ >= options_.max_connections) {
-      spdlog::warn("refused a connection: {} connections is the limit", options_.max_connections);
+      spdlog::warn("refused a {} connection: {} connections is the limit", protocol, options_.max_connections);
       std::error_code ignored;
       socket.close(ignored);
     } else {
       std::error_code ignored;
       socket.set_option(asio::ip::tcp::no_delay(true), ignored);
-      auto c = std::make_shared<Connection>(std::move(socket), live_, identity(), next_session_++, options_,
-                                            live_connections_);
-      spdlog::debug("{}: connected", c->peer);
-      c->start();
+      open(std::move(socket));
     }
-    accept();
+    accept_on(acceptor, protocol, open);
+  });
+}
+
+void Server::accept() {
+  accept_on(acceptor_, "EtherNet/IP", [this](asio::ip::tcp::socket socket) {
+    auto c = std::make_shared<Connection>(std::move(socket), live_, identity(), next_session_++, options_,
+                                          live_connections_);
+    spdlog::debug("{}: connected", c->peer);
+    c->start();
+  });
+}
+
+void Server::accept_modbus() {
+  accept_on(modbus_acceptor_, "Modbus TCP", [this](asio::ip::tcp::socket socket) {
+    auto c = std::make_shared<ModbusConnection>(std::move(socket), live_, options_, live_connections_);
+    spdlog::debug("{}: connected", c->peer);
+    c->start();
   });
 }
 

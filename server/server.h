@@ -12,16 +12,23 @@
 // accepted and closed at once (the client sees the refusal), a frame longer than the limit
 // closes its connection before any of it is read into memory, a connection silent longer than
 // the idle time is closed. Each closure is logged with spdlog; none affects other connections.
+//
+// Modbus TCP (server/modbus.h), when ServerOptions::modbus_port is set, is a second acceptor on
+// the same io_context with the same bounds (the connection limit counts both protocols), for a
+// MicroLogix 1100/1400 program whose channel is configured as a Modbus slave.
 #pragma once
 
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include <asio.hpp>
 
 #include "server/live.h"
+#include "server/modbus.h"
 
 namespace softslc::serve {
 
@@ -32,6 +39,9 @@ struct ServerOptions {
   std::size_t max_frame = 4096;  // encapsulation data bytes
   std::chrono::milliseconds idle_timeout{60000};
   std::chrono::milliseconds tick{10};  // pacing timer period
+  // Modbus TCP on this port (0: any free port) with this map; none: no Modbus.
+  std::optional<std::uint16_t> modbus_port;
+  modbus::Map modbus_map;
 };
 
 class Server {
@@ -47,6 +57,8 @@ class Server {
   // Closes every socket and stops the timer; the io_context then runs out of work.
   void stop();
   std::uint16_t tcp_port() const;
+  // The Modbus TCP port (0 when Modbus is off).
+  std::uint16_t modbus_port() const;
   std::size_t connections() const;
   // The longest wall time between two pacing ticks: with LiveController::max_lag() it bounds how
   // far virtual time trailed the wall clock (times the speed).
@@ -54,10 +66,15 @@ class Server {
   // Restarts the pacing wall clock (after resume()).
   void restart_pacing();
 
+  struct Link;
   struct Connection;
+  struct ModbusConnection;
 
  private:
   void accept();
+  void accept_modbus();
+  template <typename Open>
+  void accept_on(asio::ip::tcp::acceptor& acceptor, std::string_view protocol, Open open);
   void receive_udp();
   void tick();
   eip::Identity identity() const;
@@ -65,6 +82,7 @@ class Server {
   LiveController& live_;
   ServerOptions options_;
   asio::ip::tcp::acceptor acceptor_;
+  asio::ip::tcp::acceptor modbus_acceptor_;
   asio::ip::udp::socket udp_;
   asio::steady_timer timer_;
   std::chrono::steady_clock::time_point pacing_start_;

@@ -20,7 +20,7 @@ ensure_packages clang libclang-rt-14-dev cmake ninja-build tao-pegtl-dev libcli1
 mkdir -p "$build"
 CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSLC_FUZZ=ON \
   -DSOFTSLC_TESTS=ON -DSOFTSLC_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS=-Wno-unused-command-line-argument > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-targets=(program address testfile bench scanport_message transaction dem rss pccc eip)
+targets=(program address testfile bench scanport_message transaction dem rss pccc eip modbus)
 cmake --build "$build" --target "${targets[@]/%/_fuzz}"
 
 corpus="$build/corpus"
@@ -57,6 +57,9 @@ printf '\x0f\x00\x01\x00\xab\x02\x03\x85\x00\x00\x02\x00\x02\x00' > "$corpus/pcc
 printf '\x06\x00\x01\x00\x03' > "$corpus/pccc/diagnostic-status"
 printf '\x65\x00\x04\x00\x00\x00\x00\x00\x00\x00\x00\x00\x0a\x0b\x0c\x0d\x0e\x0f\x0a\x0b\x00\x00\x00\x00\x01\x00\x00\x00' > "$corpus/eip/register-session"
 printf '\x02\x00\x00\x00\x00\x00\xb2\x00\x17\x00\x4b\x02\x20\x67\x24\x01\x07\x00\x00\x01\x02\x03\x04\x0f\x00\x34\x12\xa2\x02\x07\x89\x00\x00' > "$corpus/eip/execute-pccc-cpf"
+# Modbus TCP (server/modbus.h): read holding registers 40001-40002 and write coil 00002 on.
+printf '\x00\x01\x00\x00\x00\x06\x01\x03\x00\x00\x00\x02' > "$corpus/modbus/read-holding"
+printf '\x00\x02\x00\x00\x00\x06\x01\x05\x00\x01\xff\x00' > "$corpus/modbus/write-coil"
 
 # The targets run two at a time (one per core of the 2-core machines CI runs on); each one's
 # output is kept in its own log and printed in target order, so the log reads the same whatever

@@ -1,5 +1,5 @@
 // What must hold for any bytes a network client sends `softslc serve` (server/pccc.h,
-// server/eip.h): the decoders never read past their input or throw, a PCCC command that
+// server/eip.h, server/modbus.h): the decoders never read past their input or throw, a PCCC command that
 // decodes always gets a reply with the request's TNS and CMD | 40h, and an encapsulation frame
 // either gets a well-formed reply frame, nothing (NOP), or closes the connection. Each property
 // returns an empty string when it holds, else what broke. The fuzz targets run them on random
@@ -14,6 +14,7 @@
 
 #include "server/eip.h"
 #include "server/live.h"
+#include "server/modbus.h"
 #include "server/pccc.h"
 
 namespace softslc::fuzz {
@@ -67,6 +68,35 @@ inline std::string check_eip_property(std::string_view input) {
   frame[2] = static_cast<std::uint8_t>(len & 0xFF);
   frame[3] = static_cast<std::uint8_t>(len >> 8);
   return check_outcome(session.handle(frame));
+}
+
+// A Modbus TCP frame (the input, with the MBAP length fixed up when it has a header, so the
+// fuzzer reaches the functions) either closes the connection with a reason or gets a reply frame
+// whose MBAP header is the request's transaction and unit with the right length, and whose
+// function is the request's, or the request's | 80h followed by one exception code 01-04.
+inline std::string check_modbus_property(std::string_view input) {
+  if (input.size() > 300) return {};
+  std::vector<std::uint8_t> frame(input.begin(), input.end());
+  if (frame.size() >= modbus::kHeaderSize && frame.size() - 6 <= 0xFFFF) {
+    frame[4] = static_cast<std::uint8_t>((frame.size() - 6) >> 8);
+    frame[5] = static_cast<std::uint8_t>((frame.size() - 6) & 0xFF);
+  }
+  const modbus::Map map{3, 3, 7, 7};  // the HMI example's B3 and N7
+  std::string error;
+  const auto reply = modbus::handle(frame, map, serve_live(), &error);
+  if (!reply) return error.empty() ? "Modbus frame refused without saying why" : std::string();
+  const auto& r = *reply;
+  if (r.size() < modbus::kHeaderSize + 2) return "Modbus reply shorter than a header, function and one byte";
+  if (static_cast<std::size_t>(r[4] << 8 | r[5]) + 6 != r.size()) return "Modbus reply length disagrees with its MBAP header";
+  if (r[0] != frame[0] || r[1] != frame[1] || r[6] != frame[6]) return "Modbus reply transaction or unit differs";
+  if (r[2] != 0 || r[3] != 0) return "Modbus reply protocol identifier is not 0";
+  if (r[7] == (frame[7] | 0x80)) {
+    if (r.size() != modbus::kHeaderSize + 2 || r[8] < 1 || r[8] > 4) return "Modbus exception reply malformed";
+  } else if (r[7] != frame[7]) {
+    return "Modbus reply function differs from the request's";
+  }
+  if (r.size() > modbus::kHeaderSize + modbus::kMaxPdu) return "Modbus reply longer than the largest PDU";
+  return {};
 }
 
 }  // namespace softslc::fuzz

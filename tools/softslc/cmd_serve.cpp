@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <iostream>
 #include <sstream>
 
@@ -36,10 +37,39 @@ CLI::App* add_serve_command(CLI::App& app, ServeOptions& o) {
   cmd->add_option("--idle", o.idle_seconds, "close a connection silent this many seconds (default 60)")
       ->check(CLI::Range(1, 86400));
   cmd->add_flag("-v,--verbose", o.verbose, "log every refused request, not only closed connections");
+  cmd->add_option("--modbus", o.modbus_port,
+                  "also serve Modbus TCP on PORT, as a MicroLogix 1100/1400 whose channel is configured as a Modbus "
+                  "slave (0 picks a free port; the standard port is 502)")
+      ->type_name("PORT")
+      ->check(CLI::Range(0, 65535));
+  cmd->add_option("--modbus-map", o.modbus_map,
+                  "the channel's Modbus data files: coils,contacts,input registers,holding registers, each a B or N "
+                  "file (default B3,B3,N7,N7)")
+      ->type_name("C,D,I,H");
   return cmd;
 }
 
 namespace {
+
+// "B3,B3,N7,N7" (or "3,3,7,7"): the four file numbers of a Modbus map.
+std::optional<modbus::Map> parse_modbus_map(const std::string& text) {
+  std::vector<int> files;
+  std::istringstream in(text);
+  std::string part;
+  while (std::getline(in, part, ',')) {
+    std::size_t at = 0;
+    while (at < part.size() && std::isalpha(static_cast<unsigned char>(part[at]))) ++at;
+    if (at == part.size() || part.size() - at > 3) return std::nullopt;
+    int n = 0;
+    for (std::size_t i = at; i < part.size(); ++i) {
+      if (!std::isdigit(static_cast<unsigned char>(part[i]))) return std::nullopt;
+      n = n * 10 + (part[i] - '0');
+    }
+    files.push_back(n);
+  }
+  if (files.size() != 4) return std::nullopt;
+  return modbus::Map{files[0], files[1], files[2], files[3]};
+}
 
 // Reads console commands from standard input on the io_context.
 class Console : public std::enable_shared_from_this<Console> {
@@ -110,6 +140,23 @@ int run_serve(const ServeOptions& o) {
   }
   asio::io_context io;
   serve::ServerOptions so;
+  if (o.modbus_port >= 0) {
+    const ProcessorModel& p = live->controller().program().processor;
+    if (p.micrologix != MicroLogixModel::ML1100 && p.micrologix != MicroLogixModel::ML1400) {
+      std::cerr << "softslc serve: --modbus: Modbus TCP is a MicroLogix 1100/1400 channel protocol; this program's "
+                   "processor is "
+                << p.display_name << " (" << p.catalog << ")\n";
+      return kInputError;
+    }
+    auto map = parse_modbus_map(o.modbus_map);
+    std::string why = map ? modbus::check_map(*map, *live) : "expected four data files: C,D,I,H (e.g. B3,B3,N7,N7)";
+    if (!why.empty()) {
+      std::cerr << "softslc serve: --modbus-map " << o.modbus_map << ": " << why << "\n";
+      return kInputError;
+    }
+    so.modbus_port = static_cast<std::uint16_t>(o.modbus_port);
+    so.modbus_map = *map;
+  }
   so.listen = o.listen;
   so.port = static_cast<std::uint16_t>(o.port);
   so.max_connections = static_cast<std::size_t>(o.max_connections);
@@ -124,6 +171,11 @@ int run_serve(const ServeOptions& o) {
   std::cout << "softslc serve: " << live->controller().program().processor.catalog << " listening on " << o.listen
             << ":" << server.tcp_port() << " (EtherNet/IP, TCP and UDP)"
             << (o.read_only ? ", read-only" : "") << (o.paused ? ", paused" : "") << ", speed " << o.speed << std::endl;
+  if (so.modbus_port)
+    std::cout << "softslc serve: Modbus TCP on " << o.listen << ":" << server.modbus_port() << " (data files: coils "
+              << so.modbus_map.coils << ", contacts " << so.modbus_map.contacts << ", input registers "
+              << so.modbus_map.input_registers << ", holding registers " << so.modbus_map.holding_registers << ")"
+              << std::endl;
   if (o.listen != "127.0.0.1" && o.listen != "::1")
     std::cout << "softslc serve: warning: listening on " << o.listen
               << ", reachable from other machines; PCCC has no authentication" << std::endl;

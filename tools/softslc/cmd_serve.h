@@ -23,6 +23,8 @@ struct ServeOptions {
   int max_connections = 64;
   int idle_seconds = 60;
   bool verbose = false;
+  int modbus_port = -1;        // -1: no Modbus TCP
+  std::string modbus_map = "B3,B3,N7,N7";  // coil, contact, input register, holding register files
 };
 CLI::App* add_serve_command(CLI::App& app, ServeOptions& o);
 int run_serve(const ServeOptions& o);

@@ -4,34 +4,13 @@
 // The expected values come from the program's DATA blocks and rungs (see hmi_panel.test).
 //   node nodepccc_client.js PORT
 'use strict';
-const NodePCCC = require('nodepccc');
+const { createHarness } = require('./pccc_harness');
 
 const port = parseInt(process.argv[2], 10);
-const conn = new NodePCCC({ silent: true });
-let passed = 0, failed = 0;
-
-function check(what, actual, expected) {
-  const ok = typeof expected === 'function' ? expected(actual) : JSON.stringify(actual) === JSON.stringify(expected);
-  if (ok) { passed++; console.log(`ok   ${what}: ${JSON.stringify(actual)}`); }
-  else { failed++; console.log(`FAIL ${what}: got ${JSON.stringify(actual)}, expected ${typeof expected === 'function' ? expected.toString() : JSON.stringify(expected)}`); }
-}
-
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-function read(items) {
-  return new Promise((resolve) => {
-    conn.removeItems();
-    conn.addItems(items);
-    conn.readAllItems((bad, values) => resolve({ bad, values }));
-  });
-}
-function write(items, values) {
-  return new Promise((resolve) => conn.writeItems(items, values, (bad, which) => resolve({ bad, which })));
-}
+const { check, sleep, read, write, connect, finish, run } = createHarness();
 
 async function main() {
-  await new Promise((resolve, reject) =>
-    conn.initiateConnection({ port, host: '127.0.0.1' }, (err) => (err ? reject(err) : resolve())));
-  conn.setTranslationCB((t) => t);
+  await connect(port);
 
   // Download values (DATA blocks) and the ladder's first scans.
   let r = await read(['N7:0', 'F8:0', 'ST9:0', 'R6:0.LEN', 'T4:0.PRE', 'O:0/0', 'S:1/5']);
@@ -105,10 +84,7 @@ async function main() {
   r = await read(['N7:0']);
   check('the connection still serves after an error', r.values['N7:0'], 777);
 
-  await new Promise((resolve) => conn.dropConnection(resolve));
-  console.log(`${passed} passed, ${failed} failed`);
-  process.exit(failed ? 1 : 0);
+  await finish();
 }
 
-setTimeout(() => { console.log('FAIL timed out'); process.exit(1); }, 30000).unref();
-main().catch((e) => { console.log(`FAIL ${e}`); process.exit(1); });
+run(main);

@@ -4,23 +4,16 @@
 // one start counted in C5:0 (rung 4). STOP (I:1/1) drops it out.
 //   node nodepccc_seal_in_client.js PORT
 'use strict';
-const NodePCCC = require('nodepccc');
+const { createHarness } = require('./pccc_harness');
 
 const port = parseInt(process.argv[2], 10);
-const conn = new NodePCCC({ silent: true });
-let passed = 0, failed = 0;
-function check(what, actual, expected) {
-  const ok = JSON.stringify(actual) === JSON.stringify(expected);
-  if (ok) { passed++; console.log(`ok   ${what}: ${JSON.stringify(actual)}`); }
-  else { failed++; console.log(`FAIL ${what}: got ${JSON.stringify(actual)}, expected ${JSON.stringify(expected)}`); }
-}
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-const read = (items) => new Promise((resolve) => { conn.removeItems(); conn.addItems(items); conn.readAllItems((bad, v) => resolve(v)); });
-const write = (item, value) => new Promise((resolve) => conn.writeItems(item, value, (bad) => resolve(bad)));
+const h = createHarness();
+const { check, sleep } = h;
+const read = async (items) => (await h.read(items)).values;
+const write = async (item, value) => (await h.write(item, value)).bad;
 
 async function main() {
-  await new Promise((resolve, reject) => conn.initiateConnection({ port, host: '127.0.0.1' }, (e) => (e ? reject(e) : resolve())));
-  conn.setTranslationCB((t) => t);
+  await h.connect(port);
   check('MOTOR (O:0/0) off after download', (await read(['O:0/0']))['O:0/0'], false);
   check('press START_PB (I:0/0)', await write('I:0/0', true), false);
   await sleep(200);
@@ -32,9 +25,6 @@ async function main() {
   check('press STOP_PB (I:0/1)', await write('I:0/1', true), false);
   await sleep(200);
   check('MOTOR dropped out', (await read(['O:0/0']))['O:0/0'], false);
-  await new Promise((resolve) => conn.dropConnection(resolve));
-  console.log(`${passed} passed, ${failed} failed`);
-  process.exit(failed ? 1 : 0);
+  await h.finish();
 }
-setTimeout(() => { console.log('FAIL timed out'); process.exit(1); }, 20000).unref();
-main().catch((e) => { console.log(`FAIL ${e}`); process.exit(1); });
+h.run(main);

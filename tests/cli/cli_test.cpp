@@ -314,14 +314,28 @@ TEST(Cli, RunOfTheProjectAndOfItsImportAreIdentical) {
       }
     }
     ASSERT_FALSE(prints.empty());
-    auto a = run("run '" + f.string() + "' --for 3s --json --print" + prints);
+    // RSLogix keeps symbols for addresses the data files do not reach (T104:2 with no T104);
+    // `run` refuses to print those, so each one it names is dropped and the run repeated.
+    Result a;
+    for (int tries = 0; tries < 60; ++tries) {
+      a = run("run '" + f.string() + "' --for 3s --json --print" + prints);
+      const std::string refused = "softslc run: --print ";
+      auto at = a.out.find(refused);
+      if (a.exit_code != 2 || at == std::string::npos) break;
+      auto name = a.out.substr(at + refused.size(), a.out.find(':', at + refused.size()) - at - refused.size());
+      auto in_prints = prints.find(" " + name);
+      ASSERT_NE(in_prints, std::string::npos) << a.out;
+      prints.erase(in_prints, name.size() + 1);
+    }
     auto b = run("run '" + slc.string() + "' --for 3s --json --print" + prints);
-    EXPECT_EQ(a.exit_code, 0) << a.out;
+    // 3 is a processor fault: lecky_demo_tof_loop still faults on its bit pointer past 15
+    // (MicroLogixFixtures lists it); the two runs must still fault identically.
+    EXPECT_TRUE(a.exit_code == 0 || a.exit_code == 3) << a.out;
     EXPECT_EQ(a.out, b.out);
     EXPECT_EQ(b.exit_code, a.exit_code);
     ++compared;
   }
-  EXPECT_GE(compared, 4) << "fixtures that load (lecky_demo, lecky_demo_tof, training_two_setpoints, water_filtration_system on 2026-11-25)";
+  EXPECT_GE(compared, 11) << "fixtures that load (11 of 15 on 2026-11-25, docs/program-format.md)";
 }
 
 // Pasted rungs (issue 14): `check` and `run` with --processor take bare SOR ... EOR lines as

@@ -549,16 +549,11 @@ struct RssFixture {
   const char* run_fault = nullptr;    // a phrase of the fault it still stops with in 10 s
 };
 
-// The .RSS reader does not yet give data files their size (the project's DATA FILES stream, the
-// rss helper's work): an indexed pointer walking N9:0-255 then faults at N9:1 although the real
-// file has 256 elements.
-constexpr const char* kNoDataFileSizes = "is beyond the end of N9 (elements 0-0)";
-
 const std::vector<RssFixture> kRssFixtures = {
-    {"drbitboy-PLC_2s_lamp_flash/cascading_timers.RSS", nullptr, kNoDataFileSizes},
+    {"drbitboy-PLC_2s_lamp_flash/cascading_timers.RSS", nullptr},
     {"drbitboy-PLC_2s_lamp_flash/free_running_clock_bit_14.RSS", nullptr},
-    {"drbitboy-PLC_2s_lamp_flash/rtc_bit_1.RSS", nullptr, kNoDataFileSizes},
-    {"drbitboy-PLC_2s_lamp_flash/single_timer.RSS", nullptr, kNoDataFileSizes},
+    {"drbitboy-PLC_2s_lamp_flash/rtc_bit_1.RSS", nullptr},
+    {"drbitboy-PLC_2s_lamp_flash/single_timer.RSS", nullptr},
     {"drbitboy-PLC_2s_lamp_flash/sti_1000ms_live.RSS", "instruction STS is not supported"},
     {"drbitboy-PLC_SLC_adjust_clock/slc_adjust_clock.RSS", nullptr},
     {"drbitboy-PLC_lowpass/training_bubble_sort_running.RSS", nullptr},
@@ -571,7 +566,7 @@ const std::vector<RssFixture> kRssFixtures = {
     {"drbitboy-PLC_reject_timing/lecky_demo_tof.RSS", nullptr},
     // B103:10/[N7:0] with N7:0 up to 111: the program walks bits past the element's 16, which
     // softslc faults on; whether a MicroLogix B-file indirect bit runs on into the next words is
-    // not in the project's sources yet (L105 also needs its data-file size, see above).
+    // not in the project's sources yet.
     {"drbitboy-PLC_reject_timing/lecky_demo_tof_loop.RSS", nullptr, "B103:10/[N7:0] (N7:0 = 16): bit 16 does not exist"},
     {"mitagorashi-Water_Filtration/water_filtration_system.RSS", nullptr},
 };

@@ -17,7 +17,8 @@ std::string mnemonic_of(const Instruction& in) { return std::string(spec(in.opco
 
 class Checker {
  public:
-  Checker(Program& p, DiagnosticList& d) : program_(p), diags_(d) {}
+  Checker(Program& p, DiagnosticList& d, std::set<int> files_missing_rungs = {})
+      : program_(p), diags_(d), files_missing_rungs_(std::move(files_missing_rungs)) {}
 
   // An address a tool reads or writes: the rules of a program operand, without recording the
   // file's type (a tool may name any file the program has).
@@ -48,6 +49,7 @@ class Checker {
  private:
   Program& program_;
   DiagnosticList& diags_;
+  std::set<int> files_missing_rungs_;  // a copy: the Checker may outlive a default argument
   std::map<std::string, const Symbol*> symbols_;
   // File number → first use (type and position), to catch one number used as two types.
   struct FileUse {
@@ -676,6 +678,8 @@ class Checker {
                      rung.elements.front().instruction.opcode == Opcode::END;
       if (has_end && r + 1 != file.rungs.size()) error(rung.pos, "END must be the last rung of the file");
     }
+    // A rung lost to a syntax error may hold the label: no "not defined" that would follow from it.
+    if (files_missing_rungs_.count(file.number)) return;
     for (const auto& [label, pos] : jumps)
       if (!labels.count(label))
         error(pos, "JMP to label " + std::to_string(label) + ", which is not defined in program file " +
@@ -828,7 +832,9 @@ int m1_words(const SlotConfig& slot) {
   return e ? e->default_m1 : 0;
 }
 
-void check_program(Program& program, DiagnosticList& diags) { Checker(program, diags).run(); }
+void check_program(Program& program, DiagnosticList& diags, const std::set<int>& files_missing_rungs) {
+  Checker(program, diags, files_missing_rungs).run();
+}
 
 Program retarget_program(const Program& program, const ProcessorModel& processor, DiagnosticList& diags) {
   Program p = program;

@@ -12,6 +12,7 @@
 // duplicate OSR storage bits and unknown module catalogs. It never stops at the first problem.
 #pragma once
 
+#include <set>
 #include <string>
 #include <string_view>
 
@@ -21,7 +22,9 @@
 namespace softslc {
 
 // Checks `program` and resolves its symbol operands in place. Adds diagnostics to `diags`.
-void check_program(Program& program, DiagnosticList& diags);
+// `files_missing_rungs`: program files from which the loader dropped a rung with a syntax error;
+// what could follow from the missing rung (a JMP whose label it held) is not reported there.
+void check_program(Program& program, DiagnosticList& diags, const std::set<int>& files_missing_rungs = {});
 
 // The program as it would be on another processor (`run --processor`, `scantime --processor`):
 // the same text with `processor` in place of the START line's, checked again with that

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "parser/checker.h"
@@ -1035,6 +1036,9 @@ struct Span {
   std::size_t end = 0;
   std::size_t line = 1;
   SpanKind kind = SpanKind::Other;
+  // A rung: where its own text ends, before any comment lines that follow it inside the span (a
+  // rung without EOR runs on through the comments above the next SOR; its error belongs here).
+  std::size_t content_end = 0;
 };
 
 std::string_view first_token(std::string_view line) {
@@ -1102,6 +1106,11 @@ std::vector<Span> split_statements(std::string_view text) {
     } else if (!cur) {
       cur = Span{pos, 0, line, SpanKind::Other};
     }
+    // A line of the rung's own (not a comment line, nor a line inside a comment begun above it).
+    if (cur && cur->kind == SpanKind::Rung && !comment_open) {
+      auto b = l.find_first_not_of(" \t\r\n");
+      if (b != std::string_view::npos && l[b] != '%') cur->content_end = next;
+    }
     if (percent_count % 2 == 1) comment_open = !comment_open;
     // A comment statement ends with its line once the comment is closed; a rung ends with the
     // line that closes it with EOR.
@@ -1119,9 +1128,21 @@ std::vector<Span> split_statements(std::string_view text) {
   return spans;
 }
 
-void parse_statements(LoadState& state, std::string_view text, const std::string& source_name) {
+// What the syntax pass leaves for the semantic checks. A rung with a syntax error is dropped and
+// the rest are checked; a declaration (START, SLOT, LADDER, SYMBOL, DATA, ...) or stray text with
+// one stops the semantic checks, since every later check depends on the declarations (a
+// misspelt LADDER puts its rungs in the file before it; a broken SLOT makes its I/O "no module").
+struct SyntaxOutcome {
+  bool declarations_parsed = true;
+  std::set<int> files_missing_rungs;  // program files that lost a rung (a JMP's label may be on it)
+};
+
+SyntaxOutcome parse_statements(LoadState& state, std::string_view text, const std::string& source_name) {
+  SyntaxOutcome outcome;
   for (const auto& span : split_statements(text)) {
     pegtl::memory_input in(text.data() + span.begin, text.data() + span.end, source_name, span.begin, span.line, 1);
+    const std::size_t errors_before = state.diags.error_count();
+    const std::size_t rungs_before = state.current_file >= 0 ? state.program.files[state.current_file].rungs.size() : 0;
     try {
       pegtl::parse<grammar::statement, action, grammar::control>(in, state);
       // A rung comment is only the comment directly above its SOR: any other statement in
@@ -1130,9 +1151,15 @@ void parse_statements(LoadState& state, std::string_view text, const std::string
     } catch (const pegtl::parse_error& e) {
       const auto& p = e.positions().front();
       std::string msg(e.message());
+      // A rung runs on into the comment lines after it only when it lacks EOR: an error there
+      // (at a '%' the rung grammar does not take) is that missing EOR.
+      if (span.kind == SpanKind::Rung && span.content_end > span.begin && p.byte >= span.content_end)
+        msg = grammar::error_message<grammar::rung_end>;
       // An error at the end of a statement (something missing) is reported just after its last
-      // character, on its own line, rather than at the start of the next line.
-      auto last = text.find_last_not_of(" \t\r\n", span.end == 0 ? 0 : span.end - 1);
+      // character, on its own line, rather than at the start of the next line; for a rung, after
+      // its own last character, not after the comment lines above the next rung.
+      const std::size_t stop = span.kind == SpanKind::Rung && span.content_end > span.begin ? span.content_end : span.end;
+      auto last = text.find_last_not_of(" \t\r\n", stop == 0 ? 0 : stop - 1);
       if (last != std::string_view::npos && last >= span.begin && p.byte > last) {
         auto line_start = text.rfind('\n', last);
         line_start = line_start == std::string_view::npos ? 0 : line_start + 1;
@@ -1147,23 +1174,47 @@ void parse_statements(LoadState& state, std::string_view text, const std::string
       state.operands.clear();
       state.pending_comments.clear();
     }
+    if (state.diags.error_count() == errors_before) continue;
+    if (span.kind == SpanKind::Rung) {
+      // A rung that parsed with an error (an unknown mnemonic, a stray BND) was kept by its
+      // action: drop it too, so no semantic check reports what follows from that error.
+      if (state.current_file >= 0) {
+        auto& file = state.program.files[state.current_file];
+        if (file.rungs.size() > rungs_before) file.rungs.resize(rungs_before);
+        outcome.files_missing_rungs.insert(file.number);
+      }
+    } else {
+      // Includes a comment left open, which swallows the rest of the file, declarations too.
+      outcome.declarations_parsed = false;
+    }
   }
+  return outcome;
 }
 
 }  // namespace
 
 // ---- Public API ------------------------------------------------------------------------------------
 
+namespace {
+// The syntax pass: `program` holds what parsed (every statement that had no error).
+SyntaxOutcome parse_into(LoadResult& r, Program& program, bool& have_start) {
+  program.source_name = r.source_name;
+  LoadState state(program, r.diagnostics, r.source);
+  SyntaxOutcome outcome = parse_statements(state, r.source, r.source_name);
+  have_start = state.have_start;
+  if (!state.have_start && outcome.declarations_parsed)
+    r.diagnostics.error(1, 1, "missing START statement naming the processor (for example 'START 1747-L532')");
+  return outcome;
+}
+}  // namespace
+
 LoadResult parse_program_syntax(std::string text, std::string source_name) {
   LoadResult r;
   r.source = std::move(text);
   r.source_name = std::move(source_name);
   Program program;
-  program.source_name = r.source_name;
-  LoadState state(program, r.diagnostics, r.source);
-  parse_statements(state, r.source, r.source_name);
-  if (!state.have_start && !r.diagnostics.has_errors())
-    r.diagnostics.error(1, 1, "missing START statement naming the processor (for example 'START 1747-L532')");
+  bool have_start = false;
+  parse_into(r, program, have_start);
   if (!r.diagnostics.has_errors()) r.program = std::move(program);
   r.diagnostics.sort_by_position();
   return r;
@@ -1217,11 +1268,18 @@ LoadResult load_pasted_rungs(std::string text, std::string source_name, const Pr
 }
 
 LoadResult load_program(std::string text, std::string source_name) {
-  LoadResult r = parse_program_syntax(std::move(text), std::move(source_name));
-  if (!r.program) return r;
-  check_program(*r.program, r.diagnostics);
+  LoadResult r;
+  r.source = std::move(text);
+  r.source_name = std::move(source_name);
+  Program program;
+  bool have_start = false;
+  const SyntaxOutcome syntax = parse_into(r, program, have_start);
+  // Every independent error in one pass: the rungs that parsed are checked even when others did
+  // not (those are skipped, and so is what could depend on them); nothing is checked against
+  // declarations that failed to parse.
+  if (have_start && syntax.declarations_parsed) check_program(program, r.diagnostics, syntax.files_missing_rungs);
   r.diagnostics.sort_by_position();
-  if (r.diagnostics.has_errors()) r.program.reset();
+  if (!r.diagnostics.has_errors()) r.program = std::move(program);
   return r;
 }
 

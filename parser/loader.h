@@ -1,8 +1,10 @@
 // Loading a program: text → Program, with every problem reported as a positioned diagnostic.
 //
 // load_program() parses the export text statement by statement (see grammar.h), then runs the
-// semantic checker (checker.h). The result holds a Program only when there were no errors: a
-// file that fails leaves nothing half-loaded. Warnings do not prevent loading.
+// semantic checker (checker.h) on what parsed — every rung without a syntax error, as long as the
+// declarations parsed — so one pass reports every independent error. The result holds a Program
+// only when there were no errors: a file that fails leaves nothing half-loaded. Warnings do not
+// prevent loading.
 #pragma once
 
 #include <filesystem>

@@ -3,6 +3,11 @@
 #
 #   tools/fuzz.sh [SECONDS_PER_TARGET]     default 60
 #
+# Environment: SOFTSLC_FUZZ_MAX_LEN=N gives every target inputs up to N bytes (issue 17's long run:
+# 1048576); SOFTSLC_FUZZ_PARALLEL=1 runs the targets one at a time (default two, one per core);
+# SOFTSLC_FUZZ_TIMEOUT=S is the time one input may take (default 1 s); SOFTSLC_FUZZ_TARGETS="a b"
+# runs only those targets (names without _fuzz).
+#
 # Seed corpora come from examples/ and ../shared/fixtures/ (copied into a scratch corpus so the
 # tree is never written). A crash, a hang (> 1 s per input), a leak or a UB report fails the run;
 # libFuzzer leaves the input as TARGET-crash-*/TARGET-timeout-* in the build directory (its report
@@ -20,12 +25,15 @@ ensure_packages clang libclang-rt-14-dev cmake ninja-build tao-pegtl-dev libcli1
 mkdir -p "$build"
 CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSLC_FUZZ=ON \
   -DSOFTSLC_TESTS=ON -DSOFTSLC_BENCHMARKS=OFF -DCMAKE_CXX_FLAGS=-Wno-unused-command-line-argument > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-targets=(program address testfile bench scanport_message transaction dem rss pccc eip modbus)
+all_targets=(program address testfile bench scanport_message transaction dem rss pccc eip modbus)
+targets=("${all_targets[@]}")
+if [ -n "${SOFTSLC_FUZZ_TARGETS:-}" ]; then read -r -a targets <<< "$SOFTSLC_FUZZ_TARGETS"; fi
+parallel="${SOFTSLC_FUZZ_PARALLEL:-2}"
 cmake --build "$build" --target "${targets[@]/%/_fuzz}"
 
 corpus="$build/corpus"
 rm -rf "$corpus"
-for target in "${targets[@]}"; do mkdir -p "$corpus/$target"; done
+for target in "${all_targets[@]}"; do mkdir -p "$corpus/$target"; done
 find "$root/examples" -name '*.test' -exec cp {} "$corpus/testfile/" \;
 find "$root/examples" -name '*.slc' -exec cp {} "$corpus/program/" \;
 find "$root/examples" -name '*.bench' -exec cp {} "$corpus/bench/" \;
@@ -82,8 +90,16 @@ run_target() {
     # parentheses or bench blocks a few hundred) and the error caps; the time per run is unchanged.
     program|testfile|bench) len=(-max_len=16384) ;;
   esac
+  if [ -n "${SOFTSLC_FUZZ_MAX_LEN:-}" ]; then
+    # Keep the decoders' -len_control; only the maximum length changes.
+    local i
+    for i in "${!len[@]}"; do
+      if [[ "${len[$i]}" == -max_len=* ]]; then unset 'len[i]'; fi
+    done
+    len+=(-max_len="$SOFTSLC_FUZZ_MAX_LEN")
+  fi
   # libolecf's own leaks on damaged files are suppressed by the reader (parser/rss/rss_reader.cpp).
-  (cd "$build" && ASAN_OPTIONS=detect_leaks=1 "./tests/fuzz/${target}_fuzz" -max_total_time="$seconds" -timeout=1 \
+  (cd "$build" && ASAN_OPTIONS=detect_leaks=1 "./tests/fuzz/${target}_fuzz" -max_total_time="$seconds" -timeout="${SOFTSLC_FUZZ_TIMEOUT:-1}" \
     -seed=1 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="$build/${target}-" "${len[@]}" \
     "$corpus/$target" > "$logs/$target.log" 2>&1) && echo ok > "$logs/$target.status" || echo failed > "$logs/$target.status"
 }
@@ -91,7 +107,7 @@ pids=()
 for target in "${targets[@]}"; do
   run_target "$target" &
   pids+=($!)
-  if ((${#pids[@]} == 2)); then wait "${pids[@]}"; pids=(); fi
+  if ((${#pids[@]} >= parallel)); then wait "${pids[@]}"; pids=(); fi
 done
 ((${#pids[@]})) && wait "${pids[@]}"
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Mutation run: hostile and careless inputs through every softslc command.
 
-    tools/mutate.py SOFTSLC [--count N] [--seed S] [--timeout SECONDS] [--keep DIR]
+    tools/mutate.py SOFTSLC [--count N] [--seed S] [--timeout CPU_SECONDS] [--wall-timeout SECONDS] [--keep DIR]
 
 Takes the example programs (*.slc), test files (*.test) and bench files (*.bench) under
 examples/, mutates copies of them (bytes flipped, lines dropped, duplicated or shuffled, structure
@@ -11,7 +11,8 @@ run (with --set/--print/--state) for programs; test for test files; run --bench 
 benches. SOFTSLC should be a build with AddressSanitizer and UndefinedBehaviorSanitizer (the fuzz
 build, tools/fuzz.sh, has one). A run fails the mutation run when it ends by a signal, prints a
 sanitizer report, exits with a status softslc never uses (anything but 0-3 and 128+SIGINT/TERM),
-or runs over the timeout. Each failing input is kept in --keep (default build-mutate/) with the
+or runs over the timeout (CPU seconds; a run stuck without using CPU is caught by
+--wall-timeout). Each failing input is kept in --keep (default build-mutate/) with the
 command line, and the run ends with a table of figures for docs/robustness.md.
 
 Deterministic for a given --seed. Python 3 standard library only (Debian's python3).
@@ -19,7 +20,9 @@ Deterministic for a given --seed. Python 3 standard library only (Debian's pytho
 import argparse
 import os
 import random
+import resource
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -110,25 +113,46 @@ SANITIZER_MARKS = ("ERROR: AddressSanitizer", "ERROR: LeakSanitizer", "runtime e
                    "terminate called", "internal error")
 
 
-def run_one(cmd, cwd, timeout):
+def run_one(cmd, cwd, timeout, wall_timeout):
+    """Runs one command; returns (verdict or None, wall seconds, CPU seconds, stderr).
+
+    The time limit is on CPU (RLIMIT_CPU: SIGXCPU after `timeout` seconds), not on the wall clock:
+    on a 2-core machine shared with other sessions (some at a higher priority) a run under `nice`
+    can spend 19 s of wall time on 0.4 s of CPU. A run that makes no progress without using CPU
+    (waiting on a lock, a pipe) is caught by the wall-clock limit `wall_timeout`."""
     env = dict(os.environ)
     env.setdefault("ASAN_OPTIONS", "detect_leaks=1:abort_on_error=0")
     env.setdefault("UBSAN_OPTIONS", "print_stacktrace=1:halt_on_error=1")
+    limit = int(timeout + 0.999)
+
+    def limit_cpu():
+        resource.setrlimit(resource.RLIMIT_CPU, (limit, limit + 1))
+
     start = time.monotonic()
+    # CPU seconds of the run: the children's rusage, reaped by subprocess.run even when killed.
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+
+    def cpu():
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
     try:
         p = subprocess.run(cmd, cwd=cwd, stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL,
-                           stderr=subprocess.PIPE, timeout=timeout, env=env)
+                           stderr=subprocess.PIPE, timeout=wall_timeout, env=env, preexec_fn=limit_cpu)
     except subprocess.TimeoutExpired:
-        return "timeout", time.monotonic() - start, b""
+        return "no progress in %.0f s of wall time (%.1f s of CPU)" % (wall_timeout, cpu()), \
+            time.monotonic() - start, cpu(), b""
     elapsed = time.monotonic() - start
+    used = cpu()
     err = p.stderr.decode("utf-8", "replace")
+    if p.returncode == -signal.SIGXCPU or used > timeout:
+        return "over %.0f s of CPU" % timeout, elapsed, used, p.stderr
     if p.returncode < 0:
-        return "signal %d" % -p.returncode, elapsed, p.stderr
+        return "signal %d" % -p.returncode, elapsed, used, p.stderr
     if any(m in err for m in SANITIZER_MARKS):
-        return "sanitizer", elapsed, p.stderr
+        return "sanitizer", elapsed, used, p.stderr
     if p.returncode not in (0, 1, 2, 3):
-        return "exit %d" % p.returncode, elapsed, p.stderr
-    return None, elapsed, p.stderr
+        return "exit %d" % p.returncode, elapsed, used, p.stderr
+    return None, elapsed, used, p.stderr
 
 
 def main():
@@ -136,7 +160,9 @@ def main():
     ap.add_argument("softslc")
     ap.add_argument("--count", type=int, default=2000)
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--timeout", type=float, default=10.0)
+    ap.add_argument("--timeout", type=float, default=10.0, help="CPU seconds one run may take")
+    ap.add_argument("--wall-timeout", type=float, default=120.0,
+                    help="wall-clock seconds after which a run that is not finishing counts as stuck")
     ap.add_argument("--keep", default=str(ROOT / "build-mutate"))
     args = ap.parse_args()
     softslc = str(Path(args.softslc).resolve())
@@ -149,6 +175,7 @@ def main():
     runs = 0
     failures = []
     slowest = (0.0, "")
+    most_cpu = (0.0, "")
     started = time.monotonic()
     with tempfile.TemporaryDirectory(prefix="softslc-mutate-") as tmp:
         tmp = Path(tmp)
@@ -177,9 +204,11 @@ def main():
                     cmds.append(["run", str(programs[0]), "--bench", str(target), "--for", "100ms"])
             for c in cmds:
                 runs += 1
-                verdict, elapsed, err = run_one([softslc] + c, work, args.timeout)
+                verdict, elapsed, used, err = run_one([softslc] + c, work, args.timeout, args.wall_timeout)
                 if elapsed > slowest[0]:
                     slowest = (elapsed, " ".join(c[:1]) + " " + original.name)
+                if used > most_cpu[0]:
+                    most_cpu = (used, " ".join(c[:1]) + " " + original.name)
                 if verdict:
                     name = "fail-%05d-%s" % (n, original.name)
                     (keep / name).write_bytes(mutant)
@@ -190,16 +219,17 @@ def main():
                     print("FAIL %s: softslc %s on a mutant of %s (kept as %s)" % (verdict, c[0], original.name, name),
                           flush=True)
             shutil.rmtree(work, ignore_errors=True)
-            if (n + 1) % 100 == 0:
-                print("%d mutants, %d runs, %d failures, %.0f s" % (n + 1, runs, len(failures),
-                                                                    time.monotonic() - started), flush=True)
+            if (n + 1) % 50 == 0:
+                print("%d mutants, %d runs, %d failures, %.0f s, most CPU in one run %.1f s (%s)" % (
+                    n + 1, runs, len(failures), time.monotonic() - started, most_cpu[0], most_cpu[1]), flush=True)
     total = time.monotonic() - started
     print()
-    print("| mutants | programs | test files | benches | command runs | failures | slowest run | wall time |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-    print("| %d | %d | %d | %d | %d | %d | %.1f s (%s) | %.0f s |" % (
-        args.count, figures["slc"], figures["test"], figures["bench"], runs, len(failures), slowest[0], slowest[1],
-        total))
+    print("| mutants | programs | test files | benches | command runs | failures | most CPU in one run | "
+          "slowest run (wall) | wall time |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+    print("| %d | %d | %d | %d | %d | %d | %.1f s (%s) | %.1f s (%s) | %.0f s |" % (
+        args.count, figures["slc"], figures["test"], figures["bench"], runs, len(failures), most_cpu[0], most_cpu[1],
+        slowest[0], slowest[1], total))
     return 1 if failures else 0
 
 

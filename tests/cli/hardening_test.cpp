@@ -17,6 +17,11 @@ const std::string kExample = std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
+std::string read_all(const std::filesystem::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), {});
+}
+
 // ---- JSON: no exception escapes, every error positioned ----------------------------------------
 
 // nlohmann throws out_of_range (not parse_error) for a number beyond a double; it aborted
@@ -52,6 +57,42 @@ TEST(HardeningJson, TimingProfileWithHugeNumber) {
   EXPECT_EQ(r.exit_code, 1) << r.out;
   EXPECT_TRUE(contains(r.out, "huge-timing.json:1:")) << r.out;
   EXPECT_TRUE(contains(r.out, "number overflow")) << r.out;
+}
+
+// The SCANport drive files and DeviceNet descriptions a bench names went through the same
+// nlohmann parse that aborted on 1e309: now the bench run stops with the file's position. The
+// example's bench is copied beside a replacement for the JSON file it names.
+void expect_bench_json_overflow(const std::string& example_dir, const std::string& program, const std::string& bench,
+                                const std::string& json_name, const std::string& json, const std::string& where) {
+  const auto dir = std::filesystem::path(SOFTSLC_SOURCE_DIR) / "examples/ladder" / example_dir;
+  auto copy = temp_file("huge-" + json_name + "/" + bench, read_all(dir / bench));
+  temp_file("huge-" + json_name + "/" + json_name, json);
+  auto r = run("run " + (dir / program).string() + " --bench " + copy.string() + " --for 10ms");
+  EXPECT_EQ(r.exit_code, 1) << json_name << ": " << r.out;
+  EXPECT_TRUE(contains(r.out, where)) << r.out;
+  EXPECT_TRUE(contains(r.out, "number overflow")) << r.out;
+}
+
+TEST(HardeningJson, DriveFileAndDeviceNetDescriptionWithHugeNumber) {
+  expect_bench_json_overflow("1203-sm1", "appb_messaging.slc", "pad6.bench", "pad6_drive.json",
+                             "{\n  \"schema\": 1e309\n}\n", "pad6_drive.json:2:");
+  expect_bench_json_overflow("1747-sdn", "appe_drive_parameter.slc", "appe_drive_parameter.bench", "weigh-scale.json",
+                             "{\"vendor\": 1e309}\n", "weigh-scale.json:1:");
+}
+
+// `test --coverage-json` aborted (nlohmann type_error 316) when a program's path was not UTF-8:
+// the report names the program by its path; the byte becomes U+FFFD and the file is written.
+TEST(HardeningJson, CoverageJsonOfANonUtf8PathIsWritten) {
+  const auto dir = std::filesystem::path(SOFTSLC_SOURCE_DIR) / "examples/ladder/seal_in";
+  auto test = temp_file("latin1-\xe9/seal_in.test", read_all(dir / "seal_in.test"));
+  std::filesystem::copy_file(dir / "seal_in.slc", test.parent_path() / "seal_in.slc",
+                             std::filesystem::copy_options::overwrite_existing);
+  const auto report = test.parent_path().parent_path() / "latin1-coverage.json";
+  auto r = run("test " + test.string() + " --coverage-json " + report.string());
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  const std::string json = read_all(report);
+  EXPECT_TRUE(contains(json, "latin1-\xef\xbf\xbd/seal_in.slc")) << json.substr(0, 500);
+  EXPECT_FALSE(contains(json, "latin1-\xe9")) << json.substr(0, 500);
 }
 
 // ---- One address rule and one value rule for every entry point -----------------------------------
@@ -152,11 +193,6 @@ TEST(HardeningCheckIsRun, CheckRefusesWhatTheCompilerRefuses) {
 }
 
 // ---- Files: what is read, how it is written -------------------------------------------------------
-
-std::string read_all(const std::filesystem::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(f), {});
-}
 
 // `check /dev/zero` read forever; a directory gave a confusing message.
 TEST(HardeningFiles, SpecialFilesAreRefusedByWhatTheyAre) {

@@ -130,11 +130,95 @@ TEST(Diagnostics, AllIndependentErrorsAreReported) {
   auto r = load_program(kHeader + "SOR XIC I:1/0 BND OTE O:2/0 EOR\nSOR FOO EOR\nSLOT x\nSOR XIC B3:0/16 OTE O:2/0 EOR\n",
                         "t.slc");
   EXPECT_FALSE(r.ok());
-  // Syntax errors on lines 7, 8 and 9 are all reported (semantic checks run only on a clean parse).
+  // Syntax errors on lines 7, 8 and 9 are all reported. The broken SLOT is a declaration, and
+  // the bit 16 on line 10 is not checked against declarations that failed to parse.
   ASSERT_EQ(r.diagnostics.error_count(), 3u) << r.render_diagnostics();
   EXPECT_EQ(r.diagnostics.items()[0].line, 7u);
   EXPECT_EQ(r.diagnostics.items()[1].line, 8u);
   EXPECT_EQ(r.diagnostics.items()[2].line, 9u);
+}
+
+// Issue 17: semantic errors were hidden whenever any rung had a syntax error. The rungs that
+// parse are checked in the same pass; a rung with a syntax error is skipped (an unknown mnemonic
+// does not also make its rung "have no output instruction").
+TEST(Diagnostics, SemanticErrorsAreReportedBesideSyntaxErrors) {
+  auto r = load_program(kHeader +
+                            "SOR XIC I:1/0 BND OTE O:2/0 EOR\n"   // 7: stray BND (syntax)
+                            "SOR XIC B3:0/16 OTE O:2/0 EOR\n"     // 8: bit 16 (semantic)
+                            "SOR FOO EOR\n"                       // 9: unknown mnemonic, and nothing else
+                            "SOR XIC I:1/0 OTE O:2/0\n"           // 10: no EOR (syntax)
+                            "SOR MOV N7:0 5 EOR\n"                // 11: constant as destination (semantic)
+                            "SOR XIC I:5/0 OTE O:2/0 EOR\n",      // 12: slot 5 has no module (semantic)
+                        "t.slc");
+  EXPECT_FALSE(r.ok());
+  EXPECT_EQ(r.render_diagnostics(),
+            "t.slc:7:15: error: unbalanced branch: BND without a matching BST\n"
+            "SOR XIC I:1/0 BND OTE O:2/0 EOR\n              ^\n"
+            "t.slc:8:9: error: bit number 16 is out of range 0-15\n"
+            "SOR XIC B3:0/16 OTE O:2/0 EOR\n        ^\n"
+            "t.slc:9:5: error: unknown instruction 'FOO'\n"
+            "SOR FOO EOR\n    ^\n"
+            "t.slc:10:24: error: expected an instruction mnemonic, a branch (BST, NXB, BND) or EOR\n"
+            "SOR XIC I:1/0 OTE O:2/0\n                       ^\n"
+            "t.slc:11:14: error: MOV dest: expected a destination word address, found '5'\n"
+            "SOR MOV N7:0 5 EOR\n             ^\n"
+            "t.slc:12:9: error: slot 5 has no module (no SLOT 5 line)\n"
+            "SOR XIC I:5/0 OTE O:2/0 EOR\n        ^\n");
+}
+
+// A rung lost to a syntax error may hold a label: the JMP to it is not reported as undefined,
+// while a JMP in a file that lost no rung still is.
+TEST(Diagnostics, NothingThatFollowsFromASkippedRungIsReported) {
+  auto r = load_program(kHeader +
+                            "SOR LBL 5 XIC I:1/0 BND OTE O:2/0 EOR\n"  // 7: syntax error; holds label 5
+                            "SOR XIC I:1/1 JMP 5 EOR\n"                // 8: fine once line 7 is fixed
+                            "LADDER 3\n"
+                            "SOR XIC I:1/1 JMP 6 EOR\n",               // 10: label 6 is nowhere
+                        "t.slc");
+  EXPECT_EQ(r.render_diagnostics(),
+            "t.slc:7:21: error: unbalanced branch: BND without a matching BST\n"
+            "SOR LBL 5 XIC I:1/0 BND OTE O:2/0 EOR\n                    ^\n"
+            "t.slc:10:19: error: JMP to label 6, which is not defined in program file 3\n"
+            "SOR XIC I:1/1 JMP 6 EOR\n                  ^\n");
+}
+
+// Many broken and many wrong rungs: both kinds reported, within the per-file cap, each once.
+TEST(Diagnostics, SyntaxAndSemanticErrorsShareTheCaps) {
+  std::string rungs;
+  for (int i = 0; i < 300; ++i) rungs += "SOR XIC I:1/0 BND OTE O:2/0 EOR\nSOR XIC B3:0/16 OTE O:2/0 EOR\n";
+  auto r = load_program(kHeader + rungs, "t.slc");
+  EXPECT_EQ(r.diagnostics.error_count(), 600u);
+  const std::string out = r.render_diagnostics();
+  std::size_t shown = 0;
+  for (std::size_t at = out.find(": error: "); at != std::string::npos; at = out.find(": error: ", at + 1)) ++shown;
+  EXPECT_EQ(shown, 100u);
+  EXPECT_NE(out.find("t.slc:8:9: error: bit number 16 is out of range 0-15"), std::string::npos);
+  EXPECT_NE(out.find("t.slc: note: 500 more diagnostic(s) not shown"), std::string::npos) << out.substr(out.size() - 300);
+}
+
+// Issue 17: a rung without EOR is reported on that rung, just after its last instruction — not
+// after the comment lines that RSLogix writes above the next rung, and not at the end of the file.
+TEST(Diagnostics, MissingEorIsReportedOnItsRung) {
+  auto r = load_program(kHeader +
+                            "SOR XIC I:1/0 OTE O:2/0\n"       // 7: no EOR
+                            "% Rung: 1 %\n"
+                            "% Start the pump %\n"
+                            "SOR XIC I:1/1 OTE O:2/1 EOR\n"
+                            "SOR XIC I:1/2\n"                 // 11: no EOR, its rung continued
+                            "    OTE O:2/2\n"                 // 12
+                            "% a comment spanning\n"
+                            "  two lines %\n"
+                            "\n"
+                            "SOR XIC I:1/3 OTE O:2/3\n"       // 16: no EOR, last rung of the file
+                            "% trailing comment %\n",
+                        "t.slc");
+  EXPECT_EQ(r.render_diagnostics(),
+            "t.slc:7:24: error: expected an instruction mnemonic, a branch (BST, NXB, BND) or EOR\n"
+            "SOR XIC I:1/0 OTE O:2/0\n                       ^\n"
+            "t.slc:12:14: error: expected an instruction mnemonic, a branch (BST, NXB, BND) or EOR\n"
+            "    OTE O:2/2\n             ^\n"
+            "t.slc:16:24: error: expected an instruction mnemonic, a branch (BST, NXB, BND) or EOR\n"
+            "SOR XIC I:1/3 OTE O:2/3\n                       ^\n");
 }
 
 TEST(Diagnostics, UnreadableFile) {

@@ -206,6 +206,11 @@ INSTANTIATE_TEST_SUITE_P(
                "^\n"},
         Golden{"NoInputModule", "program lamp.slc\ntest \"t\"\n  set I:3/0 = 1\n",
                "t.test:3:7: error: I:3.0/0: slot 3 has no module (no SLOT 3 line)\n  set I:3/0 = 1\n      ^\n"},
+        // Issue 17: bit 32 wrapped to bit 0 and O:2/16 wrote nothing; the checker's address rule.
+        Golden{"InputBitBeyondFifteen", "program lamp.slc\ntest \"t\"\n  set I:1/32 = 1\n",
+               "t.test:3:7: error: I:1.0/32: bit number 32 is out of range 0-15\n  set I:1/32 = 1\n      ^\n"},
+        Golden{"OutputBitBeyondFifteen", "program lamp.slc\ntest \"t\"\n  expect O:2/16 == 0\n",
+               "t.test:3:10: error: O:2.0/16: bit number 16 is out of range 0-15\n  expect O:2/16 == 0\n         ^\n"},
         Golden{"ValueDoesNotFit", "program lamp.slc\ntest \"t\"\n  set N7:0 = 0x1FFFF\n",
                "t.test:3:14: error: '0x1FFFF' does not fit a 16-bit word\n  set N7:0 = 0x1FFFF\n             ^\n"},
         Golden{"BitValue", "program lamp.slc\ntest \"t\"\n  expect LAMP == 2\n",

@@ -24,6 +24,10 @@ inline constexpr std::size_t kMaxRungsPerFile = 65535;
 inline constexpr int kMaxExpressionNesting = 64;
 inline constexpr int kMaxBenchNesting = 64;
 
+// Steps in one test file, a table-driven test's rows expanded (the largest shipped test file has
+// about 220). Each parsed step holds its condition tree, so the limit bounds memory and time.
+inline constexpr std::size_t kMaxStepsPerTestFile = 10000;
+
 // Errors reported for one file. Beyond these, one line saying how many more were suppressed:
 // a compiler's behaviour, and what keeps a file of 80,000 bad rungs linear.
 inline constexpr std::size_t kMaxErrorsPerFile = 100;

@@ -20,6 +20,9 @@ std::optional<std::uint8_t> type_code(FileType t) {
     case FileType::Long: return 0x91;
     case FileType::M0: return kTypeM0;
     case FileType::M1: return kTypeM1;
+    // MicroLogix function files (RTC, HSC, ...) are not served over PCCC yet: a typed read of
+    // one has no file type to answer with (docs/serve.md, "Not yet").
+    case FileType::Function: return std::nullopt;
   }
   return std::nullopt;
 }

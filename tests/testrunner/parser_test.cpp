@@ -5,6 +5,7 @@
 #include <tao/pegtl/contrib/analyze.hpp>
 
 #include "testrunner_test_util.h"
+#include "parser/limits.h"
 #include "tools/testrunner/test_grammar.h"
 #include "tools/testrunner/test_parser.h"
 
@@ -313,6 +314,37 @@ TEST(Diagnostics, ATestWithoutStepsIsAWarning) {
   auto f = box.load("program lamp.slc\ntest \"empty\"\n");
   EXPECT_TRUE(f.ok());
   EXPECT_EQ(f.render(), "t.test:2:1: warning: test \"empty\" has no steps\ntest \"empty\"\n^\n");
+}
+
+// A file of 40,000 copies of one `expect` line cost 640 MB and over 10 s of CPU under ASan
+// (tools/mutate.py, issue 17): test files hold at most kMaxStepsPerTestFile steps, table rows
+// expanded; past it one error names the line and the rest of the file is not read.
+TEST(Limits, ATestFileHoldsAtMostTenThousandSteps) {
+  auto steps = [](std::size_t n) {
+    std::string text = "program lamp.slc\ntest \"t\"\n";
+    for (std::size_t i = 0; i < n; ++i) text += "  scan 1\n";
+    return text;
+  };
+  auto at_limit = parse_test_text(steps(kMaxStepsPerTestFile), "t.test");
+  EXPECT_FALSE(at_limit.diagnostics.has_errors());
+  ASSERT_EQ(at_limit.file.tests.size(), 1u);
+  EXPECT_EQ(at_limit.file.tests[0].steps.size(), kMaxStepsPerTestFile);
+
+  auto over = parse_test_text(steps(40000), "t.test");
+  ASSERT_EQ(over.diagnostics.items().size(), 1u);
+  EXPECT_EQ(over.diagnostics.items()[0].line, kMaxStepsPerTestFile + 3);  // two header lines
+  EXPECT_EQ(over.diagnostics.items()[0].message, "more than 10000 steps in one test file; split it into several files");
+
+  // 101 rows of a 100-step body: each row alone is small, together 10,100 steps.
+  std::string table = "program lamp.slc\ntest \"t $N\" with N\n";
+  for (int r = 0; r <= 100; ++r) table += "  row " + std::to_string(r) + "\n";
+  for (int i = 0; i < 100; ++i) table += "  set N7:0 = $N\n";
+  auto rows = parse_test_text(table, "t.test");
+  ASSERT_EQ(rows.diagnostics.items().size(), 1u);
+  EXPECT_EQ(rows.diagnostics.items()[0].line, 2u);
+  EXPECT_EQ(rows.diagnostics.items()[0].message,
+            "this table-driven test expands to 10100 steps (101 rows of 100), more than 10000 in one test file");
+  EXPECT_TRUE(rows.file.tests.empty());
 }
 
 }  // namespace

@@ -804,7 +804,7 @@ class Driver {
       if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
       ++number;
       handle(line, number);
-      if (nl == std::string::npos) break;
+      if (too_many_steps_ || nl == std::string::npos) break;
       pos = nl + 1;
     }
     finish_test();
@@ -821,11 +821,11 @@ class Driver {
     auto refs = (word == "test" || word == "row") ? std::vector<Reference>{} : references(raw);
     if (!refs.empty()) {
       if (pending_ && pending_->table) {
-        pending_->body.push_back({number, std::string(raw), std::move(refs), std::nullopt});
+        add_body({number, std::string(raw), std::move(refs), std::nullopt});
         return;
       }
       const auto& r = refs.front();
-      if (pending_) pending_->body.push_back({number, std::string(raw), {}, std::nullopt});  // a broken line
+      if (pending_) add_body({number, std::string(raw), {}, std::nullopt});  // a broken line
       error({number, static_cast<std::uint32_t>(r.pos + 1)},
             "'$" + r.name + "' refers to a table column, but this line is not in a table-driven test "
             "(test \"name\" with " + (r.name.empty() ? std::string("COLUMN") : r.name) + ")");
@@ -834,7 +834,7 @@ class Driver {
     ParsedLine pl;
     if (auto e = parse_line(raw, number, name_, pl)) {
       error(e->loc, e->message);
-      if (pending_ && word != "test") pending_->body.push_back({number, std::string(raw), {}, std::nullopt});
+      if (pending_ && word != "test") add_body({number, std::string(raw), {}, std::nullopt});
       if (word == "test") {
         // The test is lost, but its lines still belong to it: keep them from being reported as
         // steps outside a test, or as rows and column references without a table.
@@ -873,12 +873,12 @@ class Driver {
           pending_->rows_broken = true;
           return;
         }
-        pending_->rows.push_back(std::move(pl));
+        if (count_line(number)) pending_->rows.push_back(std::move(pl));
         return;
       case ParsedLine::Kind::Program:
       case ParsedLine::Kind::Bench: {
         if (pending_) {
-          pending_->body.push_back({number, std::string(raw), {}, std::move(pl)});
+          add_body({number, std::string(raw), {}, std::move(pl)});
           return;
         }
         const bool program = pl.kind == ParsedLine::Kind::Program;
@@ -899,9 +899,24 @@ class Driver {
           error(pl.loc, "a step must belong to a test: start one with test \"name\"");
           return;
         }
-        pending_->body.push_back({number, std::string(raw), {}, std::move(pl)});
+        add_body({number, std::string(raw), {}, std::move(pl)});
         return;
     }
+  }
+
+  // A test's line, counted against the file's step limit: a file of 40,000 copies of one
+  // `expect` line cost 640 MB and 12 s under ASan before the limit (tools/mutate.py, mutant 376).
+  // At the limit one error names it and the rest of the file is not read.
+  void add_body(BodyLine line) {
+    if (count_line(line.number)) pending_->body.push_back(std::move(line));
+  }
+  // Table rows count too: each one is kept until the table is expanded.
+  bool count_line(std::uint32_t number) {
+    if (++steps_ <= kMaxStepsPerTestFile) return true;
+    error({number, 1}, "more than " + std::to_string(kMaxStepsPerTestFile) +
+                           " steps in one test file; split it into several files");
+    too_many_steps_ = true;
+    return false;
   }
 
   void finish_test() {
@@ -931,6 +946,18 @@ class Driver {
       if (!t.rows_broken) error(t.header.loc, "a table-driven test needs at least one 'row' line");
       return;
     }
+    // Each row repeats the body: the expanded steps count against the same limit, in place of
+    // the body's lines and the rows, which were counted as they were read.
+    const std::size_t before = steps_ - t.body.size() - t.rows.size();
+    const std::size_t expanded = t.rows.size() * t.body.size();
+    if (before > kMaxStepsPerTestFile || expanded > kMaxStepsPerTestFile - before) {
+      error(t.header.loc, "this table-driven test expands to " + std::to_string(expanded) + " steps (" +
+                              std::to_string(t.rows.size()) + " rows of " + std::to_string(t.body.size()) +
+                              "), more than " + std::to_string(kMaxStepsPerTestFile) + " in one test file");
+      too_many_steps_ = true;
+      return;
+    }
+    steps_ = before + expanded;
     for (const auto& row : t.rows) expand_row(t, row);
   }
 
@@ -1078,6 +1105,8 @@ class Driver {
   std::string file_bench_;
   Location file_bench_loc_;
   std::optional<PendingTest> pending_;
+  std::size_t steps_ = 0;         // test lines so far, table rows expanded (kMaxStepsPerTestFile)
+  bool too_many_steps_ = false;   // the limit was passed: the rest of the file is not read
   std::map<std::string, std::uint32_t> names_;
   std::vector<TestCase> tests_;
 };

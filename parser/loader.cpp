@@ -272,10 +272,23 @@ template <> struct action<element_number> {
   }
 };
 
+// A MicroLogix function file's element, word and bit are named directly (RTC:0.YR, HSC:0/FE):
+// an indirect part has no canonical spelling for it (address_fuzz found CS:[N102:1] printed as
+// CS:0), and no fixture or manual page softslc has uses one.
+template <typename Input>
+void refuse_indirect_function_file(const Input& in, const AddressBuilder& b) {
+  if (is_function_file(b.a.type))
+    throw pegtl::parse_error("function file " + std::string(function_file_name(b.a.file)) +
+                                 " is addressed directly (" + std::string(function_file_name(b.a.file)) +
+                                 ":0.WORD, :0/BIT); copy an indirect value through an N file",
+                             in);
+}
+
 template <> struct action<indirect_element> {
   template <typename Input>
   static void apply(const Input& in, AddressBuilder& b) {
     require_file_number(in, b);
+    refuse_indirect_function_file(in, b);
     b.a.indirect_element = b.ref;
     b.ref = {};
   }
@@ -315,7 +328,8 @@ template <> struct action<word_name> {
 
 template <> struct action<indirect_word> {
   template <typename Input>
-  static void apply(const Input&, AddressBuilder& b) {
+  static void apply(const Input& in, AddressBuilder& b) {
+    refuse_indirect_function_file(in, b);
     b.a.indirect_word = b.ref;
     b.ref = {};
   }
@@ -358,7 +372,8 @@ template <> struct action<bit_name> {
 
 template <> struct action<indirect_bit> {
   template <typename Input>
-  static void apply(const Input&, AddressBuilder& b) {
+  static void apply(const Input& in, AddressBuilder& b) {
+    refuse_indirect_function_file(in, b);
     b.a.indirect_bit = b.ref;
     b.ref = {};
   }

@@ -144,7 +144,11 @@ INSTANTIATE_TEST_SUITE_P(
                       BadAddress{"M0:1.[", "direct word address"},
                       BadAddress{"N7:", "expected an element number"},
                       BadAddress{"N7:1 junk", "not an address"},
-                      BadAddress{"B3/4096", "bit offset must be 0-4095"}));
+                      BadAddress{"B3/4096", "bit offset must be 0-4095"},
+                      // address_fuzz: an indirect function-file part printed as CS:0.
+                      BadAddress{"CS:[N102:1]", "function file CS is addressed directly"},
+                      BadAddress{"RTC:0.[N7:0]", "function file RTC is addressed directly"},
+                      BadAddress{"RTC:0/[N7:0]", "function file RTC is addressed directly"}));
 
 TEST(Number, AllConstantForms) {
   NumberValue v;

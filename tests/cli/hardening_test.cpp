@@ -7,6 +7,8 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "parser/json_document.h"
 #include "cli_test_util.h"
@@ -224,24 +226,31 @@ TEST(HardeningFiles, ByteOrderMarkLoadsAndUtf16IsNamed) {
 // Two `run --state s.bin` at once both saved: one run's scans were lost.
 TEST(HardeningState, ASecondRunOnTheSameStateFileIsRefused) {
   auto dir = temp_file("lock/x", "").parent_path();
-  const std::string state = (dir / "s.bin").string();
-  // The first run holds the lock for 120 s of wall time (--realtime) while the second starts;
-  // it is stopped with SIGTERM as soon as the second has been refused.
-  const std::string first = std::string(SOFTSLC_BINARY) + " run " + kExample + " --state " + state +
-                            " --for 120s --realtime > /dev/null 2>&1 & echo $!";
-  FILE* p = ::popen(first.c_str(), "r");
-  char pid[32] = {};
-  ASSERT_TRUE(p && std::fgets(pid, sizeof pid, p));
-  ::pclose(p);
-  // Wait for the lock file to appear and be held: up to 60 s, as a loaded CI machine running the
-  // sanitizer build can take seconds to start the first run (10 s was not always enough).
-  Result second;
-  for (int i = 0; i < 600; ++i) {
-    second = run("run " + kExample + " --state " + state);
-    if (second.exit_code != 0) break;
-    ::usleep(100000);
+  const auto state = dir / "s.bin";
+  std::filesystem::remove(state);
+  // The first run holds the lock for 120 s of wall time (--realtime) and saves a checkpoint every
+  // virtual second. Only the lock's holder saves, so the state file's appearing proves the first
+  // run holds the lock: the second starts only then. (Starting the second while the first was
+  // still starting let the second take the lock and the first be the one refused; CI saw it.)
+  const pid_t first = ::fork();
+  ASSERT_GE(first, 0);
+  if (first == 0) {
+    if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) ::_exit(126);
+    ::execl(SOFTSLC_BINARY, SOFTSLC_BINARY, "run", kExample.c_str(), "--state", state.c_str(), "--for", "120s",
+            "--realtime", "--checkpoint", "1s", static_cast<char*>(nullptr));
+    ::_exit(127);
   }
-  ::kill(std::stoi(pid), SIGTERM);
+  for (int waited_ms = 0; !std::filesystem::exists(state); waited_ms += 10) {
+    if (waited_ms > 60000 || ::waitpid(first, nullptr, WNOHANG) == first) {
+      ::kill(first, SIGKILL);
+      ::waitpid(first, nullptr, 0);
+      FAIL() << "the first run saved no checkpoint within 60 s";
+    }
+    ::usleep(10000);
+  }
+  auto second = run("run " + kExample + " --state " + state.string());
+  ::kill(first, SIGTERM);
+  ::waitpid(first, nullptr, 0);
   EXPECT_EQ(second.exit_code, 1) << second.out;
   EXPECT_TRUE(contains(second.out, "is in use by another softslc run")) << second.out;
 }

@@ -1,6 +1,7 @@
 #include "instructions/processor.h"
 
 #include <array>
+#include <cctype>
 
 namespace softslc {
 
@@ -183,6 +184,22 @@ std::optional<ProcessorModel> resolve_processor(std::string_view catalog, std::o
     return m;
   }
   return std::nullopt;
+}
+
+std::optional<ProcessorModel> parse_processor_spec(std::string_view spec, std::string& error) {
+  const auto colon = spec.find(':');
+  const std::string_view catalog = spec.substr(0, colon);
+  std::optional<char> series;
+  if (colon != std::string_view::npos) {
+    if (spec.size() != colon + 2 || !std::isupper(static_cast<unsigned char>(spec[colon + 1]))) {
+      error = std::string(spec) + ": write CATALOG or CATALOG:SERIES, for example 1747-L524:B";
+      return std::nullopt;
+    }
+    series = spec[colon + 1];
+  }
+  auto m = resolve_processor(catalog, series);
+  if (!m) error = std::string(spec) + ": unknown catalog; known: " + std::string(known_processor_catalogs());
+  return m;
 }
 
 std::string_view known_processor_catalogs() {

@@ -77,6 +77,10 @@ std::optional<ProcessorModel> representative_processor(std::string_view timing_k
 std::optional<ProcessorModel> resolve_processor(std::string_view catalog, std::optional<char> series = std::nullopt,
                                                 std::optional<int> frn = std::nullopt);
 
+// Resolves a processor as users write it on a command line or in a test file: "CATALOG" or
+// "CATALOG:SERIES" (1747-L524:B). On failure sets `error` to why, starting with the text.
+std::optional<ProcessorModel> parse_processor_spec(std::string_view spec, std::string& error);
+
 // Which processors have an instruction row's Requirement, in words (`softslc instructions`, diagnostics).
 std::string_view requirement_processors(Requirement r);
 

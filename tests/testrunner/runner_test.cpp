@@ -12,6 +12,7 @@ namespace softslc::testing {
 namespace {
 
 using ::testing::HasSubstr;
+using ::testing::Not;
 using test::Sandbox;
 
 // Options for Sandbox::command: the paths, no host times (so outputs compare exactly), and the
@@ -135,6 +136,64 @@ TEST(Command, UsageErrors) {
   std::ostringstream out, err;
   EXPECT_EQ(run_test_command({}, out, err), kUsageError);
   EXPECT_EQ(err.str(), "error: no test files or directories given\n");
+}
+
+// Pasted rungs (issue 14): bare `SOR ... EOR` lines copied out of RSLogix are program file 2 of
+// the processor the test file's program line names (`program FILE processor CATALOG`), or of
+// `softslc test --processor`; a MicroLogix 1400 brings its embedded I/O (slot 0).
+const char* const kPastedRungs = "SOR XIC I:0/0 OTE O:0/0 EOR\nSOR XIC O:0/0 TON T4:0 1.0 2 0 EOR\n";
+const char* const kPastedTests =
+    "test \"input drives the output and the timer\"\n"
+    "  set I:0/0 = 1\n  scan 2\n  expect O:0/0 == 1\n  run 2.5s\n  expect T4:0/DN == 1\n";
+
+TEST(Command, PastedRungsRunAsFileTwoOfTheNamedProcessor) {
+  Sandbox box;
+  box.write("p/rungs.txt", kPastedRungs);
+  box.write("p/named.test", std::string("program rungs.txt processor Bul.1766\n") + kPastedTests);
+  auto named = box.command(Options({"p/named.test"}));
+  EXPECT_EQ(named.rc, kAllPassed) << named.out << named.err;
+  EXPECT_EQ(named.out, "PASS p/named.test: input drives the output and the timer\n1 passed, 0 failed\n");
+
+  // Without a processor: one error saying how to name one, not an error per rung.
+  box.write("p/unnamed.test", std::string("program rungs.txt\n") + kPastedTests);
+  auto unnamed = box.command(Options({"p/unnamed.test"}));
+  EXPECT_EQ(unnamed.rc, kUsageError);
+  EXPECT_THAT(unnamed.err, HasSubstr("p/rungs.txt: error: these are pasted rungs (no START or LADDER statement): "
+                                     "name their processor, `program p/rungs.txt processor Bul.1763` in the test "
+                                     "file or `softslc test --processor Bul.1763`\n"));
+  EXPECT_THAT(unnamed.err, Not(HasSubstr("LADDER statement\n")));
+
+  // `softslc test --processor` is the default for pasted programs whose test file names none.
+  Options with_default({"p/unnamed.test"});
+  with_default.pasted_processor = resolve_processor("Bul.1766");
+  auto defaulted = box.command(with_default);
+  EXPECT_EQ(defaulted.rc, kAllPassed) << defaulted.err;
+}
+
+TEST(Command, ProcessorOnAProgramLineIsCheckedAndOnlyForPastedRungs) {
+  Sandbox box;
+  box.write("p/rungs.txt", kPastedRungs);
+  box.write("p/bad.test", std::string("program rungs.txt processor 1747-L999\n") + kPastedTests);
+  auto bad = box.command(Options({"p/bad.test"}));
+  EXPECT_EQ(bad.rc, kUsageError);
+  EXPECT_THAT(bad.err, HasSubstr("p/bad.test:1:29: error: processor 1747-L999: unknown catalog; known: "));
+  box.write("p/series.test", std::string("program rungs.txt processor Bul.1766:b\n") + kPastedTests);
+  EXPECT_THAT(box.command(Options({"p/series.test"})).err,
+              HasSubstr("p/series.test:1:29: error: processor Bul.1766:b: write CATALOG or CATALOG:SERIES"));
+  box.write("p/empty.test", std::string("program rungs.txt processor\n") + kPastedTests);
+  EXPECT_THAT(box.command(Options({"p/empty.test"})).err, HasSubstr("p/empty.test:1:"));
+  // A whole program names its own processor.
+  box.write("p/whole.test", "program ../lamp.slc processor Bul.1766\ntest \"t\"\n  scan 1\n");
+  auto whole = box.command(Options({"p/whole.test"}));
+  EXPECT_EQ(whole.rc, kUsageError);
+  EXPECT_THAT(whole.err, HasSubstr("lamp.slc: error: 'processor' names the processor of pasted rungs, and this is a "
+                                   "whole program with its own"));
+  // The command's own option is checked before anything runs.
+  TestCommandOptions o = command_options((box.dir() / "p/whole.test").string(), 1);
+  o.processor = "Bul.9999";
+  std::ostringstream out, err;
+  EXPECT_EQ(run_test_command(o, out, err), kUsageError);
+  EXPECT_THAT(err.str(), ::testing::StartsWith("error: --processor Bul.9999: unknown catalog; known: "));
 }
 
 TEST(Command, FilterAndList) {

@@ -138,18 +138,8 @@ std::string pad(const std::string& s, std::size_t w) { return s.size() >= w ? s 
 
 // "1747-L524:B" → catalog and series.
 std::optional<ProcessorModel> parse_processor_option(const std::string& text, std::string& error) {
-  auto colon = text.find(':');
-  std::string catalog = text.substr(0, colon);
-  std::optional<char> series;
-  if (colon != std::string::npos) {
-    if (text.size() != colon + 2 || !std::isupper(static_cast<unsigned char>(text[colon + 1]))) {
-      error = "--processor " + text + ": write CATALOG or CATALOG:SERIES, for example 1747-L524:B";
-      return std::nullopt;
-    }
-    series = text[colon + 1];
-  }
-  auto m = resolve_processor(catalog, series);
-  if (!m) error = "--processor " + text + ": unknown catalog; known: " + std::string(known_processor_catalogs());
+  auto m = parse_processor_spec(text, error);
+  if (!m) error = "--processor " + error;
   return m;
 }
 

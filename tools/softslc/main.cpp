@@ -99,6 +99,9 @@ int main(int argc, char** argv) {
   test_cmd->add_option("--trace-dir", test.trace_dir, "write a VCD signal trace of every failing test into DIR")
       ->type_name("DIR");
   test_cmd->add_flag("--trace-all", test.trace_all, "with --trace-dir: a trace of every test, passed or not");
+  test_cmd->add_option("--processor", test.processor,
+                       "processor of pasted-rung programs (bare SOR ... EOR lines) whose test file names none: "
+                       "CATALOG or CATALOG:SERIES");
 
   RenderOptions render;
   auto* render_cmd = add_render_command(app, render);

@@ -127,6 +127,7 @@ int run_tests(const RunOptions& options, std::ostream& out, std::ostream& err) {
 
   // ---- Load ----
   ProgramCache cache;
+  cache.set_default_pasted_processor(options.pasted_processor);
   std::vector<TestFileLoad> files;
   files.reserve(refs.size());
   std::size_t bad = 0;

@@ -22,11 +22,13 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "instructions/processor.h"
 #include "tools/testrunner/executor.h"
 
 namespace softslc::testing {
@@ -45,6 +47,8 @@ struct RunOptions {
   RuntimeOptions runtime;          // for every Runtime a test creates (tests fix the scan-time model)
   std::string trace_dir;           // write a VCD per failing test here; empty = none
   bool trace_all = false;          // with trace_dir: a VCD for every test, passed or not
+  // The processor of pasted-rung programs whose test file names none (`--processor`).
+  std::optional<ProcessorModel> pasted_processor;
 };
 
 struct TestFileRef {

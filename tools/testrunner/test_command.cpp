@@ -15,6 +15,14 @@ int run_test_command(const TestCommandOptions& options, std::ostream& out, std::
   run.coverage_json = options.coverage_json;
   run.trace_dir = options.trace_dir;
   run.trace_all = options.trace_all;
+  if (!options.processor.empty()) {
+    std::string why;
+    run.pasted_processor = parse_processor_spec(options.processor, why);
+    if (!run.pasted_processor) {
+      err << "error: --processor " << why << "\n";
+      return kUsageError;
+    }
+  }
   return run_tests(run, out, err);
 }
 

@@ -26,6 +26,7 @@ struct TestCommandOptions {
   std::string coverage_json;       // write ladder coverage as JSON here; empty = none
   std::string trace_dir;           // write a VCD per failing test here (docs/traces.md); empty = none
   bool trace_all = false;          // with trace_dir: every test's VCD
+  std::string processor;           // CATALOG[:SERIES] of pasted-rung programs whose test file names none
 };
 
 int run_test_command(const TestCommandOptions& options, std::ostream& out, std::ostream& err);

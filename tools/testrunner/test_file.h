@@ -160,6 +160,8 @@ struct TestCase {
   Location loc;
   std::string program_path;  // as written (file level or in the test), relative to the test file
   Location program_loc;
+  std::string program_processor;  // `program PATH processor SPEC`: the processor of pasted rungs
+  Location program_processor_loc;
   std::string bench_path;    // likewise; empty without a bench
   Location bench_loc;
   std::shared_ptr<const LoadedProgram> program;  // set by the loader

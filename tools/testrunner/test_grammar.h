@@ -47,6 +47,7 @@ struct token_end : at<sor<blank, eof, one<'#', ')', '=', '!', '<', '>'>, two_dot
 
 struct kw_program : TAO_PEGTL_KEYWORD("program") {};
 struct kw_bench : TAO_PEGTL_KEYWORD("bench") {};
+struct kw_processor : TAO_PEGTL_KEYWORD("processor") {};
 struct kw_test : TAO_PEGTL_KEYWORD("test") {};
 struct kw_with : TAO_PEGTL_KEYWORD("with") {};
 struct kw_row : TAO_PEGTL_KEYWORD("row") {};
@@ -199,7 +200,10 @@ struct path : sor<quoted_path, bare_path> {};
 struct program_path : path {};
 struct bench_path : path {};
 
-struct program_line : seq<kw_program, ws, must<program_path>> {};
+// program PATH [processor CATALOG[:SERIES]]: the processor of a program that is pasted rungs.
+struct program_processor_spec : plus<not_one<' ', '\t', '#', '"'>> {};
+struct program_processor : seq<ws, kw_processor, ws, must<program_processor_spec>> {};
+struct program_line : seq<kw_program, ws, must<program_path>, opt<program_processor>> {};
 struct bench_line : seq<kw_bench, ws, must<bench_path>> {};
 
 // test "name" [with COLUMN...]

@@ -46,6 +46,8 @@ template <> inline constexpr auto error_message<condition> =
 template <> inline constexpr auto error_message<nested_condition> = "expected a condition after '('";
 template <> inline constexpr auto error_message<quote_close> = "unterminated string: expected a closing '\"'";
 template <> inline constexpr auto error_message<program_path> = "expected the path of the program (.slc) after 'program'";
+template <> inline constexpr auto error_message<program_processor_spec> =
+    "expected the processor of the pasted rungs after 'processor' (CATALOG or CATALOG:SERIES, for example Bul.1763)";
 template <> inline constexpr auto error_message<bench_path> = "expected the path of the bench file after 'bench'";
 template <> inline constexpr auto error_message<test_name> = "expected the test name in double quotes (test \"name\")";
 template <> inline constexpr auto error_message<column_list> =

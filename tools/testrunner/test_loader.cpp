@@ -69,7 +69,16 @@ class Checker {
     const auto [actual, display] = locate(tc.program_path);
     const auto [bench, bench_display] =
         tc.bench_path.empty() ? std::pair<std::filesystem::path, std::string>{} : locate(tc.bench_path);
-    auto& entry = cache_.load(actual, display, bench, bench_display);
+    std::optional<ProcessorModel> processor;
+    if (!tc.program_processor.empty()) {
+      std::string why;
+      processor = parse_processor_spec(tc.program_processor, why);
+      if (!processor) {
+        error(tc.program_processor_loc, "processor " + why);
+        return nullptr;
+      }
+    }
+    auto& entry = cache_.load(actual, display, bench, bench_display, processor ? &*processor : nullptr);
     if (!entry.program) {
       if (!entry.errors.empty() && reported_.insert(display + "\n" + bench_display).second)
         out_.program_diagnostics += entry.errors;
@@ -386,8 +395,10 @@ int width_of(const Address& a) {
 }
 
 ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const std::string& display,
-                                        const std::filesystem::path& bench, const std::string& bench_display) {
-  const std::string key = cache_key(path) + "\n" + (bench.empty() ? std::string() : cache_key(bench));
+                                        const std::filesystem::path& bench, const std::string& bench_display,
+                                        const ProcessorModel* pasted_processor) {
+  const std::string key = cache_key(path) + "\n" + (bench.empty() ? std::string() : cache_key(bench)) + "\n" +
+                          (pasted_processor ? pasted_processor->catalog + ":" + pasted_processor->series : std::string());
   if (auto it = entries_.find(key); it != entries_.end()) return it->second;
   Entry& e = entries_[key];
   std::string error;
@@ -396,7 +407,24 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
     e.errors = display + ": error: " + error + "\n";
     return e;
   }
-  softslc::LoadResult lr = load_program_bytes(std::move(*text), display);  // .SLC text or .RSS project
+  softslc::LoadResult lr;
+  if (is_pasted_rungs(*text)) {
+    const ProcessorModel* processor = pasted_processor ? pasted_processor
+                                      : default_pasted_processor_ ? &*default_pasted_processor_
+                                                                  : nullptr;
+    if (!processor) {
+      e.errors = display + ": error: these are pasted rungs (no START or LADDER statement): name their processor, " +
+                 "`program " + display + " processor Bul.1763` in the test file or `softslc test --processor Bul.1763`\n";
+      return e;
+    }
+    lr = load_pasted_rungs(std::move(*text), display, *processor);
+  } else if (pasted_processor) {
+    e.errors = display + ": error: 'processor' names the processor of pasted rungs, and this is a whole program " +
+               "with its own; remove 'processor' from its program line\n";
+    return e;
+  } else {
+    lr = load_program_bytes(std::move(*text), display);  // .SLC text or .RSS project
+  }
   if (!lr.ok()) {
     e.errors = lr.render_diagnostics();
     return e;

@@ -22,8 +22,10 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "instructions/processor.h"
 #include "parser/diagnostics.h"
 #include "tools/testrunner/test_file.h"
 #include "vm/runtime.h"
@@ -43,13 +45,20 @@ class ProgramCache {
   // checked, the modules set up from its SLOT lines and the bench (modules/module_setup.h), and a
   // probe Runtime built with them. Configuration and bench errors are the entry's errors, as for
   // `softslc run --bench`. Not thread-safe: loading happens before the run.
+  // A program that is pasted rungs (parser/loader.h) is program file 2 of `pasted_processor`
+  // (the test file's `program PATH processor SPEC`), else of the run's default (`softslc test
+  // --processor`); with neither it does not load, and the error says how to name one. A whole
+  // program names its own processor: a processor given for it is an error.
   Entry& load(const std::filesystem::path& path, const std::string& display, const std::filesystem::path& bench = {},
-              const std::string& bench_display = {});
+              const std::string& bench_display = {}, const ProcessorModel* pasted_processor = nullptr);
+  // The processor of pasted-rung programs whose test file names none (`softslc test --processor`).
+  void set_default_pasted_processor(std::optional<ProcessorModel> p) { default_pasted_processor_ = std::move(p); }
   // The probe runtime of a loaded program.
   Runtime* probe_for(const LoadedProgram* program);
 
  private:
-  std::map<std::string, Entry> entries_;  // by canonical path
+  std::map<std::string, Entry> entries_;  // by canonical paths (program, bench) and processor
+  std::optional<ProcessorModel> default_pasted_processor_;
 };
 
 struct TestFileLoad {

@@ -35,6 +35,8 @@ struct ParsedLine {
   Location loc;  // the statement's first token
   std::string path;
   Location path_loc;
+  std::string processor;  // program PATH processor SPEC
+  Location processor_loc;
   std::string test_name;
   Location name_loc;  // the opening quote of the test name
   std::vector<std::pair<std::string, Location>> columns;
@@ -393,6 +395,13 @@ struct path_action {
 };
 template <> struct action<program_path> : path_action {};
 template <> struct action<bench_path> : path_action {};
+template <> struct action<program_processor_spec> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    s.out.processor = in.string();
+    s.out.processor_loc = loc_of(in);
+  }
+};
 
 template <ParsedLine::Kind K>
 struct line_kind_action {
@@ -564,7 +573,7 @@ template <> struct action<device_line> {
 
 // The usage of each statement, for a keyword written without its operands.
 constexpr std::pair<std::string_view, std::string_view> kUsage[] = {
-    {"program", "program FILE.slc"},
+    {"program", "program FILE.slc [processor CATALOG]"},
     {"bench", "bench FILE.bench"},
     {"test", "test \"name\"  or  test \"name\" with COLUMN..."},
     {"set", "set ADDRESS = VALUE"},
@@ -892,6 +901,10 @@ class Driver {
         }
         path = pl.path;
         where = pl.path_loc;
+        if (program) {
+          file_program_processor_ = pl.processor;
+          file_program_processor_loc_ = pl.processor_loc;
+        }
         return;
       }
       case ParsedLine::Kind::Step:
@@ -1037,6 +1050,8 @@ class Driver {
     tc.loc = at;
     tc.program_path = file_program_;
     tc.program_loc = file_program_loc_;
+    tc.program_processor = file_program_processor_;
+    tc.program_processor_loc = file_program_processor_loc_;
     tc.bench_path = file_bench_;
     tc.bench_loc = file_bench_loc_;
     bool steps_seen = false, ok = true;
@@ -1056,6 +1071,10 @@ class Driver {
           own = pl.loc;
           (program ? tc.program_path : tc.bench_path) = pl.path;
           (program ? tc.program_loc : tc.bench_loc) = pl.path_loc;
+          if (program) {
+            tc.program_processor = pl.processor;
+            tc.program_processor_loc = pl.processor_loc;
+          }
         }
         continue;
       }
@@ -1102,6 +1121,8 @@ class Driver {
   std::set<std::tuple<std::uint32_t, std::uint32_t, std::string>> seen_;
   std::string file_program_;
   Location file_program_loc_;
+  std::string file_program_processor_;
+  Location file_program_processor_loc_;
   std::string file_bench_;
   Location file_bench_loc_;
   std::optional<PendingTest> pending_;

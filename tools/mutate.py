@@ -2,6 +2,7 @@
 """Mutation run: hostile and careless inputs through every softslc command.
 
     tools/mutate.py SOFTSLC [--count N] [--seed S] [--timeout CPU_SECONDS] [--wall-timeout SECONDS] [--keep DIR]
+                            [--shard K/N]
 
 Takes the example programs (*.slc), test files (*.test) and bench files (*.bench) under
 examples/, mutates copies of them (bytes flipped, lines dropped, duplicated or shuffled, structure
@@ -14,6 +15,10 @@ sanitizer report, exits with a status softslc never uses (anything but 0-3 and 1
 or runs over the timeout (CPU seconds; a run stuck without using CPU is caught by
 --wall-timeout). Each failing input is kept in --keep (default build-mutate/) with the
 command line, and the run ends with a table of figures for docs/robustness.md.
+
+--shard K/N runs only the mutants whose number is K modulo N (every process still generates all of
+them, so the mutants are those of the unsharded run): N processes with K = 0..N-1 together run
+exactly the unsharded run, one per core.
 
 Deterministic for a given --seed. Python 3 standard library only (Debian's python3).
 """
@@ -164,7 +169,14 @@ def main():
     ap.add_argument("--wall-timeout", type=float, default=120.0,
                     help="wall-clock seconds after which a run that is not finishing counts as stuck")
     ap.add_argument("--keep", default=str(ROOT / "build-mutate"))
+    ap.add_argument("--shard", default="0/1", help="K/N: run only the mutants numbered K modulo N")
     args = ap.parse_args()
+    try:
+        shard, shards = (int(x) for x in args.shard.split("/"))
+        if not 0 <= shard < shards:
+            raise ValueError
+    except ValueError:
+        ap.error("--shard: write K/N with 0 <= K < N, for example 0/2")
     softslc = str(Path(args.softslc).resolve())
     rng = random.Random(args.seed)
     examples = ROOT / "examples"
@@ -182,12 +194,14 @@ def main():
         for n in range(args.count):
             kind = ("slc", "test", "bench")[n % 3]
             original = rng.choice(sources[kind])
+            mutant = mutate(original.read_bytes(), rng)
+            if n % shards != shard:
+                continue
             # Work in a copy of the example's directory, so a mutated test file finds its program
             # and bench, and nothing in the tree is ever written.
             work = tmp / ("m%05d" % n)
             shutil.copytree(original.parent, work)
             target = work / original.name
-            mutant = mutate(original.read_bytes(), rng)
             target.write_bytes(mutant)
             figures[kind] += 1
             if kind == "slc":
@@ -219,16 +233,16 @@ def main():
                     print("FAIL %s: softslc %s on a mutant of %s (kept as %s)" % (verdict, c[0], original.name, name),
                           flush=True)
             shutil.rmtree(work, ignore_errors=True)
-            if (n + 1) % 50 == 0:
-                print("%d mutants, %d runs, %d failures, %.0f s, most CPU in one run %.1f s (%s)" % (
-                    n + 1, runs, len(failures), time.monotonic() - started, most_cpu[0], most_cpu[1]), flush=True)
+            if sum(figures.values()) % 50 == 0:
+                print("%d mutants (up to number %d), %d runs, %d failures, %.0f s, most CPU in one run %.1f s (%s)" % (
+                    sum(figures.values()), n, runs, len(failures), time.monotonic() - started, most_cpu[0], most_cpu[1]), flush=True)
     total = time.monotonic() - started
     print()
     print("| mutants | programs | test files | benches | command runs | failures | most CPU in one run | "
           "slowest run (wall) | wall time |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     print("| %d | %d | %d | %d | %d | %d | %.1f s (%s) | %.1f s (%s) | %.0f s |" % (
-        args.count, figures["slc"], figures["test"], figures["bench"], runs, len(failures), most_cpu[0], most_cpu[1],
+        sum(figures.values()), figures["slc"], figures["test"], figures["bench"], runs, len(failures), most_cpu[0], most_cpu[1],
         slowest[0], slowest[1], total))
     return 1 if failures else 0
 

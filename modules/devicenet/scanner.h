@@ -265,7 +265,6 @@ class Scanner : public NetworkObserver {
   bool command_error_ = false;
   bool flushed_ = false;
   bool rebooting_ = false;
-  VirtualTime reboot_done_ = 0;
 
   Port port_ = Port::Down;
   bool transmit_failed_ = false;

@@ -1246,7 +1246,15 @@ void Interpreter::move(Op op, const std::uint32_t* o, std::uint32_t h) {
 
 // ---- File instructions -----------------------------------------------------------------------------------------
 
-void Interpreter::copy_file(const std::uint32_t* o) {
+void Interpreter::copy_file(const std::uint32_t* o, std::uint32_t h) {
+  if (bc::flags_of(h) & bc::kFlagB) {
+    // Both spans were resolved by the compiler and lie inside their files (bytecode.h, COP).
+    const std::uint32_t words = bc::aux_of(h);
+    std::memmove(w_ + bc::payload_of(o[1]), w_ + bc::payload_of(o[0]), words * sizeof(std::uint16_t));
+    charge_words(Op::COP, words);
+    w_[s24_] = static_cast<std::uint16_t>(std::max(bc::imm_of(o[2]), 1) - 1);
+    return;
+  }
   const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
   Span dst;
   if (!file_span(o[1], len, dst, "COP destination")) return;
@@ -1740,7 +1748,7 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
         if (rung) move(op, o, h);
         break;
       case Op::COP:
-        if (rung) copy_file(o);
+        if (rung) copy_file(o, h);
         if (faulted_) goto fault;
         elapsed += std::exchange(extra_ns_, 0);
         break;

@@ -178,7 +178,7 @@ class Interpreter {
   SOFTSLC_HANDLER void convert(Op op, const std::uint32_t* o);
   SOFTSLC_HANDLER void compute(const std::uint32_t* o);
   SOFTSLC_HANDLER void move(Op op, const std::uint32_t* o, std::uint32_t h);
-  SOFTSLC_HANDLER void copy_file(const std::uint32_t* o);
+  SOFTSLC_HANDLER void copy_file(const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void copy_words(const std::uint32_t* o);
   SOFTSLC_HANDLER void fill_file(const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void bit_shift(Op op, const std::uint32_t* o, bool rung);

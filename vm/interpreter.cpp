@@ -278,7 +278,7 @@ ValueType Interpreter::dest_type(std::uint32_t o) const {
   }
 }
 
-std::int64_t Interpreter::rd_int(std::uint32_t o) {
+std::int64_t Interpreter::rd_int_slow(std::uint32_t o) {
   const std::uint32_t p = bc::payload_of(o);
   switch (bc::mode_of(o)) {
     case bc::kWord: return static_cast<std::int16_t>(w_[p]);
@@ -343,7 +343,7 @@ std::uint16_t Interpreter::rd_word(std::uint32_t o) {
   return static_cast<std::uint16_t>(rd_int(o));
 }
 
-void Interpreter::wr_word(std::uint32_t o, std::uint16_t v) {
+void Interpreter::wr_word_slow(std::uint32_t o, std::uint16_t v) {
   const std::uint32_t p = bc::payload_of(o);
   switch (bc::mode_of(o)) {
     case bc::kWord: w_[p] = v; return;
@@ -406,6 +406,11 @@ std::int64_t Interpreter::st_int(std::uint32_t o, std::int64_t v, bool& overflow
 }
 
 std::int64_t Interpreter::st_bits(std::uint32_t o, std::int64_t v) {
+  if (bc::mode_of(o) == bc::kWord) [[likely]] {  // a direct 16-bit word: the common case
+    const auto stored = static_cast<std::int16_t>(static_cast<std::uint16_t>(v));
+    w_[bc::payload_of(o)] = static_cast<std::uint16_t>(stored);
+    return stored;
+  }
   const ValueType vt = dest_type(o);
   if (vt == ValueType::Int32) {
     const auto stored = static_cast<std::int32_t>(static_cast<std::uint32_t>(v));
@@ -544,6 +549,19 @@ class ModuleCall final : public ModuleInstructionContext {
     if (!check(i, k)) return false;
     value = in_.w_[ops_[i].word + k];
     return true;
+  }
+  bool read_block(std::size_t i, std::uint32_t k, std::span<std::uint16_t> out) override {
+    if (out.empty()) return true;
+    const auto last = k + static_cast<std::uint32_t>(out.size() - 1);
+    // check() of the last word is the check of every word before it (one file, one limit); a
+    // block that leaves the file faults at its first word past the end, as read() would.
+    if (i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table && last < ops_[i].limit) {
+      std::copy_n(in_.w_ + ops_[i].word + k, out.size(), out.begin());
+      return true;
+    }
+    const std::uint32_t first_bad =
+        i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table ? std::max(k, ops_[i].limit) : k;
+    return check(i, first_bad);
   }
   bool write(std::size_t i, std::uint32_t k, std::uint16_t value) override {
     if (!check(i, k)) return false;

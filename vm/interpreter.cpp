@@ -552,10 +552,11 @@ class ModuleCall final : public ModuleInstructionContext {
   }
   bool read_block(std::size_t i, std::uint32_t k, std::span<std::uint16_t> out) override {
     if (out.empty()) return true;
-    const auto last = k + static_cast<std::uint32_t>(out.size() - 1);
-    // check() of the last word is the check of every word before it (one file, one limit); a
-    // block that leaves the file faults at its first word past the end, as read() would.
-    if (i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table && last < ops_[i].limit) {
+    // One file, one limit: the block is inside when it starts inside and fits in what remains (no
+    // sum that could wrap). A block that leaves the file faults at its first word past the end,
+    // as read() would.
+    if (i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table && k < ops_[i].limit &&
+        out.size() <= ops_[i].limit - k) {
       std::copy_n(in_.w_ + ops_[i].word + k, out.size(), out.begin());
       return true;
     }

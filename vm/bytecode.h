@@ -15,9 +15,11 @@
 //            bit 1 FLOAT  math/compare/move in single-precision float (an operand is F)
 //            bit 2 A      op-specific: TON/TOF/RTO 1.0 s time base; SOR rung holds an MCR;
 //                         MCR unconditional (closes the zone)
-//            bit 3 B      reserved
+//            bit 3 B      op-specific: TON/TOF/RTO 1 ms time base (MicroLogix); COP pre-resolved
+//                         (direct source and destination that lie inside their files: aux holds
+//                         the number of words copied, and nothing is resolved at run time)
 //     aux    SOR: rung number in its file; RES: FileType of the element; BTR/BTW/DEM: the
-//            chassis slot of the module that executes it; else 0
+//            chassis slot of the module that executes it; COP with B: words copied; else 0
 //
 //   operand word
 //    31    28 27      24 23                                              0
@@ -72,7 +74,8 @@
 //   NOT     s d               if rung then d := not s
 //   MOV     s d               if rung then d := s (converted)
 //   MVM     s m d             if rung then d := (s and m) or (d and not m)
-//   COP     #s #d n           if rung then copy n destination elements as raw words
+//   COP     #s #d n           if rung then copy n destination elements as raw words (B: aux words,
+//                             spans resolved by the compiler)
 //   FLL     s #d n            if rung then fill n destination elements with s
 //   BSL BSR #f r b n          on a rising rung shift the bit array f by one (source bit b)
 //   SQO SQC SQL ...           sequencer output / compare / load on a rising rung

@@ -168,6 +168,28 @@ class Compiler {
     note_file(a.file, a.type, elements, pos);
   }
 
+  // COP with direct source and destination: both spans are fixed at compile time. When both lie
+  // inside their files, returns the number of words the copy moves (destination elements times
+  // their words, RM E-11), which the interpreter then copies without resolving anything; else 0,
+  // and the interpreter resolves the operands at run time (and faults where the SLC would).
+  std::uint32_t direct_copy_words(std::uint32_t src, std::uint32_t dst, std::uint32_t length) const {
+    auto direct = [](std::uint32_t o) {
+      const bc::Mode m = bc::mode_of(o);
+      return m == bc::kWord || m == bc::kLong || m == bc::kFloat;
+    };
+    if (!direct(src) || !direct(dst) || bc::mode_of(length) != bc::kImm) return 0;
+    const int src_file = layout_.file_containing(bc::payload_of(src));
+    const int dst_file = layout_.file_containing(bc::payload_of(dst));
+    if (src_file < 0 || dst_file < 0) return 0;
+    const FileLayout& sf = layout_.files[static_cast<std::size_t>(src_file)];
+    const FileLayout& df = layout_.files[static_cast<std::size_t>(dst_file)];
+    const auto len = static_cast<std::uint64_t>(std::max(bc::imm_of(length), 1));
+    const std::uint64_t words = len * df.words_per_element;
+    const std::uint64_t src_words = (words + sf.words_per_element - 1) / sf.words_per_element * sf.words_per_element;
+    if (bc::payload_of(dst) + words > df.end() || bc::payload_of(src) + src_words > sf.end()) return 0;
+    return words <= 0xFFFF ? static_cast<std::uint32_t>(words) : 0;
+  }
+
   static std::int64_t literal(const Instruction& in, std::size_t i) {
     if (i < in.operands.size() && in.operands[i].kind == Operand::Kind::Integer) return in.operands[i].integer;
     return 0;
@@ -808,6 +830,12 @@ class Compiler {
     }
     if (any_float) flags |= bc::kFlagFloat;
     if (in.opcode == Opcode::RES) aux = static_cast<std::uint32_t>(element_type);
+    if (in.opcode == Opcode::COP && ops.size() == 3) {
+      if (const std::uint32_t words = direct_copy_words(ops[0], ops[1], ops[2])) {
+        flags |= bc::kFlagB;
+        aux = words;
+      }
+    }
     if (in.opcode == Opcode::MCR && mcr_unconditional) flags |= bc::kFlagA;
     // A module instruction carries its module's slot in aux, and DYN so its M-file time is
     // folded into the scan and a fault it raises stops the scan.

@@ -278,7 +278,7 @@ ValueType Interpreter::dest_type(std::uint32_t o) const {
   }
 }
 
-std::int64_t Interpreter::rd_int(std::uint32_t o) {
+std::int64_t Interpreter::rd_int_slow(std::uint32_t o) {
   const std::uint32_t p = bc::payload_of(o);
   switch (bc::mode_of(o)) {
     case bc::kWord: return static_cast<std::int16_t>(w_[p]);
@@ -343,7 +343,7 @@ std::uint16_t Interpreter::rd_word(std::uint32_t o) {
   return static_cast<std::uint16_t>(rd_int(o));
 }
 
-void Interpreter::wr_word(std::uint32_t o, std::uint16_t v) {
+void Interpreter::wr_word_slow(std::uint32_t o, std::uint16_t v) {
   const std::uint32_t p = bc::payload_of(o);
   switch (bc::mode_of(o)) {
     case bc::kWord: w_[p] = v; return;
@@ -406,6 +406,11 @@ std::int64_t Interpreter::st_int(std::uint32_t o, std::int64_t v, bool& overflow
 }
 
 std::int64_t Interpreter::st_bits(std::uint32_t o, std::int64_t v) {
+  if (bc::mode_of(o) == bc::kWord) [[likely]] {  // a direct 16-bit word: the common case
+    const auto stored = static_cast<std::int16_t>(static_cast<std::uint16_t>(v));
+    w_[bc::payload_of(o)] = static_cast<std::uint16_t>(stored);
+    return stored;
+  }
   const ValueType vt = dest_type(o);
   if (vt == ValueType::Int32) {
     const auto stored = static_cast<std::int32_t>(static_cast<std::uint32_t>(v));
@@ -544,6 +549,20 @@ class ModuleCall final : public ModuleInstructionContext {
     if (!check(i, k)) return false;
     value = in_.w_[ops_[i].word + k];
     return true;
+  }
+  bool read_block(std::size_t i, std::uint32_t k, std::span<std::uint16_t> out) override {
+    if (out.empty()) return true;
+    // One file, one limit: the block is inside when it starts inside and fits in what remains (no
+    // sum that could wrap). A block that leaves the file faults at its first word past the end,
+    // as read() would.
+    if (i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table && k < ops_[i].limit &&
+        out.size() <= ops_[i].limit - k) {
+      std::copy_n(in_.w_ + ops_[i].word + k, out.size(), out.begin());
+      return true;
+    }
+    const std::uint32_t first_bad =
+        i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table ? std::max(k, ops_[i].limit) : k;
+    return check(i, first_bad);
   }
   bool write(std::size_t i, std::uint32_t k, std::uint16_t value) override {
     if (!check(i, k)) return false;
@@ -1246,7 +1265,15 @@ void Interpreter::move(Op op, const std::uint32_t* o, std::uint32_t h) {
 
 // ---- File instructions -----------------------------------------------------------------------------------------
 
-void Interpreter::copy_file(const std::uint32_t* o) {
+void Interpreter::copy_file(const std::uint32_t* o, std::uint32_t h) {
+  if (bc::flags_of(h) & bc::kFlagB) {
+    // Both spans were resolved by the compiler and lie inside their files (bytecode.h, COP).
+    const std::uint32_t words = bc::aux_of(h);
+    std::memmove(w_ + bc::payload_of(o[1]), w_ + bc::payload_of(o[0]), words * sizeof(std::uint16_t));
+    charge_words(Op::COP, words);
+    w_[s24_] = static_cast<std::uint16_t>(std::max(bc::imm_of(o[2]), 1) - 1);
+    return;
+  }
   const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
   Span dst;
   if (!file_span(o[1], len, dst, "COP destination")) return;
@@ -1740,7 +1767,7 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
         if (rung) move(op, o, h);
         break;
       case Op::COP:
-        if (rung) copy_file(o);
+        if (rung) copy_file(o, h);
         if (faulted_) goto fault;
         elapsed += std::exchange(extra_ns_, 0);
         break;

@@ -144,10 +144,20 @@ class Interpreter {
   void wr_bit(std::uint32_t o, bool v);
   [[gnu::noinline, gnu::cold]] bool rd_bit_slow(std::uint32_t o);
   [[gnu::noinline, gnu::cold]] void wr_bit_slow(std::uint32_t o, bool v);
-  std::int64_t rd_int(std::uint32_t o);
+  // Direct words and immediates inline; every other mode through the out-of-line *_slow.
+  std::int64_t rd_int(std::uint32_t o) {
+    if (bc::mode_of(o) == bc::kWord) [[likely]] return static_cast<std::int16_t>(w_[bc::payload_of(o)]);
+    if (bc::mode_of(o) == bc::kImm) return bc::imm_of(o);
+    return rd_int_slow(o);
+  }
+  [[gnu::noinline]] std::int64_t rd_int_slow(std::uint32_t o);
   float rd_flt(std::uint32_t o);
   std::uint16_t rd_word(std::uint32_t o);
-  void wr_word(std::uint32_t o, std::uint16_t v);
+  void wr_word(std::uint32_t o, std::uint16_t v) {
+    if (bc::mode_of(o) == bc::kWord) [[likely]] w_[bc::payload_of(o)] = v;
+    else wr_word_slow(o, v);
+  }
+  [[gnu::noinline]] void wr_word_slow(std::uint32_t o, std::uint16_t v);
   ValueType dest_type(std::uint32_t o) const;
   std::uint16_t* element(std::uint32_t o);
   // Stores an integer-domain result with the S:2/14 overflow rule; returns the value stored.
@@ -178,7 +188,7 @@ class Interpreter {
   SOFTSLC_HANDLER void convert(Op op, const std::uint32_t* o);
   SOFTSLC_HANDLER void compute(const std::uint32_t* o);
   SOFTSLC_HANDLER void move(Op op, const std::uint32_t* o, std::uint32_t h);
-  SOFTSLC_HANDLER void copy_file(const std::uint32_t* o);
+  SOFTSLC_HANDLER void copy_file(const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void copy_words(const std::uint32_t* o);
   SOFTSLC_HANDLER void fill_file(const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void bit_shift(Op op, const std::uint32_t* o, bool rung);

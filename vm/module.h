@@ -118,6 +118,14 @@ class ModuleInstructionContext {
   // Word k of Table operand i.
   virtual bool read(std::size_t i, std::uint32_t k, std::uint16_t& value) = 0;
   virtual bool write(std::size_t i, std::uint32_t k, std::uint16_t value) = 0;
+  // Words k .. k + out.size() - 1 of Table operand i, as out.size() calls of read() would give
+  // them (the same fault at the first word past the file), in one call: a module reads a 70-word
+  // control block every scan.
+  virtual bool read_block(std::size_t i, std::uint32_t k, std::span<std::uint16_t> out) {
+    for (std::size_t j = 0; j < out.size(); ++j)
+      if (!read(i, k + static_cast<std::uint32_t>(j), out[j])) return false;
+    return true;
+  }
   // Immediate M0/M1 access to the module in `slot` (normally the executing module).
   virtual bool read_m(int slot, MFile f, int word, std::uint16_t& value) = 0;
   virtual bool write_m(int slot, MFile f, int word, std::uint16_t value) = 0;

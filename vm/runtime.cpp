@@ -68,6 +68,11 @@ Runtime::Runtime(std::unique_ptr<CompiledProgram> program, RuntimeOptions option
     owned_modules_.push_back(std::move(m));
   }
   interp_ = std::make_unique<Interpreter>(*program_, data_, static_cast<ChassisAccess&>(*this), *model_);
+  // A module's image-transfer cost depends only on its catalog number and image size, both fixed
+  // at creation, and the model is fixed too: asked once here, not in every scan (a profile looks
+  // it up by catalog string).
+  for (Module* m : modules_)
+    if (m) scanned_.push_back({m, model_->input_scan_cost(*m), model_->output_scan_cost(*m)});
 
   const std::uint32_t in_words = L.files[1].elements, out_words = L.files[0].elements;
   in_force_mask_.assign(in_words, 0);
@@ -114,9 +119,14 @@ Runtime::~Runtime() = default;
 void Runtime::write_mode_bits() {
   std::uint16_t s1 = data_.status(status::kMode);
   s1 = static_cast<std::uint16_t>((s1 & ~0x001Fu) | mode_code(mode_));
-  bool installed = false;
-  for (auto m : in_force_mask_) installed = installed || m != 0;
-  for (auto m : out_force_mask_) installed = installed || m != 0;
+  bool in_installed = false, out_installed = false;
+  for (auto m : in_force_mask_) in_installed = in_installed || m != 0;
+  for (auto m : out_force_mask_) out_installed = out_installed || m != 0;
+  const bool installed = in_installed || out_installed;
+  // Every change to the forces or their enable passes through here, so the scans test one flag
+  // instead of merging an all-zero mask into every image word.
+  in_forces_live_ = in_installed && forces_enabled_;
+  out_forces_live_ = out_installed && forces_enabled_;
   s1 = static_cast<std::uint16_t>(installed ? (s1 | status::kForcesInstalled) : (s1 & ~status::kForcesInstalled));
   s1 = static_cast<std::uint16_t>(installed && forces_enabled_ ? (s1 | status::kForcesEnabled)
                                                                : (s1 & ~status::kForcesEnabled));
@@ -197,18 +207,17 @@ Nanoseconds Runtime::input_scan() {
   const FileLayout& in = L.files[1];
   std::uint16_t* w = data_.words();
   Nanoseconds cost = 0;
-  for (Module* m : modules_) {
-    if (!m) continue;
-    const SlotImage& si = L.input_slots[static_cast<std::size_t>(m->slot())];
-    if (si.present) m->input_scan(std::span<std::uint16_t>(w + in.base + si.first, si.words));
-    cost += model_->input_scan_cost(*m);
+  for (const ScannedModule& sm : scanned_) {
+    const SlotImage& si = L.input_slots[static_cast<std::size_t>(sm.module->slot())];
+    if (si.present) sm.module->input_scan(std::span<std::uint16_t>(w + in.base + si.first, si.words));
+    cost += sm.input_cost;
   }
   apply_input_forces(0, in.elements);
   return cost;
 }
 
 void Runtime::apply_input_forces(std::uint32_t first, std::uint32_t count) {
-  if (!forces_enabled_) return;
+  if (!in_forces_live_) return;
   std::uint16_t* w = data_.words() + program_->layout->files[1].base;
   for (std::uint32_t i = first; i < first + count && i < in_force_mask_.size(); ++i)
     w[i] = static_cast<std::uint16_t>((w[i] & ~in_force_mask_[i]) | (in_force_value_[i] & in_force_mask_[i]));
@@ -245,13 +254,18 @@ Nanoseconds Runtime::output_scan() {
   const DataTableLayout& L = *program_->layout;
   // Outputs are energised only in Run; Program, Test and Faulted de-energise them.
   const bool live = mode_ == Mode::Run;
-  for (std::uint32_t i = 0; i < out_sent_.size(); ++i) out_sent_[i] = live ? forced_output(i) : 0;
+  if (!live) {
+    std::fill(out_sent_.begin(), out_sent_.end(), std::uint16_t{0});
+  } else if (out_forces_live_) {
+    for (std::uint32_t i = 0; i < out_sent_.size(); ++i) out_sent_[i] = forced_output(i);
+  } else {
+    std::copy_n(data_.words() + L.files[0].base, out_sent_.size(), out_sent_.begin());
+  }
   Nanoseconds cost = 0;
-  for (Module* m : modules_) {
-    if (!m) continue;
-    const SlotImage& si = L.output_slots[static_cast<std::size_t>(m->slot())];
-    if (si.present) m->output_scan(std::span<const std::uint16_t>(out_sent_.data() + si.first, si.words));
-    cost += model_->output_scan_cost(*m);
+  for (const ScannedModule& sm : scanned_) {
+    const SlotImage& si = L.output_slots[static_cast<std::size_t>(sm.module->slot())];
+    if (si.present) sm.module->output_scan(std::span<const std::uint16_t>(out_sent_.data() + si.first, si.words));
+    cost += sm.output_cost;
   }
   return cost;
 }

@@ -210,6 +210,13 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   EventQueue events_{clock_};
   std::vector<std::unique_ptr<Module>> owned_modules_;
   std::array<Module*, kMaxSlots> modules_{};
+  // The modules in slot order with their image-transfer costs, for the input and output scans.
+  struct ScannedModule {
+    Module* module;
+    Nanoseconds input_cost;
+    Nanoseconds output_cost;
+  };
+  std::vector<ScannedModule> scanned_;
   std::unique_ptr<Interpreter> interp_;
   std::unique_ptr<CoverageRecorder> coverage_;
   ScanObserver scan_observer_;
@@ -230,6 +237,9 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::vector<std::uint16_t> in_force_mask_, in_force_value_;
   std::vector<std::uint16_t> out_force_mask_, out_force_value_;
   bool forces_enabled_ = true;
+  // Some input (output) bit is forced and forces are enabled; kept by write_mode_bits().
+  bool in_forces_live_ = false;
+  bool out_forces_live_ = false;
   // What the output scan last delivered to each module (IOM merges into it).
   std::vector<std::uint16_t> out_sent_;
   std::vector<std::uint16_t> io_scratch_;

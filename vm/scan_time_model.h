@@ -28,7 +28,8 @@ class ScanTimeModel {
   virtual std::string_view name() const = 0;
   // Cost of one execution of `op` whose rung-in is `rung_in` (true/false execution times).
   virtual Nanoseconds instruction_cost(Opcode op, bool rung_in) const = 0;
-  // Cost of moving one module's image in the input and output scans.
+  // Cost of moving one module's image in the input and output scans. Asked once per module when
+  // the runtime is created (a module's catalog number and image size never change), not per scan.
   virtual Nanoseconds input_scan_cost(const Module& m) const = 0;
   virtual Nanoseconds output_scan_cost(const Module& m) const = 0;
   // Fixed per-scan overhead (housekeeping, communications, scan bookkeeping).

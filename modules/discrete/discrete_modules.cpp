@@ -45,17 +45,19 @@ std::uint16_t DiscreteModule::out_points(int word) const {
 }
 
 void DiscreteModule::output_scan(std::span<const std::uint16_t> image) {
-  std::vector<std::uint16_t> masked(image.begin(), image.end());
-  for (std::size_t w = 0; w < masked.size(); ++w) masked[w] = static_cast<std::uint16_t>(masked[w] & out_points(static_cast<int>(w)));
+  // Every scan delivers the image: the masked copy reuses one buffer, so a scan allocates nothing.
+  masked_.resize(image.size());
+  for (std::size_t w = 0; w < image.size(); ++w)
+    masked_[w] = static_cast<std::uint16_t>(image[w] & out_points(static_cast<int>(w)));
   if (spec_.output_delay <= 0 || !host()) {
-    DiscreteIoModule::output_scan(masked);
+    DiscreteIoModule::output_scan(masked_);
     return;
   }
   // The terminals follow after the output delay; only changes are scheduled.
-  if (masked == last_delivered_) return;
-  last_delivered_ = masked;
+  if (masked_ == last_delivered_) return;
+  last_delivered_ = masked_;
   host()->schedule_at(host()->now() + spec_.output_delay,
-                      [this, masked](VirtualTime) { DiscreteIoModule::output_scan(masked); });
+                      [this, masked = masked_](VirtualTime) { DiscreteIoModule::output_scan(masked); });
 }
 
 bool DiscreteModule::set_field_input(int word, std::uint16_t value, std::uint16_t mask) {

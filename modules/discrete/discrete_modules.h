@@ -46,6 +46,7 @@ class DiscreteModule : public DiscreteIoModule {
   std::uint16_t out_points(int word) const;
   DiscreteModuleSpec spec_;
   std::vector<std::uint16_t> last_delivered_;
+  std::vector<std::uint16_t> masked_;  // the image under the output points (output_scan's buffer)
 };
 
 }  // namespace softslc

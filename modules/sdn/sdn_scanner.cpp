@@ -143,8 +143,7 @@ void SdnScanner::execute(ModuleInstructionContext& ctx) {
     return;
   }
   std::array<std::uint16_t, dn::dem::kWords> cb{};
-  for (int k = 0; k < dn::dem::kWords; ++k)
-    if (!ctx.read(cb_op, static_cast<std::uint32_t>(k), cb[static_cast<std::size_t>(k)])) return;
+  if (!ctx.read_block(cb_op, 0, cb)) return;
   const auto before = cb;
   sync(ctx.now());
   dem_->on_rung(ops[cb_op].word, cb, ctx.rung_in(), ctx.now());

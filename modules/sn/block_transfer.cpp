@@ -19,8 +19,7 @@ void execute_block_transfer(ModuleInstructionContext& ctx) {
   const int slot = ops[1].slot;
   const int base = static_cast<int>(ops[1].word);
   std::uint16_t cb[3];
-  for (std::uint32_t k = 0; k < 3; ++k)
-    if (!ctx.read(0, k, cb[k])) return;
+  if (!ctx.read_block(0, 0, cb)) return;
 
   const bool rung = ctx.rung_in();
   const bool was_enabled = (cb[0] & kEN) && !ctx.first_pass();

@@ -15,7 +15,9 @@ struct Recorder : MemoryModule {
   Recorder(int slot) : MemoryModule(slot, "TEST", 1, 1, 400, 400) {}
   std::vector<ModuleOperand> seen;
   bool rung = false;
-  std::string action;  // what execute() does: "", "read-past-end", "fault", "charge"
+  std::string action;  // what execute() does: "", "read-past-end", "fault", "charge", "read-block", ...
+  std::array<std::uint16_t, 4> block{};
+  bool block_ok = false;
   void execute(ModuleInstructionContext& ctx) override {
     seen.assign(ctx.operands().begin(), ctx.operands().end());
     rung = ctx.rung_in();
@@ -24,6 +26,9 @@ struct Recorder : MemoryModule {
     if (action == "fault") ctx.fault(0x0363, "refused");
     if (action == "charge") ctx.charge(MFileAccess::CopFromM, 10);
     if (action == "write") ctx.write(0, 2, 1234);
+    if (action == "read-2-past-end") ctx.read(2, seen[2].limit, v);
+    if (action == "read-block") block_ok = ctx.read_block(2, 0, block);
+    if (action == "read-block-past-end") block_ok = ctx.read_block(2, seen[2].limit - 2, block);
   }
   bool refuse_run = false;
   void on_mode_change(Mode from, Mode to) override {
@@ -86,6 +91,30 @@ TEST(VmModulePath, OperandsAreResolvedForTheModule) {
   f.rt->set("B3:0/0", Value::bit(true));
   f.rt->scan(1);
   EXPECT_TRUE(f.rec->rung);
+}
+
+// read_block is read() for a run of words: the same words, and the same fault (002Ah, naming
+// the first word past the end of the file) when the run leaves the operand's file.
+TEST(VmModulePath, BlockReadIsCheckedLikeWordReads) {
+  Fixture f("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [](Recorder& r) { r.action = "read-block"; });
+  for (int k = 0; k < 4; ++k) ASSERT_TRUE(f.rt->set("N11:" + std::to_string(k), Value::of_int(100 + k)));
+  ASSERT_TRUE(f.rt->set_mode(Mode::Run));
+  f.rt->scan(1);
+  EXPECT_FALSE(f.rt->fault().has_value());
+  EXPECT_TRUE(f.rec->block_ok);
+  EXPECT_EQ(f.rec->block, (std::array<std::uint16_t, 4>{100, 101, 102, 103}));
+  Fixture word("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [](Recorder& r) { r.action = "read-2-past-end"; });
+  Fixture block("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [](Recorder& r) { r.action = "read-block-past-end"; });
+  for (Fixture* x : {&word, &block}) {
+    ASSERT_TRUE(x->rt->set_mode(Mode::Run));
+    x->rt->scan(1);
+  }
+  ASSERT_TRUE(block.rt->fault().has_value());
+  EXPECT_FALSE(block.rec->block_ok);
+  EXPECT_EQ(block.rt->fault()->code, 0x002A);
+  EXPECT_NE(block.rt->fault()->message.find("word 4 runs past the end"), std::string::npos) << block.rt->fault()->message;
+  ASSERT_TRUE(word.rt->fault().has_value());
+  EXPECT_EQ(word.rt->fault()->message, block.rt->fault()->message);
 }
 
 TEST(VmModulePath, DataTableAccessIsCheckedAndFaultsStopTheScan) {

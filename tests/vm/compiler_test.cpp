@@ -189,6 +189,24 @@ TEST(Golden, DynamicOperands) {
   EXPECT_EQ(p.dyn[1].ptr_element, static_cast<std::int32_t>(p.layout->files[10].base));
 }
 
+// A COP whose source and destination are direct is resolved by the compiler: flag B and the
+// word count in aux (vm/bytecode.h). 2 T elements are 6 words (RM E-11 counts destination
+// elements); the source N10 spans 6 elements. Run-time operands keep the resolving path.
+TEST(Golden, DirectCopIsPreResolved) {
+  CompiledProgram p = compiled(
+      "SOR COP #N10:0 #T4:1 2 EOR\n"
+      "SOR COP #N[N9:0]:0 #T4:1 2 EOR");
+  const std::uint32_t direct = p.code[p.files[0].rungs[0].offset + 1];
+  ASSERT_EQ(bc::op_of(direct), Op::COP);
+  EXPECT_TRUE(bc::flags_of(direct) & bc::kFlagB);
+  EXPECT_FALSE(bc::flags_of(direct) & bc::kFlagDyn);
+  EXPECT_EQ(bc::aux_of(direct), 6u);
+  const std::uint32_t indirect = p.code[p.files[0].rungs[1].offset + 1];
+  ASSERT_EQ(bc::op_of(indirect), Op::COP);
+  EXPECT_FALSE(bc::flags_of(indirect) & bc::kFlagB);
+  EXPECT_EQ(bc::aux_of(indirect), 0u);
+}
+
 TEST(Golden, WholeListingHasAMapAndEveryFile) {
   CompiledProgram p = compiled("SOR JSR 3 EOR\nLADDER 3\nSOR RET EOR");
   const std::string listing = disassemble(p);

@@ -34,6 +34,26 @@ TEST(Move, MvmMovesOnlyMaskedBits) {
   EXPECT_EQ(static_cast<std::uint16_t>(plc.i("N7:1")), 0xA2C4);
 }
 
+// The same copy through a pre-resolved (direct) COP and through one the interpreter resolves
+// each scan (an indirect file number): same words, same S:24, same scan time.
+TEST(Move, DirectCopMatchesResolvedCop) {
+  const char* data = "DATA N7:0\n% N7:0 % 11 -12 13 -14 15 -16\nDATA N9:0\n% N9:0 % 7\n";
+  Plc direct(std::string("SOR XIC B3:0/0 COP #N7:0 #T4:1 2 EOR\n") + data);
+  Plc resolved(std::string("SOR XIC B3:0/0 COP #N[N9:0]:0 #T4:1 2 EOR\n") + data);
+  for (Plc* plc : {&direct, &resolved}) {
+    plc->run();
+    plc->set("B3:0/0", 1);
+    plc->set("S:24", 99);
+    plc->run_scans(1);
+  }
+  for (const char* a : {"T4:1.0", "T4:1.PRE", "T4:1.ACC", "T4:2.0", "T4:2.PRE", "T4:2.ACC", "S:24"})
+    EXPECT_EQ(direct.i(a), resolved.i(a)) << a;
+  EXPECT_EQ(direct.i("T4:2.ACC"), -16);
+  EXPECT_EQ(direct.i("S:24"), 1) << "COP leaves length - 1 in S:24";
+  EXPECT_EQ(direct->stats().last, resolved->stats().last);
+  EXPECT_EQ(direct->stats().instructions, resolved->stats().instructions);
+}
+
 TEST(Move, CopCopiesRawWordsInDestinationElements) {
   Plc plc(
       "SOR XIC B3:0/0 COP #N7:0 #N10:2 3 EOR\n"

@@ -520,28 +520,45 @@ TEST(Sm1Robustness, RandomCommandsAndBuffersNeverBreakTheHandshake) {
   b.run();
   std::mt19937 rng(1203);
   auto pick = [&](int n) { return static_cast<int>(rng() % static_cast<unsigned>(n)); };
+  // Every draw is its own statement: two draws in one call's arguments come out in an order the
+  // compiler chooses (GCC and clang differ), and the sequence must be the same under both.
+  // The value is drawn before the address, the order GCC's right-to-left evaluation gave.
   for (int step = 0; step < 3000; ++step) {
     switch (pick(20)) {
-      case 0:
-        b.set("N10:" + std::to_string(pick(10)), static_cast<std::int16_t>(rng()));
+      case 0: {
+        const auto value = static_cast<std::int16_t>(rng());
+        const int word = pick(10);
+        b.set("N10:" + std::to_string(word), value);
         break;
-      case 1:
-        b.set("N10:" + std::to_string(pick(5)), pick(0x100));
+      }
+      case 1: {
+        const int value = pick(0x100);
+        const int word = pick(5);
+        b.set("N10:" + std::to_string(word), value);
         break;
-      case 2:
-        b.set("B3:0/" + std::to_string(pick(2)), pick(2));
+      }
+      case 2: {
+        const int value = pick(2);
+        const int bit = pick(2);
+        b.set("B3:0/" + std::to_string(bit), value);
         break;
+      }
       case 3:
         if (!b.rt->fault()) (void)b.rt->set_mode(pick(3) == 0 ? Mode::Program : Mode::Run);
         break;
       case 4: {
         const char* faults[] = {"cable removed", "cable restored", "offline", "online", "message timeout", "normal"};
-        b.inject("D" + std::to_string(1 + pick(3)), faults[pick(6)]);
+        const char* fault = faults[pick(6)];
+        const int drive = 1 + pick(3);
+        b.inject("D" + std::to_string(drive), fault);
         break;
       }
-      default:
-        b.set(pick(2) ? "O:1.0" : "O:1.1", static_cast<std::int16_t>(rng()));
+      default: {
+        const auto value = static_cast<std::int16_t>(rng());
+        const bool second = pick(2) != 0;
+        b.set(second ? "O:1.0" : "O:1.1", value);
         break;
+      }
     }
     b.rt->scan(1);
     const std::uint16_t w1 = b.u("I:1.1");

@@ -20,7 +20,7 @@ build="${SOFTSLC_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 
 source "$root/tools/lib/ensure-packages.sh"
 ensure_packages clang libclang-rt-14-dev cmake ninja-build tao-pegtl-dev libcli11-dev libspdlog-dev libgtest-dev \
-  libgmock-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libolecf-dev libbfio-dev zlib1g-dev libasio-dev \
+  libgmock-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libolecf-dev libbfio-dev zlib1g-dev libboost-dev \
   libmodbus-dev pkg-config
 
 mkdir -p "$build"

@@ -22,15 +22,20 @@ using nlohmann::json;
 
 namespace {
 
+std::optional<Value> value_of(const Controller& c, const Address& a) {
+  try {
+    return c.get(to_string(a));
+  } catch (const ControllerError&) {
+    return std::nullopt;
+  }
+}
+
 std::optional<double> number_of(const Controller& c, const Operand& o) {
   if (o.kind == Operand::Kind::Integer) return static_cast<double>(o.integer);
   if (o.kind == Operand::Kind::Float) return o.real;
   if (!o.is_address() || o.address.indexed || o.address.is_indirect()) return std::nullopt;
-  try {
-    return c.get(to_string(o.address)).as_double();
-  } catch (const ControllerError&) {
-    return std::nullopt;
-  }
+  if (auto v = value_of(c, o.address)) return v->as_double();
+  return std::nullopt;
 }
 
 // A compare instruction's truth from the current values (the rules of the interpreter's compare:
@@ -140,10 +145,14 @@ WebModel::WebModel(LiveController& live, std::function<void()> on_resume) : live
   j["read_only"] = live_.read_only();
   // Every rung's height in rows (comment and body), from one layout of each file without state:
   // the page sizes its scroll space from these and asks only for the rungs in view.
+  // The layout is made with values, as updates are, so boxes have their value rows here too.
+  ladder::LadderState values;
+  values.value = [&c](const Address& a) { return value_of(c, a); };
   j["files"] = json::array();
   for (const auto& f : p.files) {
     ladder::LayoutOptions lo;
     lo.file = f.number;
+    lo.state = &values;
     const auto layout = ladder::layout_ladder(p, lo);
     json heights = json::array();
     if (!layout.files.empty())
@@ -314,14 +323,7 @@ std::string WebModel::update(const WebWatch& watch) {
   const ProgramFile* f = p.find_file(watch.file);
   if (!f || watch.last < watch.first) return out + "null}";
   ladder::LadderState state;
-  const Controller& cc = c;
-  state.value = [&cc](const Address& a) -> std::optional<Value> {
-    try {
-      return cc.get(to_string(a));
-    } catch (const ControllerError&) {
-      return std::nullopt;
-    }
-  };
+  state.value = [&c](const Address& a) { return value_of(c, a); };
   auto& rungs = state.input_truth[watch.file];
   rungs.resize(f->rungs.size());
   for (int r = watch.first; r <= watch.last && r < static_cast<int>(f->rungs.size()); ++r)

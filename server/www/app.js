@@ -46,7 +46,6 @@ function rungSvg(r, width, fault) {
   for (const x of [5, width - 1]) o += line(cx(x), 0, cx(x), H, OFF, 2);
   o += `<text x="2" y="${r.rail * CELL_H + 12}">${String(r.number).padStart(4, '0')}</text>`;
   r.comment.forEach((c, i) => { o += `<text class="comment" x="${7 * CELL_W}" y="${i * CELL_H + 12}" fill="#555">${esc(c)}</text>`; });
-  if (r.end_rung) o += `<text x="${(width / 2) * CELL_W}" y="${r.rail * CELL_H + 12}" text-anchor="middle">&lt;END&gt;</text>`;
   let energized = false;
   for (const w of r.wires) {
     const colour = w.powered ? ON : OFF, sw = w.powered ? 3 : 1.5;
@@ -77,9 +76,11 @@ function rungSvg(r, width, fault) {
     b.above.forEach((t, i) => {
       o += `<text x="${b.x * CELL_W + (b.w * CELL_W) / 2}" y="${(b.y + i) * CELL_H + 12}" text-anchor="middle"${i + 1 === b.above.length ? ' font-weight="bold"' : ''}>${esc(t)}</text>`;
     });
-    const gx = (b.x + Math.floor((b.w - 3) / 2)) * CELL_W, ym = cy(b.rail), gw = b.glyph.length * CELL_W;
+    const gx = (b.index < 0 ? b.x : b.x + Math.floor((b.w - 3) / 2)) * CELL_W, ym = cy(b.rail), gw = b.glyph.length * CELL_W;
     o += `<rect x="${gx}" y="${ym - 7}" width="${gw}" height="14" fill="${b.true ? '#bfb' : 'white'}"/>`;
-    if (b.shape === 'contact') {
+    if (b.index < 0) {  // the END rung's <END>
+      o += `<text x="${gx + gw / 2}" y="${ym + 4}" text-anchor="middle">${esc(b.glyph)}</text>`;
+    } else if (b.shape === 'contact') {
       o += line(gx + 4, ym - 7, gx + 4, ym + 7, colour, 2) + line(gx + gw - 4, ym - 7, gx + gw - 4, ym + 7, colour, 2);
       if (b.glyph === ']/[') o += line(gx + 6, ym + 6, gx + gw - 6, ym - 6, colour, 1.5);
       o += line(gx, ym, gx + 4, ym, b.powered ? ON : OFF, 1.5) + line(gx + gw - 4, ym, gx + gw, ym, b.powered && b.true ? ON : OFF, 1.5);

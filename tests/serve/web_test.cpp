@@ -51,6 +51,22 @@ TEST(WebModel, ProgramOutlineHasEveryRungHeightDataFilesAndSlots) {
   EXPECT_EQ(p["symbols"]["O:2.0/0"], "MOTOR");
 }
 
+TEST(WebModel, OutlineHeightsAreTheHeightsUpdatesDraw) {
+  // The page places rungs from the outline's heights: a box with value rows drawn taller in an
+  // update than in the outline would overlap the next rung.
+  for (const char* example : {"examples/ladder/seal_in/seal_in.slc", "examples/ladder/faults/math_faults.slc"}) {
+    LiveController live(std::filesystem::path(SOFTSLC_SOURCE_DIR) / example, std::nullopt, {});
+    WebModel model(live, nullptr);
+    const json heights = json::parse(model.program_message())["files"][0]["heights"];
+    WebWatch watch;
+    const json u = json::parse(model.handle(R"({"op":"view","first":0,"last":100})", watch));
+    const json& rungs = u["ladder"]["files"][0]["rungs"];
+    ASSERT_EQ(rungs.size(), heights.size()) << example;
+    for (std::size_t i = 0; i < rungs.size(); ++i)
+      EXPECT_EQ(rungs[i]["top"].get<int>() + rungs[i]["height"].get<int>(), heights[i].get<int>()) << example << " rung " << i;
+  }
+}
+
 TEST(WebModel, StartSealsTheMotorInAndTheUpdateShowsPowerFlow) {
   LiveController live(seal_in(), std::nullopt, {});
   WebModel model(live, nullptr);

@@ -64,6 +64,10 @@ run(async (page, outdir) => {
   await until(page, 'T4 table', () => document.querySelector('#table td[data-address="T4:0.PRE"]'));
   check(/PRE 100/.test(await page.$eval('#table td[data-address="T4:0.PRE"]', (td) => td.textContent)), 'T4:0.PRE shows 100');
   await page.click('#data-files li[data-name="O"]');
-  await until(page, 'O table with MOTOR off', () => document.querySelector('#table td[data-address="O:2.0/0"]'));
+  await until(page, 'O table with MOTOR off', () => document.querySelector('#table td[data-address="O:2.0/0"][data-value="0"]'));
+  // Start again for the picture (docs/images/online-view.png): motor on, its output bit in the O table.
+  await write(page, 'START_PB', 1);
+  await until(page, 'O:2.0/0 on in the O table', () => document.querySelector('#table td[data-address="O:2.0/0"][data-value="1"]'));
+  await write(page, 'START_PB', 0);
   await page.screenshot({ path: `${outdir}/seal_in_online.png` });
 });

@@ -9,6 +9,7 @@
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "cmd_plot.h"
 #include "cmd_render.h"
 #include "cmd_serve.h"
 #include "commands.h"
@@ -102,6 +103,8 @@ int main(int argc, char** argv) {
 
   RenderOptions render;
   auto* render_cmd = add_render_command(app, render);
+  PlotOptions plot;
+  auto* plot_cmd = add_plot_command(app, plot);
 
   auto* instructions_cmd =
       app.add_subcommand("instructions", "List the instruction table: operands in text order, kinds, ranges");
@@ -137,6 +140,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return run_run(run);
     if (*disasm_cmd) return run_disasm(disasm);
     if (*render_cmd) return run_render(render);
+    if (*plot_cmd) return run_plot(plot);
     if (*serve_cmd) return run_serve(serve);
     if (*replay_cmd) return run_replay(replay);
   } catch (const std::exception& e) {

@@ -7,6 +7,7 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 #include <fstream>
+#include <future>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -346,6 +347,30 @@ TEST_F(WebViewTest, AMessageOverTheLimitClosesOnlyThatWebSocket) {
   }
   EXPECT_TRUE(ec) << "the server closes a connection that sent more than max_message bytes";
   EXPECT_EQ(get("/", host()).result(), http::status::ok);
+}
+
+TEST_F(WebViewTest, APageThatDoesNotReadItsRepliesIsClosed) {
+  // Requests keep coming but the page reads nothing: once the socket buffers are full, replies
+  // queue up to kMaxQueued and the server closes the connection instead of growing its memory.
+  start();
+  websocket::stream<asio::ip::tcp::socket> ws(connect());
+  ws.handshake(host(), "/ws");
+  beast::error_code ec;
+  const std::string request = R"({"op":"view","file":2,"first":0,"last":6})";
+  for (int i = 0; i < 5000 && !ec; ++i) ws.write(asio::buffer(request), ec);
+  beast::flat_buffer b;
+  while (!ec) {
+    ws.read(b, ec);
+    b.consume(b.size());
+  }
+  std::size_t open = 1;
+  for (int i = 0; i < 100 && open > 0; ++i) {
+    std::promise<std::size_t> n;
+    asio::post(io_, [&] { n.set_value(web_->connections()); });
+    open = n.get_future().get();
+    if (open > 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_EQ(open, 0u) << "the server dropped the page";
 }
 
 TEST_F(WebViewTest, ConnectionsPastTheLimitAreClosed) {

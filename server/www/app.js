@@ -313,6 +313,11 @@ function onProgram(p) {
   $('processor').textContent = `${p.processor} (${p.catalog})${p.read_only ? ', read-only' : ''}`;
   $('program-files').innerHTML = p.files.map((f) => `<li data-file="${f.number}">LAD ${f.number} - ${esc(f.name)} (${f.heights.length - 1})</li>`).join('');
   $('data-files').innerHTML = p.data.map((d) => `<li data-name="${esc(d.name)}">${esc(d.name)}${d.module ? ` ${esc(d.module)}` : ''}</li>`).join('');
+  // The chassis: each slot's module; a specialty module's M files open from its line.
+  $('chassis').innerHTML = p.slots.map((s) => {
+    const m = p.data.find((d) => d.type === 'M1' && d.number === s.slot) || p.data.find((d) => d.type === 'M0' && d.number === s.slot);
+    return `<li data-slot="${s.slot}"${m ? ` data-name="${esc(m.name)}"` : ''}>${s.slot}: ${esc(s.catalog)}</li>`;
+  }).join('');
   selectFile(p.files.some((f) => f.number === 2) ? 2 : p.files[0].number);
   if (state.table) selectTable(state.table);
   if (state.trend.length) send({ op: 'trend', addresses: state.trend });
@@ -372,6 +377,7 @@ function wire() {
   $('btn-trend-clear').onclick = () => { state.trend = []; state.trendData = []; $('trend').innerHTML = ''; $('trend-legend').innerHTML = ''; send({ op: 'trend', addresses: [] }); };
   $('program-files').onclick = (e) => { const li = e.target.closest('li'); if (li) selectFile(Number(li.dataset.file)); };
   $('data-files').onclick = (e) => { const li = e.target.closest('li'); if (li) selectTable(li.dataset.name); };
+  $('chassis').onclick = (e) => { const li = e.target.closest('li'); if (li && li.dataset.name) selectTable(li.dataset.name); };
   // Clicking an operand or a table cell names it in the write and force forms.
   const pick = (address, value) => {
     if (!address) return;

@@ -181,6 +181,28 @@ TEST(WebModel, TablesCarryWordsAndFloatsFormatted) {
   EXPECT_EQ(u["table"]["values"][0], "1.5");
 }
 
+TEST(WebModel, ModuleFilesAreListedAndReadThroughTheModule) {
+  // The 1747-SN scanner of the chapter 4 example (slot 1): its M0 and M1 files are listed, and an
+  // M1 table window is read through the module, word for word what the ladder's M1 reads see.
+  const auto dir = std::filesystem::path(SOFTSLC_SOURCE_DIR) / "examples/ladder/1747-sn";
+  LiveController live(dir / "ch4_m1_status.slc", dir / "ch4_m1_status.bench", {});
+  live.step(5);
+  WebModel model(live, nullptr);
+  const json p = json::parse(model.program_message());
+  std::vector<std::string> modules;
+  for (const auto& d : p["data"])
+    if (d.contains("module")) modules.push_back(d["name"]);
+  EXPECT_EQ(modules, (std::vector<std::string>{"M0:1", "M1:1"}));
+  WebWatch watch;
+  const json u = json::parse(model.handle(R"({"op":"table","name":"M1:1","offset":0})", watch));
+  ASSERT_TRUE(u["table"].is_object()) << u.dump();
+  ASSERT_GT(u["table"]["words"].size(), 0u);
+  for (std::size_t w = 0; w < u["table"]["words"].size() && w < 8; ++w)
+    EXPECT_EQ(u["table"]["words"][w].get<int>(),
+              static_cast<std::uint16_t>(live.controller().get_int("M1:1." + std::to_string(w))))
+        << "M1:1." << w;
+}
+
 TEST(WebModel, ChangesFromThePageAreJournaledAndReplay) {
   const auto journal = std::filesystem::temp_directory_path() / "softslc_web_journal.txt";
   LiveOptions lo;

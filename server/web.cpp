@@ -381,7 +381,11 @@ struct WebView::Client : std::enable_shared_from_this<Client> {
     ws.async_accept(req, [self = shared_from_this()](beast::error_code ec) {
       if (ec) return;
       self->send(self->view.model_.program_message(), false);
-      self->send(self->view.model_.update(self->watch), false);
+      try {
+        self->send(self->view.model_.update(self->watch), false);
+      } catch (const std::exception& e) {
+        spdlog::error("web: an update failed: {}", e.what());
+      }
       self->read();
     });
   }
@@ -396,7 +400,15 @@ struct WebView::Client : std::enable_shared_from_this<Client> {
       const std::string request = beast::buffers_to_string(self->in.data());
       self->in.consume(self->in.size());
       if (self->view.stopped_) return;
-      std::string reply = self->view.model_.handle(request, self->watch);
+      // WebModel answers every request (the fuzz property checks it); should anything still
+      // throw, the page gets an error and the server goes on: an exception must not leave io.run().
+      std::string reply;
+      try {
+        reply = self->view.model_.handle(request, self->watch);
+      } catch (const std::exception& e) {
+        spdlog::error("web: a request failed: {}", e.what());
+        reply = json{{"type", "error"}, {"message", e.what()}}.dump();
+      }
       if (!reply.empty()) self->send(std::move(reply), false);
       self->read();
     });
@@ -561,8 +573,15 @@ void WebView::tick() {
       auto c = w.lock();
       return !c || c->closed;
     });
-    for (auto& w : clients_)
-      if (auto c = w.lock(); c && c->out.empty()) c->send(model_.update(c->watch), true);
+    for (auto& w : clients_) {
+      auto c = w.lock();
+      if (!c || !c->out.empty()) continue;
+      try {
+        c->send(model_.update(c->watch), true);
+      } catch (const std::exception& e) {
+        spdlog::error("web: an update failed: {}", e.what());
+      }
+    }
     tick();
   });
 }

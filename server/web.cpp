@@ -374,7 +374,7 @@ struct WebView::Client : std::enable_shared_from_this<Client> {
   Client(beast::tcp_stream stream, WebView& v, std::shared_ptr<ConnectionSlot> s)
       : ws(std::move(stream)), view(v), slot(std::move(s)) {}
 
-  void start(http::request<http::string_body> req) {
+  void start(const http::request<http::string_body>& req) {
     beast::get_lowest_layer(ws).expires_never();
     ws.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
     ws.read_message_max(view.options_.max_message);
@@ -482,7 +482,7 @@ struct WebView::HttpSession : std::enable_shared_from_this<HttpSession> {
       }
       auto client = std::make_shared<Client>(std::move(stream), view, std::move(slot));
       view.clients_.push_back(client);  // for the periodic updates
-      client->start(std::move(req));
+      client->start(req);
       return;
     }
     if (req.method() != http::verb::get && req.method() != http::verb::head)

@@ -15,7 +15,9 @@
 #include "commands.h"
 #include "tools/testrunner/test_command.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_main(int argc, char** argv) {
   using namespace softslc::cli;
   CLI::App app{"softslc — run, check and test Allen-Bradley SLC 500 ladder programs without the hardware"};
   app.set_version_flag("--version", std::string("softslc ") + SOFTSLC_VERSION);
@@ -148,4 +150,19 @@ int main(int argc, char** argv) {
     return kInputError;
   }
   return kUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // run_main() turns every error of a command into a message and an exit status; this catches
+  // what could still escape the command-line setup itself, so main never ends in std::terminate.
+  try {
+    return run_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "softslc: internal error (please report it): " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "softslc: internal error (please report it)\n";
+  }
+  return 1;
 }

@@ -184,7 +184,8 @@ bool parse_signal_list(const Program& program, const std::string& list, std::vec
       std::string why;
       a = parse_address(name, &why);
       if (!a) {
-        error = "'" + name + "' is neither an address nor a symbol of the program (" + why + ")";
+        error = "'" + name;
+        error += "' is neither an address nor a symbol of the program (" + why + ")";
         return false;
       }
     }
@@ -406,7 +407,7 @@ bool parse_size(const std::string& text, std::size_t& out) {
     if (i + 1 != text.size()) return false;
     switch (text[i]) {
       case 'k': case 'K': mult = 1024; break;
-      case 'M': mult = 1024 * 1024; break;
+      case 'M': mult = 1024ULL * 1024; break;
       case 'G': mult = 1024ULL * 1024 * 1024; break;
       default: return false;
     }

@@ -467,7 +467,7 @@ struct WebView::HttpSession : std::enable_shared_from_this<HttpSession> {
       self->handle(self->parser->release());
     });
   }
-  void handle(http::request<http::string_body> req) {
+  void handle(const http::request<http::string_body>& req) {
     const auto host = req[http::field::host];
     if (!local_host(std::string_view(host.data(), host.size())))
       return respond(req, http::status::forbidden, "text/plain", "softslc serve: only a local address or localhost\n");

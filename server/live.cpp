@@ -1,17 +1,22 @@
 #include "server/live.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
+#include <variant>
 
 #include "parser/checker.h"
+#include "parser/loader.h"
 #include "vm/state_file.h"
 
 namespace softslc::serve {
 
 namespace {
+
+constexpr const char* kReadOnly = "the server is read-only (--read-only)";
 
 std::string hex32(std::uint32_t v) {
   char buf[16];
@@ -53,9 +58,12 @@ LiveController::LiveController(const std::filesystem::path& program, const std::
 LiveController::~LiveController() = default;
 
 void LiveController::run_scans(int n) {
-  if (n <= 0) return;
-  controller_.scan(n);
-  pending_scans_ += static_cast<std::uint64_t>(n);
+  // One scan at a time: Controller::scan(n) stops at a major fault, while a faulted processor's
+  // scan(1) still passes virtual time. "scans N" in the journal is N calls of scan(1), which is
+  // what replay() performs, so a session that faults (a divide by zero pressed from the online
+  // view) replays to the same virtual times.
+  for (int i = 0; i < n; ++i) controller_.scan(1);
+  if (n > 0) pending_scans_ += static_cast<std::uint64_t>(n);
 }
 
 void LiveController::flush_scans() {
@@ -128,7 +136,7 @@ void LiveController::read(int number, std::uint32_t offset, std::span<std::uint1
 
 std::string LiveController::write(int number, std::uint32_t offset, std::span<const std::uint16_t> values,
                                   std::span<const std::uint16_t> masks) {
-  if (options_.read_only) return "the server is read-only (--read-only)";
+  if (options_.read_only) return kReadOnly;
   // A write refused half-way (a module refusing its word) has performed the calls before it: they
   // are journaled all the same, so the journal holds every change the data table saw.
   auto [calls, error] = controller_.write_file_words(number, offset, values, masks);
@@ -150,6 +158,10 @@ void LiveController::journal_calls(const std::vector<ControllerCall>& calls) {
         case ControllerCall::Kind::SetWord:
           *journal_ << "setword @" << now << ' ' << c.target << ' ' << c.word << ' ' << c.integer << '\n';
           break;
+        case ControllerCall::Kind::Force: *journal_ << "force @" << now << ' ' << c.target << ' ' << c.integer << '\n'; break;
+        case ControllerCall::Kind::Unforce: *journal_ << "unforce @" << now << ' ' << c.target << '\n'; break;
+        case ControllerCall::Kind::SetMode: *journal_ << "mode @" << now << ' ' << to_string(c.mode) << '\n'; break;
+        case ControllerCall::Kind::ClearFault: *journal_ << "clearfault @" << now << '\n'; break;
         default: break;
       }
     }
@@ -157,6 +169,101 @@ void LiveController::journal_calls(const std::vector<ControllerCall>& calls) {
     journal_->flush();
   }
   writes_ += calls.size();
+}
+
+// ---- Changes from the online view ----
+
+namespace {
+
+// A value as typed: a whole integer, or a real number.
+std::optional<std::variant<std::int64_t, double>> parse_number(std::string_view text) {
+  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  if (text.empty() || text.size() > 40) return std::nullopt;
+  std::int64_t i = 0;
+  if (auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), i); ec == std::errc() && p == text.data() + text.size())
+    return i;
+  double d = 0.0;
+  if (auto [p, ec] = std::from_chars(text.data(), text.data() + text.size(), d); ec == std::errc() &&
+      p == text.data() + text.size() && std::isfinite(d))
+    return d;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string LiveController::resolved(std::string_view target) const {
+  if (const Symbol* s = controller_.program().find_symbol(target); s && !s->name.empty()) return to_string(s->address);
+  if (auto a = parse_address(target)) return to_string(*a);
+  return std::string(target);
+}
+
+std::string LiveController::set_value(std::string_view target, std::string_view text) {
+  if (options_.read_only) return kReadOnly;
+  auto number = parse_number(text);
+  if (!number) return "'" + std::string(text) + "' is not a number";
+  ControllerCall c;
+  c.target = resolved(target);
+  try {
+    if (const auto* i = std::get_if<std::int64_t>(&*number)) {
+      c.kind = ControllerCall::Kind::Set;
+      c.integer = *i;
+      controller_.set(target, *i);
+    } else {
+      c.kind = ControllerCall::Kind::SetFloat;
+      c.real = std::get<double>(*number);
+      controller_.set_float(target, c.real);
+    }
+  } catch (const ControllerError& e) {
+    return e.what();
+  }
+  journal_calls({c});
+  return {};
+}
+
+std::string LiveController::force(std::string_view target, std::optional<bool> on) {
+  if (options_.read_only) return kReadOnly;
+  ControllerCall c;
+  c.target = resolved(target);
+  try {
+    if (on) {
+      c.kind = ControllerCall::Kind::Force;
+      c.integer = *on ? 1 : 0;
+      controller_.force(target, *on);
+      forces_[c.target] = *on;
+    } else {
+      c.kind = ControllerCall::Kind::Unforce;
+      controller_.unforce(target);
+      forces_.erase(c.target);
+    }
+  } catch (const ControllerError& e) {
+    return e.what();
+  }
+  journal_calls({c});
+  return {};
+}
+
+std::string LiveController::set_mode(Mode mode) {
+  if (options_.read_only) return kReadOnly;
+  ControllerCall c;
+  c.kind = ControllerCall::Kind::SetMode;
+  c.mode = mode;
+  try {
+    controller_.set_mode(mode);
+  } catch (const ControllerError& e) {
+    return e.what();
+  }
+  journal_calls({c});
+  return {};
+}
+
+std::string LiveController::clear_fault() {
+  if (options_.read_only) return kReadOnly;
+  ControllerCall c;
+  c.kind = ControllerCall::Kind::ClearFault;
+  controller_.clear_fault();
+  journal_calls({c});
+  return {};
 }
 
 namespace {
@@ -189,7 +296,7 @@ std::string LiveController::read_module(int slot, bool m1, std::uint32_t word, s
 
 std::string LiveController::write_module(int slot, bool m1, std::uint32_t word, std::span<const std::uint16_t> values,
                                          std::span<const std::uint16_t> masks) {
-  if (options_.read_only) return "the server is read-only (--read-only)";
+  if (options_.read_only) return kReadOnly;
   // The same calls `run --set` makes: a whole word, or one bit at a time for a masked write.
   std::vector<ControllerCall> calls;
   std::string error;
@@ -291,11 +398,7 @@ ReplayResult replay(const std::filesystem::path& journal) {
     if (word == "scans") {
       long long n = 0;
       if (!(ls >> n) || n < 0) return fail("bad scan count");
-      while (n > 0) {
-        const int chunk = n > 1000000 ? 1000000 : static_cast<int>(n);
-        c.scan(chunk);
-        n -= chunk;
-      }
+      for (; n > 0; --n) c.scan(1);  // as LiveController::run_scans performed them
       continue;
     }
     std::string at;
@@ -315,7 +418,7 @@ ReplayResult replay(const std::filesystem::path& journal) {
       continue;
     }
     ControllerCall call;
-    ls >> call.target;
+    if (word != "mode" && word != "clearfault") ls >> call.target;
     try {
       if (word == "set") {
         call.kind = ControllerCall::Kind::Set;
@@ -332,6 +435,21 @@ ReplayResult replay(const std::filesystem::path& journal) {
       } else if (word == "setword") {
         call.kind = ControllerCall::Kind::SetWord;
         if (!(ls >> call.word >> call.integer)) return fail("bad word or value");
+      } else if (word == "force") {
+        call.kind = ControllerCall::Kind::Force;
+        if (!(ls >> call.integer) || (call.integer != 0 && call.integer != 1)) return fail("bad force state");
+      } else if (word == "unforce") {
+        call.kind = ControllerCall::Kind::Unforce;
+      } else if (word == "mode") {
+        std::string name;
+        ls >> name;
+        call.kind = ControllerCall::Kind::SetMode;
+        if (name == "program") call.mode = Mode::Program;
+        else if (name == "run") call.mode = Mode::Run;
+        else if (name == "test") call.mode = Mode::Test;
+        else return fail("bad mode '" + name + "'");
+      } else if (word == "clearfault") {
+        call.kind = ControllerCall::Kind::ClearFault;
       } else {
         return fail("unknown record '" + word + "'");
       }

@@ -15,6 +15,8 @@
 //   set @VT ADDR VALUE              a client write, as the controller performed it, at virtual
 //   setf @VT ADDR HEXBITS           time VT (ns); setf carries the float's IEEE bits, setword a
 //   setword @VT ADDR WORD VALUE     raw word of a string element
+//   force @VT ADDR 0|1              a force from the online view (server/web.h), unforce @VT ADDR
+//   mode @VT program|run|test       a mode change from the online view; clearfault @VT a fault clear
 //   digest @VT CRC                  the data table's CRC-32 after the write(s) of one request
 //   end @VT CRC                     the state when the server stopped
 // Replaying the records in order into a fresh controller of the same program and bench reproduces
@@ -25,6 +27,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -69,6 +72,22 @@ class LiveController final : public pccc::Target {
   // Writes the journal's end record and flushes it.
   void finish();
 
+  // ---- Changes from the online view (server/web.h) ----
+  // Each is performed between scans through the Controller API (addresses or SYMBOL names, the
+  // rules of `run --set`) and journaled like a client write, so `softslc replay` reproduces a
+  // session driven from the browser. Each returns why it was refused ("" when done); with
+  // --read-only every one is refused.
+  // A value: an integer, or a real number ("1.5", "2e3") written as a float.
+  std::string set_value(std::string_view target, std::string_view text);
+  // Forces an I or O bit on or off; nullopt removes the force.
+  std::string force(std::string_view target, std::optional<bool> on);
+  std::string set_mode(Mode mode);
+  std::string clear_fault();
+  // The forces installed through force(), by canonical address (the program's own FORCE lines
+  // are not listed: the Controller API has no query for them).
+  const std::map<std::string, bool>& forces() const { return forces_; }
+  bool read_only() const { return options_.read_only; }
+
   // The identity ListIdentity reports, from the program's processor.
   eip::Identity identity() const;
 
@@ -89,6 +108,8 @@ class LiveController final : public pccc::Target {
   // Journals the calls one request performed, with the digest after them.
   void journal_calls(const std::vector<ControllerCall>& calls);
   void run_scans(int n);
+  // A SYMBOL's canonical address; anything else as given (the controller checks it).
+  std::string resolved(std::string_view target) const;
 
   Controller controller_;
   LiveOptions options_;
@@ -98,6 +119,7 @@ class LiveController final : public pccc::Target {
   std::uint64_t pending_scans_ = 0;
   std::uint64_t writes_ = 0;
   std::unique_ptr<std::ofstream> journal_;
+  std::map<std::string, bool> forces_;
 };
 
 // The result of replaying a journal.

@@ -13,7 +13,7 @@ struct Server::Link : std::enable_shared_from_this<Server::Link> {
   Link(asio::ip::tcp::socket s, const ServerOptions& o, std::shared_ptr<std::size_t> count, std::string_view protocol)
       : socket(std::move(s)), idle(socket.get_executor()), options(o), connections(std::move(count)) {
     ++*connections;
-    std::error_code ec;
+    boost::system::error_code ec;
     auto ep = socket.remote_endpoint(ec);
     peer = ec ? std::string("?") : ep.address().to_string() + ":" + std::to_string(ep.port());
     if (!protocol.empty()) peer += " (" + std::string(protocol) + ")";
@@ -22,14 +22,14 @@ struct Server::Link : std::enable_shared_from_this<Server::Link> {
 
   void arm_idle() {
     idle.expires_after(options.idle_timeout);
-    idle.async_wait([self = shared_from_this()](const std::error_code& ec) {
+    idle.async_wait([self = shared_from_this()](const boost::system::error_code& ec) {
       if (ec) return;  // re-armed or closed
       spdlog::info("{}: closed after {} ms without a request", self->peer, self->options.idle_timeout.count());
       self->close();
     });
   }
   void close() {
-    std::error_code ignored;
+    boost::system::error_code ignored;
     socket.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
     socket.close(ignored);
     idle.cancel();
@@ -40,7 +40,7 @@ struct Server::Link : std::enable_shared_from_this<Server::Link> {
   static void read_into(const std::shared_ptr<Self>& self, std::size_t at, std::size_t n, Then then) {
     self->frame.resize(at + n);
     asio::async_read(self->socket, asio::buffer(self->frame.data() + at, n),
-                     [self, at, then](const std::error_code& ec, std::size_t) {
+                     [self, at, then](const boost::system::error_code& ec, std::size_t) {
                        if (ec) {
                          if (at > 0)
                            spdlog::info("{}: connection closed in the middle of a frame: {}", self->peer, ec.message());
@@ -57,7 +57,7 @@ struct Server::Link : std::enable_shared_from_this<Server::Link> {
   static void send(const std::shared_ptr<Self>& self, std::vector<std::uint8_t>&& bytes, bool close_after, Then then) {
     self->reply = std::move(bytes);
     asio::async_write(self->socket, asio::buffer(self->reply),
-                      [self, close_after, then](const std::error_code& ec, std::size_t) {
+                      [self, close_after, then](const boost::system::error_code& ec, std::size_t) {
                         if (ec || close_after) {
                           self->close();
                           return;
@@ -179,16 +179,12 @@ Server::Server(asio::io_context& io, LiveController& live, ServerOptions options
 
 Server::~Server() = default;
 
-namespace {
-
 void listen_on(asio::ip::tcp::acceptor& acceptor, const asio::ip::tcp::endpoint& ep) {
   acceptor.open(ep.protocol());
   acceptor.set_option(asio::ip::tcp::acceptor::reuse_address(true));
   acceptor.bind(ep);
   acceptor.listen();
 }
-
-}  // namespace
 
 void Server::start() {
   const auto address = asio::ip::make_address(options_.listen);
@@ -210,7 +206,7 @@ void Server::start() {
 
 void Server::stop() {
   stopped_ = true;
-  std::error_code ignored;
+  boost::system::error_code ignored;
   acceptor_.close(ignored);
   modbus_acceptor_.close(ignored);
   udp_.close(ignored);
@@ -220,7 +216,7 @@ void Server::stop() {
 std::uint16_t Server::tcp_port() const { return acceptor_.local_endpoint().port(); }
 std::size_t Server::connections() const { return *live_connections_; }
 std::uint16_t Server::modbus_port() const {
-  std::error_code ec;
+  boost::system::error_code ec;
   return modbus_acceptor_.is_open() ? modbus_acceptor_.local_endpoint(ec).port() : 0;
 }
 
@@ -228,7 +224,7 @@ eip::Identity Server::identity() const {
   // The socket address item carries the address and port clients reach this server on.
   eip::Identity id = live_.identity();
   id.port = tcp_port();
-  std::error_code ec;
+  boost::system::error_code ec;
   const auto address = asio::ip::make_address(options_.listen, ec);
   if (!ec && address.is_v4()) id.ipv4 = address.to_v4().to_uint();
   return id;
@@ -240,16 +236,16 @@ void Server::restart_pacing() { pacing_start_ = std::chrono::steady_clock::now()
 // once (logged); otherwise `open(socket)` starts its protocol.
 template <typename Open>
 void Server::accept_on(asio::ip::tcp::acceptor& acceptor, std::string_view protocol, Open open) {
-  acceptor.async_accept([this, &acceptor, protocol, open](const std::error_code& ec, asio::ip::tcp::socket socket) {
+  acceptor.async_accept([this, &acceptor, protocol, open](const boost::system::error_code& ec, asio::ip::tcp::socket socket) {
     if (ec) {
       if (ec == asio::error::operation_aborted || stopped_) return;
       spdlog::warn("{} accept failed: {}", protocol, ec.message());
     } else if (*live_connections_ >= options_.max_connections) {
       spdlog::warn("refused a {} connection: {} connections is the limit", protocol, options_.max_connections);
-      std::error_code ignored;
+      boost::system::error_code ignored;
       socket.close(ignored);
     } else {
-      std::error_code ignored;
+      boost::system::error_code ignored;
       socket.set_option(asio::ip::tcp::no_delay(true), ignored);
       open(std::move(socket));
     }
@@ -275,7 +271,7 @@ void Server::accept_modbus() {
 }
 
 void Server::receive_udp() {
-  udp_.async_receive_from(asio::buffer(udp_buffer_), udp_peer_, [this](const std::error_code& ec, std::size_t n) {
+  udp_.async_receive_from(asio::buffer(udp_buffer_), udp_peer_, [this](const boost::system::error_code& ec, std::size_t n) {
     if (ec) {
       if (ec == asio::error::operation_aborted || stopped_) return;
       receive_udp();
@@ -288,7 +284,7 @@ void Server::receive_udp() {
       eip::EipSession session(live_, identity(), 0);
       auto out = session.handle(std::span<const std::uint8_t>(udp_buffer_.data(), n));
       auto reply = std::make_shared<std::vector<std::uint8_t>>(std::move(out.reply));
-      udp_.async_send_to(asio::buffer(*reply), udp_peer_, [reply](const std::error_code&, std::size_t) {});
+      udp_.async_send_to(asio::buffer(*reply), udp_peer_, [reply](const boost::system::error_code&, std::size_t) {});
     }
     receive_udp();
   });
@@ -303,7 +299,7 @@ void Server::tick() {
   const auto elapsed = now - pacing_start_;
   live_.advance(std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count());
   timer_.expires_after(options_.tick);
-  timer_.async_wait([this](const std::error_code& ec) {
+  timer_.async_wait([this](const boost::system::error_code& ec) {
     if (!ec) tick();
   });
 }

@@ -1,11 +1,14 @@
-// The network face of `softslc serve`: EtherNet/IP on TCP and UDP, on one Asio io_context.
+// The network face of `softslc serve`: EtherNet/IP on TCP and UDP, on one Boost.Asio io_context.
 //
 // Everything runs on the caller's io_context in one thread: the accept loop, every connection's
 // reads and writes, the UDP ListIdentity responder and the pacing timer that advances the
 // LiveController. So a request is always handled between two scans, with no lock, and the
-// journal's order is the order things happened. A later web view (HTTP + WebSocket, issue 19)
-// adds its own acceptor to the same io_context and reads the controller from its handlers, on
-// the same thread, the same way (docs/serve.md).
+// journal's order is the order things happened. The online view (server/web.h: HTTP + WebSocket
+// through Boost.Beast) adds its own acceptor to the same io_context and reads the controller from
+// its handlers, on the same thread, the same way (docs/serve.md).
+//
+// Boost.Asio rather than standalone Asio because Beast is built on it; `asio` below is a
+// namespace alias for boost::asio, so the code reads as it did with standalone Asio.
 //
 // Bounds (ServerOptions, all documented in docs/serve.md): connections at once, the largest
 // encapsulation frame accepted, and idle time per connection. A connection past the limit is
@@ -25,10 +28,15 @@
 #include <string>
 #include <string_view>
 
-#include <asio.hpp>
+// <utility> first: Boost 1.74's asio/awaitable.hpp uses std::exchange without including it (GCC 12, C++20).
+#include <utility>
+
+#include <boost/asio.hpp>
 
 #include "server/live.h"
 #include "server/modbus.h"
+
+namespace asio = boost::asio;
 
 namespace softslc::serve {
 
@@ -43,6 +51,9 @@ struct ServerOptions {
   std::optional<std::uint16_t> modbus_port;
   modbus::Map modbus_map;
 };
+
+// Opens, binds and listens (reusing the address); throws std::system_error when it cannot.
+void listen_on(asio::ip::tcp::acceptor& acceptor, const asio::ip::tcp::endpoint& ep);
 
 class Server {
  public:

@@ -19,7 +19,7 @@ source "$root/tools/lib/ensure-packages.sh"
 ensure_packages g++ cmake ninja-build pkg-config tao-pegtl-dev libcli11-dev libspdlog-dev libgtest-dev libgmock-dev \
   libbenchmark-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev python3 \
   libolecf-dev libbfio-dev zlib1g-dev poppler-utils \
-  libasio-dev libmodbus-dev nodejs
+  libboost-dev libmodbus-dev nodejs chromium
 # The serve client tests run npm. NodeSource's nodejs ships its own npm and conflicts with
 # Debian's npm package, so that package is installed only where no npm came with Node.
 command -v npm >/dev/null 2>&1 || ensure_packages npm

@@ -22,13 +22,13 @@ build="${SOFTSLC_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 
 source "$root/tools/lib/ensure-packages.sh"
 ensure_packages clang libclang-rt-14-dev cmake ninja-build tao-pegtl-dev libcli11-dev libspdlog-dev libgtest-dev \
-  libgmock-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libolecf-dev libbfio-dev zlib1g-dev libasio-dev \
+  libgmock-dev libeigen3-dev nlohmann-json3-dev libtinyxml2-dev libolecf-dev libbfio-dev zlib1g-dev libboost-dev \
   libmodbus-dev pkg-config
 
 mkdir -p "$build"
 CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSLC_FUZZ=ON \
   -DSOFTSLC_TESTS=ON -DSOFTSLC_BENCHMARKS=OFF > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-all_targets=(program address testfile bench scanport_message transaction dem rss pccc eip modbus)
+all_targets=(program address testfile bench scanport_message transaction dem rss pccc eip modbus web)
 targets=("${all_targets[@]}")
 if [ -n "${SOFTSLC_FUZZ_TARGETS:-}" ]; then read -r -a targets <<< "$SOFTSLC_FUZZ_TARGETS"; fi
 parallel="${SOFTSLC_FUZZ_PARALLEL:-2}"
@@ -71,6 +71,13 @@ printf '\x02\x00\x00\x00\x00\x00\xb2\x00\x17\x00\x4b\x02\x20\x67\x24\x01\x07\x00
 # Modbus TCP (server/modbus.h): read holding registers 40001-40002 and write coil 00002 on.
 printf '\x00\x01\x00\x00\x00\x06\x01\x03\x00\x00\x00\x02' > "$corpus/modbus/read-holding"
 printf '\x00\x02\x00\x00\x00\x06\x01\x05\x00\x01\xff\x00' > "$corpus/modbus/write-coil"
+# The online view's requests (server/web.h), as the page sends them.
+printf '%s' '{"op":"view","file":2,"first":0,"last":30}' > "$corpus/web/view"
+printf '%s' '{"op":"table","name":"N7","offset":0}' > "$corpus/web/table"
+printf '%s' '{"op":"set","address":"N7:0","value":"12"}' > "$corpus/web/set"
+printf '%s' '{"op":"force","address":"I:1/0","state":"on"}' > "$corpus/web/force"
+printf '%s' '{"op":"trend","addresses":["N7:0","T4:0.ACC"]}' > "$corpus/web/trend"
+printf '%s' '{"op":"mode","mode":"program"}' > "$corpus/web/mode"
 
 # The targets run two at a time (one per core of the 2-core machines CI runs on); each one's
 # output is kept in its own log and printed in target order, so the log reads the same whatever

@@ -1,5 +1,5 @@
 // What must hold for any bytes a network client sends `softslc serve` (server/pccc.h,
-// server/eip.h, server/modbus.h): the decoders never read past their input or throw, a PCCC command that
+// server/eip.h, server/modbus.h, and the online view's requests, server/web.h): the decoders never read past their input or throw, a PCCC command that
 // decodes always gets a reply with the request's TNS and CMD | 40h, and an encapsulation frame
 // either gets a well-formed reply frame, nothing (NOP), or closes the connection. Each property
 // returns an empty string when it holds, else what broke. The fuzz targets run them on random
@@ -16,6 +16,9 @@
 #include "server/live.h"
 #include "server/modbus.h"
 #include "server/pccc.h"
+#include "server/web.h"
+
+#include <nlohmann/json.hpp>
 
 namespace softslc::fuzz {
 
@@ -96,6 +99,29 @@ inline std::string check_modbus_property(std::string_view input) {
     return "Modbus reply function differs from the request's";
   }
   if (r.size() > modbus::kHeaderSize + modbus::kMaxPdu) return "Modbus reply longer than the largest PDU";
+  return {};
+}
+
+// A message from a page of the online view (at most WebOptions::max_message bytes; WebView
+// closes the connection on a longer one) gets a JSON object back, an update or an error, never an
+// exception, and what the page watches stays within its bounds.
+inline std::string check_web_property(std::string_view input) {
+  if (input.size() > 4096) return {};
+  static serve::WebModel model(serve_live(), nullptr);
+  static serve::WebWatch watch;
+  std::string reply;
+  try {
+    reply = model.handle(input, watch);
+  } catch (const std::exception& e) {
+    return std::string("WebModel::handle threw: ") + e.what();
+  }
+  const auto j = nlohmann::json::parse(reply, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("type")) return "web reply is not a JSON object with a type";
+  if (j["type"] != "update" && j["type"] != "error") return "web reply is neither an update nor an error";
+  if (watch.last >= watch.first && watch.last - watch.first >= serve::kMaxViewRungs) return "web view wider than kMaxViewRungs";
+  if (watch.trend.size() > serve::kMaxTrend) return "more trend addresses than kMaxTrend";
+  if (j["type"] == "update" && j["table"].is_object() && j["table"]["words"].size() > serve::kMaxTableWords)
+    return "web table window larger than kMaxTableWords";
   return {};
 }
 

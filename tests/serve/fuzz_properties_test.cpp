@@ -46,5 +46,15 @@ TEST(ServeFuzzProperties, ModbusFrames) {
                   fuzz::check_modbus_property);
 }
 
+TEST(ServeFuzzProperties, WebRequests) {
+  for (const char* request : {R"({"op":"view","file":2,"first":0,"last":30})", R"({"op":"table","name":"N7","offset":3})",
+                              R"({"op":"set","address":"N7:0","value":"12"})", R"({"op":"force","address":"I:1/0","state":"on"})",
+                              R"({"op":"trend","addresses":["N7:0","T4:0.ACC"]})", R"({"op":"mode","mode":"run"})",
+                              R"({"op":"step","scans":2})", R"({"op":"table","name":"M1:1"})"}) {
+    const std::string r = request;
+    check_mutations(Bytes(r.begin(), r.end()), fuzz::check_web_property);
+  }
+}
+
 }  // namespace
 }  // namespace softslc::serve::testing

@@ -202,7 +202,7 @@ TEST_F(ModbusServerTest, MalformedFramesCloseOnlyTheirConnection) {
   const Bytes bad = {0x00, 0x01, 0x00, 0x01, 0x00, 0x06, 0x01, 0x03, 0x00, 0x00, 0x00, 0x01};
   asio::write(s, asio::buffer(bad));
   std::uint8_t b;
-  std::error_code ec;
+  boost::system::error_code ec;
   s.read_some(asio::buffer(&b, 1), ec);
   EXPECT_TRUE(ec == asio::error::eof || ec == asio::error::connection_reset) << ec.message();
   // The libmodbus connection is unaffected.

@@ -53,7 +53,7 @@ class ServerTest : public ::testing::Test {
   // Whether the server closed the connection (a read ends with EOF or reset within the time).
   static bool closed_by_server(tcp::socket& s) {
     std::uint8_t b;
-    std::error_code ec;
+    boost::system::error_code ec;
     s.read_some(asio::buffer(&b, 1), ec);
     return ec == asio::error::eof || ec == asio::error::connection_reset;
   }

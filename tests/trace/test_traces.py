@@ -213,6 +213,50 @@ class TestTraceDir(unittest.TestCase):
             self.assertEqual(sorted(os.listdir(out)), ["wrong.passes.vcd", "wrong.start__wrong_on_purpose.vcd"])
 
 
+class Plot(unittest.TestCase):
+    """`softslc plot` draws a VCD written by `run --trace` as the timing diagram `run --trace OUT.svg`
+    draws from the same run: the same waveforms (checked point for point), valid XML."""
+
+    def test_plot_of_a_vcd_draws_the_same_waveforms_as_run_trace_svg(self):
+        seal = os.path.join(EXAMPLES, "ladder", "seal_in", "seal_in.slc")
+        args = [seal, "--set", "START_PB=1", "--set", "OL_CONTACT=1", "--for", "1.5s",
+                "--signals", "START_PB,MOTOR,T4:0,OL_TRIPPED,N7:0"]
+        with tempfile.TemporaryDirectory() as tmp:
+            vcd, direct, plotted = (os.path.join(tmp, n) for n in ("t.vcd", "direct.svg", "plotted.svg"))
+            softslc("run", *args, "--trace", vcd)
+            softslc("run", *args, "--trace", direct)
+            softslc("plot", vcd, "-o", plotted)
+            ns = {"s": "http://www.w3.org/2000/svg"}
+            a, b = ET.parse(direct).getroot(), ET.parse(plotted).getroot()
+            names = [g.get("data-name") for g in b.findall("s:g[@class='signal']", ns)]
+            with open(vcd) as f:
+                self.assertEqual(names, [n for n in Vcd(f.read()).vars if n != "scan"])
+            self.assertEqual(names, [g.get("data-name") for g in a.findall("s:g[@class='signal']", ns)])
+
+            def shapes(root):
+                return [(e.tag, e.get("points")) for g in root.findall("s:g[@class='signal']", ns)
+                        for e in g if e.get("points")]
+            self.assertEqual(shapes(a), shapes(b))
+            self.assertGreater(len(shapes(b)), len(names))  # waveforms and bus segments were drawn
+            # A subset, in the order asked for.
+            softslc("plot", vcd, "-o", plotted, "--signals", "MOTOR,START_PB", "--title", "two")
+            root = ET.parse(plotted).getroot()
+            self.assertEqual([g.get("data-name") for g in root.findall("s:g[@class='signal']", ns)], ["MOTOR", "START_PB"])
+
+    def test_bad_input_is_a_positioned_error(self):
+        with tempfile.TemporaryDirectory() as tmp:
+            bad = os.path.join(tmp, "bad.vcd")
+            with open(bad, "w") as f:
+                f.write("$timescale 1us $end\n$var wire 1 \" MOTOR $end\n$enddefinitions $end\n#0\n1\"\n#5\n1?\n")
+            p = softslc("plot", bad, "-o", os.path.join(tmp, "x.svg"), ok=(1,))
+            self.assertIn("bad.vcd:7: error: unknown identifier '?'", p.stderr)
+            self.assertFalse(os.path.exists(os.path.join(tmp, "x.svg")))
+            with open(bad, "w") as f:
+                f.write("$timescale 1us $end\n$var wire 1 \" MOTOR $end\n$enddefinitions $end\n#0\n1\"\n")
+            p = softslc("plot", bad, "-o", os.path.join(tmp, "x.svg"), "--signals", "NOPE", ok=(1,))
+            self.assertIn("no signal named NOPE", p.stderr)
+
+
 if __name__ == "__main__":
     SOFTSLC, EXAMPLES = sys.argv[1], sys.argv[2]
     unittest.main(argv=sys.argv[:1], verbosity=2)

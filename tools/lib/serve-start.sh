@@ -2,11 +2,15 @@
 # tools/serve_load.sh). start_serve SOFTSLC WORKDIR ARGS... starts the server in the background on
 # a free port (--port 0) with its output in WORKDIR/out and its log in WORKDIR/log, waits for the
 # line that says where it listens, and sets $server (its pid) and $port. Returns 1 if it never
-# listened.
+# listened. With serve_http=PORT set it also serves the online view there. stop_serve_and_replay SOFTSLC WORKDIR STATUS stops it (SIGINT), prints its last line
+# and, when STATUS (the client's exit status) is 0, replays its journal WORKDIR/journal; it
+# returns the first failure.
 start_serve() {
   local softslc="$1" work="$2"
   shift 2
-  "$softslc" serve "$@" --port 0 > "$work/out" 2> "$work/log" &
+  # No online view unless the caller sets serve_http (a port; 0 picks a free one): tests running
+  # in parallel must not compete for the default port.
+  "$softslc" serve "$@" --port 0 --http "${serve_http:-off}" > "$work/out" 2> "$work/log" &
   server=$!
   port=""
   for _ in $(seq 1 100); do
@@ -17,4 +21,13 @@ start_serve() {
   echo "softslc serve did not start:"
   cat "$work/out" "$work/log"
   return 1
+}
+
+stop_serve_and_replay() {
+  local softslc="$1" work="$2" status="$3"
+  kill -INT "$server"
+  wait "$server"
+  tail -1 "$work/out"
+  if [ "$status" -ne 0 ]; then echo "== server log"; cat "$work/log"; return "$status"; fi
+  "$softslc" replay "$work/journal" || { echo "== journal"; cat "$work/journal"; return 1; }
 }

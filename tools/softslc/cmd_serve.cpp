@@ -1,9 +1,9 @@
-// `softslc serve PROGRAM`: runs the program paced to the wall clock and answers EtherNet/IP
-// (PCCC) clients; `softslc replay JOURNAL`: replays a serve session's journal and checks that
+// `softslc serve PROGRAM`: runs the program paced to the wall clock, answers EtherNet/IP
+// (PCCC) clients and serves the online view (a web page, server/web.h); `softslc replay JOURNAL`: replays a serve session's journal and checks that
 // the data table went through the same states.
 //
-// The server, its pacing timer, the signal handler and the console reader all run on one
-// io_context in this thread (server/server.h says why). The console takes one command a line:
+// The server, its pacing timer, the online view, the signal handler and the console reader all
+// run on one io_context in this thread (server/server.h says why). The console takes one command a line:
 // `step [N]` runs N scans (paused or not), `pause`, `resume`, `quit`; with --paused it is how a
 // session is single-stepped.
 #include "tools/softslc/cmd_serve.h"
@@ -13,10 +13,12 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
 #include "server/server.h"
+#include "server/web.h"
 #include "tools/softslc/commands.h"
 
 namespace softslc::cli {
@@ -46,10 +48,28 @@ CLI::App* add_serve_command(CLI::App& app, ServeOptions& o) {
                   "the channel's Modbus data files: coils,contacts,input registers,holding registers, each a B or N "
                   "file (default B3,B3,N7,N7)")
       ->type_name("C,D,I,H");
+  auto* http = cmd->add_option("--http", o.http,
+                               "serve the online view (a web page: live ladder, data tables, forces) on PORT, on the "
+                               "--listen address (default 8044; 0 picks a free port; off: none)")
+                   ->type_name("PORT|off");
+  cmd->callback([&o, http] { o.http_given = http->count() > 0; });
   return cmd;
 }
 
 namespace {
+
+// "off", or a port 0-65535.
+std::optional<int> parse_http(const std::string& text) {
+  if (text == "off") return -1;
+  if (text.empty() || text.size() > 5) return std::nullopt;
+  int n = 0;
+  for (char ch : text) {
+    if (!std::isdigit(static_cast<unsigned char>(ch))) return std::nullopt;
+    n = n * 10 + (ch - '0');
+  }
+  if (n > 65535) return std::nullopt;
+  return n;
+}
 
 // "B3,B3,N7,N7" (or "3,3,7,7"): the four file numbers of a Modbus map.
 std::optional<modbus::Map> parse_modbus_map(const std::string& text) {
@@ -74,13 +94,13 @@ std::optional<modbus::Map> parse_modbus_map(const std::string& text) {
 // Reads console commands from standard input on the io_context.
 class Console : public std::enable_shared_from_this<Console> {
  public:
-  Console(asio::io_context& io, serve::LiveController& live, serve::Server& server)
-      : io_(io), in_(io, ::dup(STDIN_FILENO)), live_(live), server_(server) {}
+  Console(asio::io_context& io, serve::LiveController& live, serve::Server& server, std::function<void()> on_quit)
+      : io_(io), in_(io, ::dup(STDIN_FILENO)), live_(live), server_(server), on_quit_(std::move(on_quit)) {}
   void start() { read(); }
 
  private:
   void read() {
-    asio::async_read_until(in_, buffer_, '\n', [self = shared_from_this()](const std::error_code& ec, std::size_t) {
+    asio::async_read_until(in_, buffer_, '\n', [self = shared_from_this()](const boost::system::error_code& ec, std::size_t) {
       if (ec) return;  // end of input: the server goes on until a signal
       std::istream is(&self->buffer_);
       std::string line;
@@ -107,6 +127,7 @@ class Console : public std::enable_shared_from_this<Console> {
       server_.restart_pacing();
       std::cout << "running" << std::endl;
     } else if (word == "quit") {
+      if (on_quit_) on_quit_();
       server_.stop();
       io_.stop();
     } else if (!word.empty()) {
@@ -119,6 +140,7 @@ class Console : public std::enable_shared_from_this<Console> {
   asio::streambuf buffer_{4096};
   serve::LiveController& live_;
   serve::Server& server_;
+  std::function<void()> on_quit_;
 };
 
 }  // namespace
@@ -157,6 +179,11 @@ int run_serve(const ServeOptions& o) {
     so.modbus_port = static_cast<std::uint16_t>(o.modbus_port);
     so.modbus_map = *map;
   }
+  const auto http_port = parse_http(o.http);
+  if (!http_port) {
+    std::cerr << "softslc serve: --http " << o.http << ": expected a port (0-65535) or off\n";
+    return kUsage;
+  }
   so.listen = o.listen;
   so.port = static_cast<std::uint16_t>(o.port);
   so.max_connections = static_cast<std::size_t>(o.max_connections);
@@ -176,17 +203,43 @@ int run_serve(const ServeOptions& o) {
               << so.modbus_map.coils << ", contacts " << so.modbus_map.contacts << ", input registers "
               << so.modbus_map.input_registers << ", holding registers " << so.modbus_map.holding_registers << ")"
               << std::endl;
+  std::optional<serve::WebView> web;
+  if (*http_port >= 0) {
+    serve::WebOptions wo;
+    wo.listen = o.listen;
+    wo.port = static_cast<std::uint16_t>(*http_port);
+    web.emplace(io, *live, server, wo);
+    try {
+      web->start();
+      std::cout << "softslc serve: online view on http://" << (o.listen.find(':') != std::string::npos ? "[" + o.listen + "]" : o.listen)
+                << ":" << web->port() << "/" << std::endl;
+    } catch (const std::exception& e) {
+      // The default port taken (another serve running) does not stop the EtherNet/IP server; a
+      // port asked for does.
+      std::cerr << "softslc serve: " << (o.http_given ? "" : "warning: ") << "cannot serve the online view on "
+                << o.listen << ":" << *http_port << ": " << e.what() << (o.http_given ? "" : " (--http PORT picks another)")
+                << "\n";
+      if (o.http_given) {
+        server.stop();
+        return kInputError;
+      }
+      web.reset();
+    }
+  }
   if (o.listen != "127.0.0.1" && o.listen != "::1")
     std::cout << "softslc serve: warning: listening on " << o.listen
               << ", reachable from other machines; PCCC has no authentication" << std::endl;
 
   asio::signal_set signals(io, SIGINT, SIGTERM);
-  signals.async_wait([&](const std::error_code& ec, int) {
+  signals.async_wait([&](const boost::system::error_code& ec, int) {
     if (ec) return;
+    if (web) web->stop();
     server.stop();
     io.stop();
   });
-  auto console = std::make_shared<Console>(io, *live, server);
+  auto console = std::make_shared<Console>(io, *live, server, [&web] {
+    if (web) web->stop();
+  });
   console->start();
   io.run();
   live->finish();

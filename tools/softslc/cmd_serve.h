@@ -25,6 +25,8 @@ struct ServeOptions {
   bool verbose = false;
   int modbus_port = -1;        // -1: no Modbus TCP
   std::string modbus_map = "B3,B3,N7,N7";  // coil, contact, input register, holding register files
+  std::string http = "8044";   // the online view's port; "off": none (server/web.h)
+  bool http_given = false;     // --http named: a port that cannot be bound is an error, not a warning
 };
 CLI::App* add_serve_command(CLI::App& app, ServeOptions& o);
 int run_serve(const ServeOptions& o);

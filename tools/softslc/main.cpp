@@ -9,12 +9,15 @@
 #include <spdlog/sinks/stdout_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "cmd_plot.h"
 #include "cmd_render.h"
 #include "cmd_serve.h"
 #include "commands.h"
 #include "tools/testrunner/test_command.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_main(int argc, char** argv) {
   using namespace softslc::cli;
   CLI::App app{"softslc — run, check and test Allen-Bradley SLC 500 ladder programs without the hardware"};
   app.set_version_flag("--version", std::string("softslc ") + SOFTSLC_VERSION);
@@ -105,6 +108,8 @@ int main(int argc, char** argv) {
 
   RenderOptions render;
   auto* render_cmd = add_render_command(app, render);
+  PlotOptions plot;
+  auto* plot_cmd = add_plot_command(app, plot);
 
   auto* instructions_cmd =
       app.add_subcommand("instructions", "List the instruction table: operands in text order, kinds, ranges");
@@ -140,6 +145,7 @@ int main(int argc, char** argv) {
     if (*run_cmd) return run_run(run);
     if (*disasm_cmd) return run_disasm(disasm);
     if (*render_cmd) return run_render(render);
+    if (*plot_cmd) return run_plot(plot);
     if (*serve_cmd) return run_serve(serve);
     if (*replay_cmd) return run_replay(replay);
   } catch (const std::exception& e) {
@@ -147,4 +153,19 @@ int main(int argc, char** argv) {
     return kInputError;
   }
   return kUsage;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // run_main() turns every error of a command into a message and an exit status; this catches
+  // what could still escape the command-line setup itself, so main never ends in std::terminate.
+  try {
+    return run_main(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "softslc: internal error (please report it): " << e.what() << "\n";
+  } catch (...) {
+    std::cerr << "softslc: internal error (please report it)\n";
+  }
+  return 1;
 }

@@ -184,7 +184,8 @@ bool parse_signal_list(const Program& program, const std::string& list, std::vec
       std::string why;
       a = parse_address(name, &why);
       if (!a) {
-        error = "'" + name + "' is neither an address nor a symbol of the program (" + why + ")";
+        error = "'" + name;
+        error += "' is neither an address nor a symbol of the program (" + why + ")";
         return false;
       }
     }
@@ -304,10 +305,13 @@ std::string write_vcd(const TraceRecorder& trace, const std::string& title, cons
   return out;
 }
 
-std::string write_timing_svg(const TraceRecorder& trace, const std::string& title) {
+namespace {
+
+// The diagram from signals and their changes: a recorder's, or a VCD's read back.
+std::string timing_svg(const std::vector<Signal>& sigs, const std::vector<std::vector<Change>>& changes,
+                       std::int64_t end_us, bool truncated, const std::string& title) {
   constexpr int kLabelW = 200, kPlotW = 900, kRowH = 36, kTop = 48, kWave = 20;
-  const auto& sigs = trace.signals();
-  const std::int64_t span = std::max<std::int64_t>(trace.end_us(), 1);
+  const std::int64_t span = std::max<std::int64_t>(end_us, 1);
   const int height = kTop + static_cast<int>(sigs.size()) * kRowH + 40;
   const int width = kLabelW + kPlotW + 20;
   auto x_of = [&](std::int64_t t) { return kLabelW + static_cast<int>((t * kPlotW) / span); };
@@ -329,11 +333,11 @@ std::string write_timing_svg(const TraceRecorder& trace, const std::string& titl
   }
   for (std::size_t i = 0; i < sigs.size(); ++i) {
     const auto& s = sigs[i];
-    const auto& ch = trace.changes()[i];
+    const auto& ch = changes[i];
     const int top = kTop + static_cast<int>(i) * kRowH;
     const int hi = top + 6, lo = hi + kWave, mid = (hi + lo) / 2;
     std::string label = s.name;
-    if (std::string addr = to_string(s.address); addr != s.name) label += " (" + addr + ")";
+    if (std::string addr = s.has_address ? to_string(s.address) : s.name; addr != s.name) label += " (" + addr + ")";
     o += "<g class=\"signal\" data-name=\"" + xml_escape(s.name) + "\">\n";
     o += "<text x=\"8\" y=\"" + std::to_string(mid + 4) + "\">" + xml_escape(label) + "</text>\n";
     if (s.kind == Signal::Kind::Bit) {
@@ -365,11 +369,21 @@ std::string write_timing_svg(const TraceRecorder& trace, const std::string& titl
     }
     o += "</g>\n";
   }
-  if (trace.truncated())
+  if (truncated)
     o += "<text x=\"8\" y=\"" + std::to_string(height - 6) + "\" fill=\"#a00\">trace limit reached at " +
-         xml_escape(time_label(trace.end_us(), span)) + ": later changes were not recorded</text>\n";
+         xml_escape(time_label(end_us, span)) + ": later changes were not recorded</text>\n";
   o += "</svg>\n";
   return o;
+}
+
+}  // namespace
+
+std::string write_timing_svg(const TraceRecorder& trace, const std::string& title) {
+  return timing_svg(trace.signals(), trace.changes(), trace.end_us(), trace.truncated(), title);
+}
+
+std::string write_timing_svg(const TraceData& trace, const std::string& title) {
+  return timing_svg(trace.signals, trace.changes, trace.end_us, false, title);
 }
 
 std::string save_trace(const TraceRecorder& trace, const std::string& path, const std::string& title,
@@ -393,7 +407,7 @@ bool parse_size(const std::string& text, std::size_t& out) {
     if (i + 1 != text.size()) return false;
     switch (text[i]) {
       case 'k': case 'K': mult = 1024; break;
-      case 'M': mult = 1024 * 1024; break;
+      case 'M': mult = 1024ULL * 1024; break;
       case 'G': mult = 1024ULL * 1024 * 1024; break;
       default: return false;
     }

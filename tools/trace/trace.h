@@ -35,6 +35,7 @@ struct Signal {
   std::string name;  // the symbol when the address has one, else the canonical address
   Address address;
   Kind kind = Kind::Bit;
+  bool has_address = true;  // false for a signal read back from a VCD by name only (read_vcd)
 };
 
 // Resolves a comma-separated list of addresses or symbols ("START_PB,MOTOR,T4:0.ACC") into
@@ -105,6 +106,23 @@ std::string write_vcd(const TraceRecorder& trace, const std::string& title, cons
                       const std::string& version);
 // An SVG timing diagram of the same signals (one row per signal, the scan marker omitted).
 std::string write_timing_svg(const TraceRecorder& trace, const std::string& title);
+
+// A trace read back from a VCD file softslc wrote (`softslc plot`): the same signals and changes
+// a TraceRecorder holds, without the scan marker.
+struct TraceData {
+  std::vector<Signal> signals;
+  std::vector<std::vector<Change>> changes;
+  std::int64_t end_us = 0;
+};
+// The timing diagram of a trace read back.
+std::string write_timing_svg(const TraceData& trace, const std::string& title);
+// Reads a VCD in the form write_vcd() writes (timescale 1us; wire 1, integer 16/32 and real 64
+// variables in one scope; the `scan` marker is dropped); `only`, when not empty, keeps just the
+// signals of those names, in that order. Returns an empty string or the first problem as
+// "N: error: what" (N the line; the caller puts the file name in front). Bounded by the text: at most kMaxVcdSignals variables; the caller limits the
+// file's size.
+inline constexpr std::size_t kMaxVcdSignals = 10000;
+std::string read_vcd(std::string_view text, const std::vector<std::string>& only, TraceData& out);
 
 // Writes the trace to `path` atomically, as SVG when the name ends in .svg, else VCD. Returns an
 // empty string or the reason it failed.

@@ -14,9 +14,4 @@ source "$(dirname "${BASH_SOURCE[0]}")/../../../tools/lib/serve-start.sh"
 start_serve "$softslc" "$work" "$program" ${bench:+--bench "$bench"} --journal "$work/journal" || exit 1
 head -1 "$work/out"
 NODE_PATH="$dir/node_modules" node "$script" "$port"
-status=$?
-kill -INT "$server"
-wait "$server"
-tail -1 "$work/out"
-if [ $status -ne 0 ]; then echo "== server log"; cat "$work/log"; exit $status; fi
-"$softslc" replay "$work/journal" || { echo "== journal"; cat "$work/journal"; exit 1; }
+stop_serve_and_replay "$softslc" "$work" $?

@@ -77,6 +77,29 @@ void drop(libolecf_error_t* e) {
 
 class Container {
  public:
+  // libolecf sizes its allocation tables from the header's sector counts before it reads a
+  // sector: a damaged header asking for 16 million MSAT sectors made it allocate and clear
+  // hundreds of MB for a 140 KB file (found by rss_fuzz). Every sector a count names must be in
+  // the file, so a count larger than the file's sectors is refused here, before libolecf.
+  static void check_sector_counts(const std::string& padded, std::size_t range) {
+    auto u16 = [&](std::size_t at) {
+      return static_cast<std::uint32_t>(static_cast<std::uint8_t>(padded[at]) |
+                                        static_cast<std::uint8_t>(padded[at + 1]) << 8);
+    };
+    auto u32 = [&](std::size_t at) { return u16(at) | u16(at + 2) << 16; };
+    const std::uint32_t shift = u16(0x1E);  // sector size 2^shift: 512 (v3) or 4096 (v4)
+    if (shift != 9 && shift != 12) throw DecodeError("not an RSLogix project file: the OLE2 container is damaged");
+    const std::uint64_t sectors = (range + (std::uint64_t{1} << shift) - 1) >> shift;
+    for (const auto& [at, what] : {std::pair<std::size_t, const char*>{0x2C, "allocation-table"},
+                                   {0x40, "short-allocation-table"},
+                                   {0x48, "master-allocation-table"}}) {
+      if (u32(at) > sectors)
+        throw DecodeError("not an RSLogix project file: the OLE2 container is damaged (its header names " +
+                          std::to_string(u32(at)) + " " + what + " sectors in a file of " + std::to_string(sectors) +
+                          ")");
+    }
+  }
+
   explicit Container(std::string_view bytes) : bytes_(bytes) {
     // Debian's libbfio (20170123) copies a whole sector from a memory range even when the range
     // ends inside it (found by fuzzing truncated files under ASan). An OLE2 file is a whole
@@ -91,6 +114,7 @@ class Container {
     io_.reset(h);
     auto* start = reinterpret_cast<std::uint8_t*>(padded_.data());
     if (libbfio_memory_range_set(io_.get(), start, range, nullptr) != 1) throw DecodeError("out of memory");
+    check_sector_counts(padded_, range);
     libolecf_file_t* f = nullptr;
     if (libolecf_file_initialize(&f, nullptr) != 1) throw DecodeError("out of memory");
     libolecf_error_t* err = nullptr;

@@ -240,6 +240,23 @@ TEST(RssReader, DamagedFilesEndInCleanErrors) {
   EXPECT_NE(empty_ole.render_diagnostics().find("not an RSLogix project file"), std::string::npos) << empty_ole.render_diagnostics();
 }
 
+// A header that counts more allocation-table sectors than the file holds is refused before
+// libolecf sizes its tables from it: rss_fuzz found 16,777,215 master-allocation-table sectors in
+// a 140 KB file making libolecf allocate and clear hundreds of MB (over 1 s under ASan).
+TEST(RssReader, HeaderSectorCountsBeyondTheFileAreRefused) {
+  fs::path f = kFixtures / "drbitboy-PLC_2s_lamp_flash" / "single_timer.RSS";
+  if (!fs::exists(f)) GTEST_SKIP() << "no fixture " << f;
+  const std::string good = slurp(f);
+  ASSERT_TRUE(softslc::load_program_bytes(good, "t.RSS").ok());
+  for (std::size_t at : {std::size_t{0x2C}, std::size_t{0x40}, std::size_t{0x48}}) {
+    std::string bad = good;
+    bad.replace(at, 4, std::string("\xff\xff\xff\x00", 4));
+    auto r = softslc::load_program_bytes(bad, "t.RSS");
+    ASSERT_FALSE(r.ok()) << std::hex << at;
+    EXPECT_NE(r.render_diagnostics().find("its header names 16777215 "), std::string::npos) << r.render_diagnostics();
+  }
+}
+
 // A known RSLogix mnemonic softslc lacks is named as not supported; a typo stays unknown.
 TEST(RssReader, InstructionsSoftslcLacksAreNamedNotSupported) {
   auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 HSL N7:0 EOR\n", "t.slc");

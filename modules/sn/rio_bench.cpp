@@ -201,7 +201,9 @@ std::shared_ptr<const RioScannerBench> interpret_rio_bench(const BenchNode& node
               std::to_string(a.rack) + " group " + std::to_string(a.group) + ")");
     for (const auto& mn : an.children)
       if (auto m = read_module(mn, a, diags)) a.modules.push_back(std::move(*m));
-    // Two modules of the same direction must not share image bits in one chassis.
+    // Two modules of the same direction must not share image bits in one chassis. Each module is
+    // reported once, against the first module it clashes with: a pair each made n copies of one
+    // module line n^2/2 errors (10,000 copies: 9.8 GB, found by tools/mutate.py).
     for (std::size_t i = 0; i < a.modules.size(); ++i)
       for (std::size_t j = 0; j < i; ++j) {
         const auto& x = a.modules[i];
@@ -212,10 +214,12 @@ std::shared_ptr<const RioScannerBench> interpret_rio_bench(const BenchNode& node
         } else if (x.kind == y.kind) {
           for (int w = 0; w < 32; ++w) clash = clash || (module_mask(x, w) & module_mask(y, w));
         }
-        if (clash)
+        if (clash) {
           diags.error(x.pos.line, x.pos.column,
                       "module " + x.name + " uses the same image location as module " + y.name + " (line " +
                           std::to_string(y.pos.line) + ")");
+          break;
+        }
       }
     if (g && !r.failed()) {
       bool found = false;

@@ -209,6 +209,23 @@ TEST(BenchInterpret, ComplementaryPlacementRules) {
   EXPECT_NE(e.find("t.bench:8:5: error: module CO is opposite block-transfer module PBT"), std::string::npos) << e;
 }
 
+// tools/mutate.py: one RIO module line copied n times gave n^2/2 "same image location" errors
+// (10,000 copies: 9.8 GB; 20,000 killed by the OOM killer). Each copy is now one such error.
+TEST(BenchInterpret, CopiedModuleLinesGiveOneClashErrorEach) {
+  LoadResult lr = load_program(
+      "START 1747-L532\nSLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 5\n 0 1 1 1 1\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n",
+      "p.slc");
+  ASSERT_TRUE(lr.ok()) << lr.render_diagnostics();
+  std::string bench = "scanner RIO slot=1 {\n  adapter P rack=0 group=0 size=1/4 {\n";
+  for (int i = 0; i < 300; ++i) bench += "    module PBT kind=bt group=1\n";
+  bench += "  }\n}\n";
+  ModuleSetup s = load_module_setup_text(*lr.program, bench, "t.bench");
+  std::size_t clashes = 0;
+  for (const auto& d : s.bench_diagnostics.items())
+    if (d.message.find("uses the same image location") != std::string::npos) ++clashes;
+  EXPECT_EQ(clashes, 299u);  // every copy after the first, once
+}
+
 TEST(BenchDocs, TheCompleteExampleOfDocsBenchFormatLoads) {
   const std::string doc = test_read(std::string(SOFTSLC_SOURCE_DIR) + "/docs/bench-format.md");
   const auto start = doc.find("```\n", doc.find("## A complete example"));

@@ -83,6 +83,7 @@ enum class Requirement : std::uint8_t {
   MicroLogix1100Class,  // MicroLogix 1100, 1200, 1400, 1500 (ONS, two-operand OSR/OSF, CPW, ...)
   Slc502Up,          // SLC 5/02 and later modular processors (RM001 "SLC 5/02" column: SQR, SCL, ENC)
   Os302,             // SLC 5/03 OS302, 5/04 OS401, 5/05 (RM001 4-13: SCP, ABS, CPT, trig, logs, XPY)
+  SlcOs302,          // the same SLC processors, not the MicroLogix (RM001 7-15: RHC, TDF in their SLC form)
 };
 
 struct OperandSpec {

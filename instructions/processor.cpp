@@ -80,6 +80,7 @@ bool ProcessorModel::supports(Requirement r) const {
     // same condition as BTR/BTW. The MicroLogix 1000 has no floating point, so none of them.
     case Requirement::Os302:
       return (is_modular_503_or_later(family) && series >= 'C') || is_micrologix_1100_class();
+    case Requirement::SlcOs302: return is_modular_503_or_later(family) && series >= 'C';
   }
   return false;
 }
@@ -106,6 +107,12 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::Os302:
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
+    case Requirement::SlcOs302:
+      if (family == ProcessorFamily::MicroLogix)
+        return "is supported in its SLC 5/03-5/05 form only (1747-RM001 p. 7-15); the MicroLogix form "
+               "(1762/1763/1764/1766-RM001) is not supported by softslc yet; this program's processor is " + have;
+      return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
+             " (1747-RM001)";
   }
   return {};
 }
@@ -117,6 +124,7 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::DeviceNetMessage: return "SLC 5/03, 5/04, 5/05 OS Series C FRN 10 or later";
     case Requirement::Slc502Up: return "SLC 5/02, 5/03, 5/04, 5/05, MicroLogix";
     case Requirement::Os302: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05, MicroLogix 1100/1200/1400/1500";
+    case Requirement::SlcOs302: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05";
     case Requirement::SlcOneShot: return "SLC 500 processors, MicroLogix 1000";
     case Requirement::MicroLogix1100Class: return "MicroLogix 1100, 1200, 1400, 1500";
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 
 #include "instructions/module_catalog.h"
@@ -533,6 +534,49 @@ class Checker {
       jsr_targets_.emplace_back(static_cast<int>(in.operands[0].integer), in.operands[0].pos);
     if (in.opcode == Opcode::CPT && in.operands.size() == 2 && in.operands[1].kind == Operand::Kind::Expression)
       check_cpt(in);
+    if (in.opcode == Opcode::SWP && in.operands.size() == 2 && in.operands[0].is_address() &&
+        in.operands[1].kind == Operand::Kind::Integer)
+      check_swap(in);
+    if ((in.opcode == Opcode::RHC || in.opcode == Opcode::TDF) && in.operands.size() == s.operand_count)
+      check_clock_operands(in);
+  }
+
+  // RHC, TDF (1747-RM001G p. 7-17): "an integer address (Nx:x) or Float address (Fx:x)", and TDF's
+  // three "should be of the same data type". A time stamp is a word RHC wrote, never a constant.
+  void check_clock_operands(const Instruction& in) {
+    std::optional<FileType> first;
+    for (const Operand& op : in.operands) {
+      if (!op.is_address())
+        return error(op.pos, mnemonic_of(in) + " takes N or F words (1747-RM001 p. 7-17), not the constant " + op.spelling);
+      const FileType t = op.address.type;
+      if (t != FileType::Integer && t != FileType::Float)
+        return error(op.pos, mnemonic_of(in) + " takes N or F words (1747-RM001 p. 7-17), not " + op.spelling);
+      if (first && *first != t)
+        return error(op.pos, "TDF's start, stop and destination are all N words or all F words (1747-RM001 p. 7-17)");
+      first = t;
+    }
+  }
+
+  // SWP (1747-RM001G p. 4-28): "a bit, integer, ASCII, or string file"; in a string file at most
+  // 41 words, inside one element's data words (.1-.41: word 0 is the length, not text).
+  void check_swap(const Instruction& in) {
+    const Operand& src = in.operands[0];
+    const auto t = src.address.type;
+    if (t != FileType::Bit && t != FileType::Integer && t != FileType::Ascii && t != FileType::String)
+      return error(src.pos, "SWP swaps words of a B, N, A or ST file (1747-RM001 p. 4-28), not " +
+                                std::string(file_letter(t)) + std::to_string(src.address.file));
+    if (t != FileType::String) return;
+    if (src.address.indirect_word) return;  // known at run time only: the interpreter checks it
+    const std::int64_t len = in.operands[1].integer;
+    const int word = src.address.word;
+    if (word < 1)
+      return error(src.pos, "SWP on a string swaps its data words: name the first one, for example #ST" +
+                                std::to_string(src.address.file) + ":" + std::to_string(src.address.element) +
+                                ".1 (DATA[0]; word 0 is the length)");
+    if (word + len - 1 > 41)
+      error(in.operands[1].pos, "SWP of " + std::to_string(len) + " words from word " + std::to_string(word) +
+                                    " leaves the string element (41 data words; 1747-RM001 p. 4-28: length 1-41, "
+                                    "never across a string element boundary)");
   }
 
   // CPT: the expression parses, every operand is a word address or constant that could stand as

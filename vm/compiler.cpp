@@ -213,6 +213,8 @@ class Compiler {
       case Opcode::CPW:  // length counts words (MicroLogix), whatever either file's element size
         if (i <= 1) return (len(2) + wpe_of(type_of(i)) - 1) / wpe_of(type_of(i));
         return 1;
+      case Opcode::SWP:  // length counts words; a string element holds 41 of them
+        return i == 0 ? (len(1) + wpe_of(type_of(0)) - 1) / wpe_of(type_of(0)) : 1;
       case Opcode::FLL: return i == 1 ? len(2) : 1;
       case Opcode::BSL:
       case Opcode::BSR: return i == 0 ? (len(3) + 15) / 16 : 1;

@@ -99,7 +99,15 @@ std::optional<Location> DataTableLayout::locate(const Address& a, std::string* e
       return std::nullopt;
     }
     sub = a.word < 0 ? 0 : static_cast<std::uint32_t>(a.word);
-  } else if (a.word > 0 && a.type != FileType::String) {
+  } else if (a.type == FileType::String) {
+    // ST10:1.0 is the length word, .1-.41 the data words (RM001 p. 4-28 writes #ST10:1.1 for
+    // DATA[0]); without a word the address names the element, that is its length word.
+    if (a.word > 41) {
+      set_error(error, to_string(a) + ": ST elements have words 0-41 (0 the length, 1-41 the characters)");
+      return std::nullopt;
+    }
+    sub = a.word < 0 ? 0 : static_cast<std::uint32_t>(a.word);
+  } else if (a.word > 0) {
     set_error(error, to_string(a) + ": " + std::string(file_letter(a.type)) + " elements have no sub-elements");
     return std::nullopt;
   }

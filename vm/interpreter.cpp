@@ -155,9 +155,11 @@ bool Interpreter::resolve_common(const DynOperand& d, Ref& out, std::uint16_t& c
       return false;
     }
     int sub = 0;
-    if (is_structured(d.type)) {
+    if (is_structured(d.type) || d.type == FileType::String) {
+      // T/C/R words 0-2; ST words 0 (the length) to 41 (vm/data_table.cpp, the same rule).
+      const int last_word = d.type == FileType::String ? 41 : 2;
       sub = d.ptr_word >= 0 ? ptr(d.ptr_word) : std::max(d.word, 0);
-      if (sub < 0 || sub > 2) {
+      if (sub < 0 || sub > last_word) {
         message = to_string(d.address) + index_note() + ": sub-element " + std::to_string(sub) + " does not exist";
         return false;
       }
@@ -1313,6 +1315,63 @@ void Interpreter::copy_words(const std::uint32_t* o) {
   charge_words(Op::CPW, len);
 }
 
+// SWP (RM001 4-28): swap the two bytes of `length` consecutive words. The run stays inside the
+// source's file and, in a string file, inside one element's 41 data words (the manual: "cannot
+// cross a string element boundary"); `check` proves that for a direct address, so only an indexed
+// or indirect one can fault here, with the index fault a COP past its file gets.
+void Interpreter::swap_bytes(const std::uint32_t* o) {
+  const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[1]), 1));
+  Span s;
+  if (!file_span(o[0], 0, s, "SWP source")) return;
+  const int file = s.mfile ? -1 : prog_.layout->file_containing(s.base);
+  if (file < 0) return raise(fault::kIndexOutOfRange, "SWP source is not in a data file");
+  const FileLayout& f = prog_.layout->files[static_cast<std::size_t>(file)];
+  const std::uint32_t in_element = (s.base - f.base) % f.words_per_element;
+  const bool string_file = f.type == FileType::String;
+  if (s.base + len > f.end() || (string_file && (in_element == 0 || in_element + len > f.words_per_element))) {
+    raise(fault::kIndexOutOfRange, "SWP of " + std::to_string(len) + " word(s) from " + prog_.layout->describe(s.base) +
+                                       (string_file ? " leaves the data words of its string element"
+                                                    : " runs past the end of its file"));
+    return;
+  }
+  for (std::uint32_t i = 0; i < len; ++i) {
+    const std::uint16_t v = w_[s.base + i];
+    w_[s.base + i] = static_cast<std::uint16_t>((v << 8) | (v >> 8));
+  }
+  charge_words(Op::SWP, len);
+}
+
+// RHC and TDF (RM001G 7-15 .. 7-17). The free-running clock is 20 bits of 10 us ticks since
+// power-up, which here is virtual time since the controller started, so a program timing an event
+// with it gets the same answer on every run. An N word holds the clock's low 16 bits (655.35 ms);
+// an F word the whole count (10.48575 s): TDF takes the difference modulo the width the operands
+// hold, so one wrap between the two stamps is harmless, as on the processor. A float stamp that
+// is not a whole count 0-000FFFFFh cannot have come from RHC: V and S:5/0, destination unchanged
+// (docs/semantics.md, decision).
+void Interpreter::free_running_clock(Op op, const std::uint32_t* o, Nanoseconds now_in_scan) {
+  constexpr std::int64_t kTicks = std::int64_t{1} << 20;  // the clock wraps from 000FFFFFh to 0
+  constexpr Nanoseconds kTick = 10'000;                    // 10 us
+  const std::uint32_t dest = op == Op::RHC ? o[0] : o[2];
+  const bool to_float = dest_type(dest) == ValueType::Float32;
+  std::int64_t ticks = 0;
+  if (op == Op::RHC) {
+    ticks = static_cast<std::int64_t>((scan_start_ + now_in_scan) / kTick) % kTicks;
+  } else if (to_float) {
+    const double start = rd_flt(o[0]), stop = rd_flt(o[1]);
+    auto stamp = [&](double v) { return std::isfinite(v) && v >= 0 && v < kTicks && v == std::floor(v); };
+    if (!stamp(start) || !stamp(stop)) return set_flags(false, true, false, false);
+    ticks = ((static_cast<std::int64_t>(stop) - static_cast<std::int64_t>(start)) % kTicks + kTicks) % kTicks;
+  } else {
+    ticks = static_cast<std::uint16_t>(rd_word(o[1]) - rd_word(o[0]));
+  }
+  if (to_float) {
+    bool overflow = false;  // a 20-bit count is exact in a float
+    st_flt(dest, static_cast<float>(ticks), overflow);
+  } else {
+    st_bits(dest, static_cast<std::int16_t>(static_cast<std::uint16_t>(ticks & 0xFFFF)));
+  }
+}
+
 void Interpreter::fill_file(const std::uint32_t* o, std::uint32_t h) {
   const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
   Span dst;
@@ -1773,6 +1832,15 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
         break;
       case Op::CPW:
         if (rung) copy_words(o);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
+      case Op::RHC:
+      case Op::TDF:
+        if (rung) free_running_clock(op, o, elapsed);
+        break;
+      case Op::SWP:
+        if (rung) swap_bytes(o);
         if (faulted_) goto fault;
         elapsed += std::exchange(extra_ns_, 0);
         break;

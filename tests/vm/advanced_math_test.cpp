@@ -242,6 +242,151 @@ TEST(DataHandling, EncFindsTheLowestSetBit) {
   EXPECT_EQ(arith_flags(plc), Z);
 }
 
+// ---- SWP (RM 4-28) -------------------------------------------------------------------------------------------
+
+TEST(DataHandling, AStringElementsWordsAreAddressable) {
+  // ST9:0.0 is the length, .1-.41 two characters each, the first in the high byte. Before, any
+  // word of an ST element silently named word 0 (the length): MOV ST9:0.1 read 3, not "ab".
+  Plc plc("SOR MOV ST9:0.1 N7:0 MOV ST9:0.2 N7:1 MOV ST9:0.0 N7:2 EOR\nDATA ST9:0\n% ST9:0 % \"abc\"\n");
+  plc.run_scans(1);
+  EXPECT_EQ(plc.i("N7:0"), 0x6162);
+  EXPECT_EQ(plc.i("N7:1"), 0x6300);
+  EXPECT_EQ(plc.i("N7:2"), 3);
+  std::string errors;
+  EXPECT_EQ(try_build(program_text("SOR MOV ST9:0.42 N7:0 EOR\nDATA ST9:0\n% ST9:0 % \"abc\"\n"), errors), nullptr);
+  EXPECT_NE(errors.find("ST elements have words 0-41"), std::string::npos) << errors;
+}
+
+TEST(DataHandling, SwpReproducesTheManualsStringExample) {
+  // RM 4-28: "Before: ST10:1 = abcdefghijklmnopqrstuvwxyz", SWP Source #ST10:1.1 Length 13,
+  // "After ST10:1 = badcfehgjilknmporqtsvuxwzy". Two characters per word, the first in the high
+  // byte: swapping every byte pair of the 26 characters is swapping the bytes of all 13 words.
+  Plc plc("SOR SWP #ST10:1.1 13 EOR\nDATA ST10:0\n% ST10:0 % \"\"\n% ST10:1 % \"abcdefghijklmnopqrstuvwxyz\"\n");
+  plc.run_scans(1);
+  const std::string after = "badcfehgjilknmporqtsvuxwzy";
+  EXPECT_EQ(plc.i("ST10:1.0"), 26) << "the length word is not swapped";
+  for (int w = 0; w < 13; ++w) {
+    const int expected = (static_cast<unsigned char>(after[2 * w]) << 8) | static_cast<unsigned char>(after[2 * w + 1]);
+    EXPECT_EQ(static_cast<std::uint16_t>(plc.i("ST10:1." + std::to_string(w + 1))), expected) << "word " << w + 1;
+  }
+}
+
+TEST(DataHandling, SwpSwapsLengthWordsOfAnIntegerFile) {
+  // RM 4-28: "Length refers to the number of words to be swapped"; the words after them are left.
+  Plc plc("SOR SWP #N7:1 2 EOR\nDATA N7:0\n% N7:0 % 0 0 0 0\n");
+  plc.set("N7:0", 0x1234);
+  plc.set("N7:1", 0x1234);
+  plc.set("N7:2", static_cast<std::int16_t>(0xABCD));
+  plc.set("N7:3", 0x0102);
+  plc.run_scans(1);
+  EXPECT_EQ(plc.i("N7:0"), 0x1234);
+  EXPECT_EQ(plc.i("N7:1"), 0x3412);
+  EXPECT_EQ(static_cast<std::uint16_t>(plc.i("N7:2")), 0xCDAB);
+  EXPECT_EQ(plc.i("N7:3"), 0x0102);
+  plc->scan(1);
+  EXPECT_EQ(plc.i("N7:1"), 0x1234) << "a rung left true swaps back every scan";
+}
+
+TEST(DataHandling, SwpIndexedPastTheStringElementFaults) {
+  // An indirect start word is known only at run time: .40 + 5 words leaves the 41 data words of
+  // the element ("cannot cross a string element boundary"), which faults as a COP past its file.
+  Plc plc("SOR SWP #ST10:1.[N7:0] 5 EOR\nDATA ST10:0\n% ST10:0 % \"\"\n% ST10:1 % \"x\"\n");
+  plc.set("N7:0", 37);
+  plc.run_scans(1);
+  ASSERT_FALSE(plc->fault().has_value()) << "words 37-41 stay inside the element: " << plc->fault()->message;
+  plc.set("N7:0", 40);
+  plc->scan(1);
+  ASSERT_TRUE(plc->fault().has_value());
+  EXPECT_NE(plc->fault()->message.find("leaves the data words of its string element"), std::string::npos)
+      << plc->fault()->message;
+}
+
+// ---- RHC, TDF (RM 7-15 .. 7-17) -------------------------------------------------------------------------------
+
+TEST(FreeRunningClock, RhcCountsTenMicrosecondTicksOfVirtualTime) {
+  // RM 7-15: "a 20-bit integer free running clock. This 20-bit value increments every 10 us";
+  // softslc's runs on virtual time since start-up, so a stamp lies between the scan's start and end.
+  Plc plc("SOR RHC F8:0 RHC N7:0 EOR");
+  plc.run();
+  for (int k = 0; k < 5; ++k) {
+    const VirtualTime before = plc->now();
+    plc->scan(1);
+    const VirtualTime after = plc->now();
+    const auto ticks = static_cast<std::int64_t>(plc.f("F8:0"));
+    EXPECT_GE(ticks, before / 10'000) << "scan " << k;
+    EXPECT_LE(ticks, after / 10'000) << "scan " << k;
+    // "If the destination is an integer address, the RHC moves the first 16 least significant bits".
+    const auto low16 = static_cast<std::uint16_t>(plc.i("N7:0"));
+    EXPECT_LE(static_cast<std::uint16_t>(low16 - static_cast<std::uint16_t>(ticks)), 1) << "the next instruction, within one tick";
+  }
+}
+
+TEST(FreeRunningClock, TdfOfConsecutiveStampsIsTheScanPeriod) {
+  // The manual's use: stamp an event twice with RHC, TDF the two. Here the event is rung 0 of two
+  // consecutive scans, so the difference is the scan period, measured independently by now().
+  Plc plc("SOR RHC N7:73 TDF N7:72 N7:73 N7:74 MOV N7:73 N7:72 EOR\nSOR RHC F8:1 TDF F8:0 F8:1 F8:2 MOV F8:1 F8:0 EOR");
+  plc.run();
+  plc->scan(1);
+  VirtualTime last = plc->now();
+  for (int k = 0; k < 5; ++k) {
+    plc->scan(1);
+    const VirtualTime period = plc->now() - last;
+    last = plc->now();
+    EXPECT_NEAR(static_cast<double>(plc.i("N7:74")), static_cast<double>(period) / 10'000, 1.0) << "scan " << k;
+    EXPECT_NEAR(plc.f("F8:2"), static_cast<double>(period) / 10'000, 1.0) << "scan " << k;
+  }
+}
+
+TEST(FreeRunningClock, TheClockWrapsAt20Bits) {
+  // RM 7-15: "Once the free running clock reaches 0x000FFFFF (10.48575 seconds), it wraps around to
+  // 0". Run 12 s of virtual time: every stamp stays below 2^20 and one scan's stamp is below the last.
+  Plc plc("SOR RHC F8:0 EOR");
+  plc.run();
+  double highest = 0;
+  bool wrapped = false;
+  double previous = -1;
+  while (plc->now() < 12'000'000'000LL) {
+    plc->scan(1);
+    const double v = plc.f("F8:0");
+    highest = std::max(highest, v);
+    if (v < previous) wrapped = true;
+    previous = v;
+  }
+  EXPECT_LE(highest, 1048575.0);
+  EXPECT_GT(highest, 1048575.0 - 5000) << "it reached the top before wrapping";
+  EXPECT_TRUE(wrapped);
+}
+
+TEST(FreeRunningClock, TdfTakesTheDifferenceModuloTheWidthItsOperandsHold) {
+  // RM 7-16: integer stamps are exact within 65536 ticks of each other (one wrap of the low 16 bits
+  // is harmless), float stamps within 1048575.
+  Plc plc(with_trap_sample("SOR TDF N7:72 N7:73 N7:74 TDF N7:75 N7:76 N7:77 TDF F8:0 F8:1 F8:2 EOR"));
+  plc.set("N7:72", static_cast<std::int16_t>(65530 - 65536));
+  plc.set("N7:73", 4);
+  plc.set("N7:75", 0);
+  plc.set("N7:76", static_cast<std::int16_t>(40000 - 65536));  // 40,000 ticks = 400 ms
+  plc.setf("F8:0", 1048570);
+  plc.setf("F8:1", 5);
+  plc.run_scans(1);
+  EXPECT_EQ(plc.i("N7:74"), 10) << "65530 -> 4 across the 16-bit wrap";
+  EXPECT_EQ(static_cast<std::uint16_t>(plc.i("N7:77")), 40000) << "a difference above 327.67 ms fills the word's 16 bits";
+  EXPECT_EQ(plc.f("F8:2"), 11.0) << "1048570 -> 5 across the 20-bit wrap";
+  EXPECT_FALSE(plc.b("B3:1/0"));
+}
+
+TEST(FreeRunningClock, AFloatStampRhcCannotHaveWrittenSetsOverflow) {
+  // Decision (docs/semantics.md): a float stamp that is not a whole count 0-000FFFFFh did not come
+  // from RHC; TDF leaves the destination and sets V (and so S:5/0).
+  Plc plc(with_trap_sample("SOR TDF F8:0 F8:1 F8:2 EOR"));
+  plc.setf("F8:0", 1.5);
+  plc.setf("F8:1", 10);
+  plc.setf("F8:2", 77);
+  plc.run_scans(1);
+  EXPECT_EQ(plc.f("F8:2"), 77.0);
+  EXPECT_TRUE(arith_flags(plc) & V);
+  EXPECT_TRUE(plc.b("B3:1/0"));
+}
+
 // ---- check: integer-only operands and processor availability ----------------------------------------------
 
 std::string check_errors(std::string_view body, std::string_view header = kHeader) {
@@ -272,6 +417,33 @@ TEST(InstructionRules, AnInstructionTheProcessorLacksNamesIt) {
   const std::string e3 = check_errors("SOR ABS N7:0 N7:1 EOR", "START 1747-L532 SERIES B\n");
   EXPECT_NE(e3.find("ABS is not available on the SLC 5/03"), std::string::npos) << e3;
   EXPECT_EQ(check_errors("SOR SQR N7:0 N7:1 EOR\nSOR DDV 3 N7:2 EOR\nSOR TOD N7:0 N7:3 EOR", slc502), "");
+}
+
+TEST(InstructionRules, RhcAndTdfOperandRules) {
+  // RM 7-17: "an integer address (Nx:x) or Float address (Fx:x)"; TDF's parameters "should be of the
+  // same data type"; SLC 5/03, 5/04 and 5/05 columns.
+  EXPECT_EQ(check_errors("SOR RHC N7:0 RHC F8:0 TDF N7:72 N7:73 N7:74 TDF F8:1 F8:2 F8:3 EOR"), "");
+  EXPECT_NE(check_errors("SOR RHC B3:0 EOR").find("RHC takes N or F words"), std::string::npos);
+  EXPECT_NE(check_errors("SOR TDF 5 N7:1 N7:2 EOR").find("not the constant 5"), std::string::npos);
+  EXPECT_NE(check_errors("SOR TDF N7:0 F8:1 N7:2 EOR").find("all N words or all F words"), std::string::npos);
+  EXPECT_NE(check_errors("SOR RHC N7:0 EOR", "START 1747-L524\n").find("RHC is not available on the SLC 5/02"),
+            std::string::npos);
+  const std::string ml = check_errors("SOR RHC N7:0 EOR", "START Bul.1766\n");
+  EXPECT_NE(ml.find("MicroLogix form"), std::string::npos) << ml;
+}
+
+TEST(InstructionRules, SwpOperandRules) {
+  // RM 4-28: "a bit, integer, ASCII, or string file"; "For the string file type, the length range is
+  // 1 to 41"; SLC 5/03 (OS302), SLC 5/04 (OS401) and SLC 5/05 only.
+  EXPECT_EQ(check_errors("SOR SWP #B3:0 128 EOR\nSOR SWP #N7:0 1 EOR\nSOR SWP #ST10:1.1 41 EOR"), "");
+  EXPECT_NE(check_errors("SOR SWP #F8:0 2 EOR").find("B, N, A or ST file"), std::string::npos);
+  EXPECT_NE(check_errors("SOR SWP #T4:0 2 EOR").find("B, N, A or ST file"), std::string::npos);
+  EXPECT_NE(check_errors("SOR SWP #N7:0 129 EOR").find("out of range 1-128"), std::string::npos);
+  EXPECT_NE(check_errors("SOR SWP #ST10:1.2 41 EOR").find("leaves the string element"), std::string::npos);
+  EXPECT_NE(check_errors("SOR SWP #ST10:1 5 EOR").find("name the first one"), std::string::npos);
+  EXPECT_NE(check_errors("SOR SWP #N7:0 1 EOR", "START 1747-L532 SERIES B\n").find("SWP is not available"),
+            std::string::npos);
+  EXPECT_EQ(check_errors("SOR SWP #N7:0 1 EOR", "START Bul.1763\n"), "") << "MicroLogix 1100 has SWP";
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "modules/process/plant.h"
 #include "parser/loader.h"
 #include "vm/compiler.h"
 
@@ -20,6 +21,7 @@ std::map<int, const BenchNode*> bind_bench_nodes(const Program& program, const B
                                                  const ModuleRegistry& registry, DiagnosticList& diags) {
   std::map<int, const BenchNode*> out;
   for (const auto& n : bench.nodes) {
+    if (n.kind == "process") continue;  // a simulated plant wired to data-table words, not to a slot
     const BenchAttribute* a = n.find("slot");
     if (!a) {
       diags.error(n.pos.line, n.pos.column,
@@ -106,6 +108,12 @@ ModuleSetup setup_modules(const Program& program, const BenchFile* bench, const 
                              s.bench_diagnostics, s.bench_name};
     if (SlotModuleBuilder b = family->prepare(ctx)) builders.emplace(slot.slot, std::move(b));
   }
+  // Simulated processes (modules/process/plant.h): wired to data-table words, not to a slot.
+  if (bench)
+    for (const auto& n : bench->nodes)
+      if (n.kind == "process")
+        if (auto config = read_plant_node(n, s.bench_diagnostics))
+          s.options.field_processes.push_back([c = *config] { return make_plant(c); });
   s.program_diagnostics.sort_by_position();
   s.bench_diagnostics.sort_by_position();
 

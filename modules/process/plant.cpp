@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <deque>
 #include <system_error>
 
@@ -31,8 +32,12 @@ std::optional<double> read_real(BenchReader& r, std::string_view key, double lo,
   const char* e = b + t->size();
   auto [p, ec] = std::from_chars(b, e, v);
   if (ec != std::errc() || p != e || !std::isfinite(v) || v < lo || v > hi) {
-    r.error_at(key, std::string(key) + "=" + *t + ": expected a number " + std::to_string(lo).substr(0, 8) + " to " +
-                        std::to_string(hi).substr(0, 8));
+    auto text = [](double x) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%g", x);
+      return std::string(buf);
+    };
+    r.error_at(key, std::string(key) + "=" + *t + ": expected a number " + text(lo) + " to " + text(hi));
     return std::nullopt;
   }
   return v;
@@ -100,15 +105,10 @@ class Plant final : public FieldProcess {
 
   std::string attach(FieldProcessHost& host) override {
     host_ = &host;
-    std::string why;
-    auto cv = host.layout().locate(c_.cv, &why);
-    if (!cv || cv->vtype != ValueType::Int16)
-      return "cv=" + to_string(c_.cv) + " is not a word of the program's data table" + (why.empty() ? "" : " (" + why + ")");
-    auto pv = host.layout().locate(c_.pv, &why);
-    if (!pv || pv->vtype != ValueType::Int16)
-      return "pv=" + to_string(c_.pv) + " is not a word of the program's data table" + (why.empty() ? "" : " (" + why + ")");
-    cv_word_ = cv->word;
-    pv_word_ = pv->word;
+    if (std::string why = plant_word_problem(c_.cv, host.layout()); !why.empty()) return "cv=" + why;
+    if (std::string why = plant_word_problem(c_.pv, host.layout()); !why.empty()) return "pv=" + why;
+    cv_word_ = host.layout().locate(c_.cv)->word;
+    pv_word_ = host.layout().locate(c_.pv)->word;
     write_pv();
     host.schedule_at(host.now() + c_.period, [this](VirtualTime t) { step(t); });
     return {};
@@ -209,6 +209,14 @@ std::optional<PlantConfig> read_plant_node(const BenchNode& node, DiagnosticList
   r.finish();
   if (r.failed()) return std::nullopt;
   return c;
+}
+
+std::string plant_word_problem(const Address& a, const DataTableLayout& layout) {
+  std::string why;
+  auto loc = layout.locate(a, &why);
+  if (loc && loc->vtype == ValueType::Int16 && loc->bit < 0) return {};
+  return to_string(a) + " is not a word of the program's data table" + (why.empty() ? "" : " (" + why + ")") +
+         "; the program must use it, or a DATA block size its file";
 }
 
 std::unique_ptr<FieldProcess> make_plant(const PlantConfig& config) { return std::make_unique<Plant>(config); }

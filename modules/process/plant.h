@@ -41,6 +41,10 @@ struct PlantConfig {
 // Reads one `process` node; errors are positioned in the bench file. nullopt after an error.
 std::optional<PlantConfig> read_plant_node(const BenchNode& node, DiagnosticList& diags);
 
+// Why `a` is not a 16-bit word of `layout` (the plant's words must be in the program's data
+// table), or an empty string.
+std::string plant_word_problem(const Address& a, const DataTableLayout& layout);
+
 // A process for RuntimeOptions::field_processes.
 std::unique_ptr<FieldProcess> make_plant(const PlantConfig& config);
 

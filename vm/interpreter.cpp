@@ -1890,10 +1890,12 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
         }
         break;
 
-      // ---- Specialty-module instructions ----
+      // ---- Process control ----
       case Op::PID:
         if (!pid(o, rung, elapsed)) goto fault;
         break;
+
+      // ---- Specialty-module instructions ----
       case Op::BTR:
       case Op::BTW:
       case Op::DEM:

@@ -90,7 +90,6 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   return r;
 }
 
-
 Runtime::Runtime(std::unique_ptr<CompiledProgram> program, RuntimeOptions options)
     : program_(std::move(program)),
       model_(options.time_model ? options.time_model : make_scan_time_model(program_->processor)),

@@ -95,8 +95,7 @@ class Plant final : public FieldProcess {
     // At rest at initial_pv: every lag holds the same deviation, and the dead-time line holds the
     // CV that keeps it there.
     const double deviation = c_.initial_pv - c_.offset;
-    x_ = Eigen::VectorXd::Constant(n, deviation);
-    if (second) x_(0) = deviation;  // both lags: x1 = x2 = deviation
+    x_ = Eigen::VectorXd::Constant(n, deviation);  // with two lags both hold it
     const double u0 = c_.gain != 0.0 ? deviation / c_.gain : 0.0;
     delay_.assign(static_cast<std::size_t>(c_.dead_time / c_.period), u0);
   }

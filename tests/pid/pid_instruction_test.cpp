@@ -297,6 +297,25 @@ TEST(PidBits, PvOutOfRange) {
   EXPECT_FALSE(b.has(kPV));
 }
 
+TEST(PidBits, RationalApproximationChangesNothingHere) {
+  // RM 9-14 table 9.22: RA selects "rational approximation ... resulting in a more accurate
+  // output" (5/03 OS Series C FRN 11+). softslc always computes in double precision, so RA set or
+  // clear gives the same loop (docs/semantics.md, "PID").
+  Block a = valid_loop(), b = valid_loop();
+  b.flag(kRA, true);
+  for (Block* x : {&a, &b}) {
+    x->set(kReset, 3);
+    x->set(kRate, 2);
+    x->set(kSetpoint, 7000);
+  }
+  for (int k = 0; k < 50; ++k) {
+    a.run(3000 + 40 * k, ms(100 * k));
+    b.run(3000 + 40 * k, ms(100 * k));
+    EXPECT_EQ(a.last_cv, b.last_cv);
+  }
+  EXPECT_TRUE(b.has(kRA)) << "the instruction leaves the control bit alone";
+}
+
 TEST(PidBits, ZeroCrossingDeadband) {
   // RM 9-8/9-9: "The deadband is entered at the zero crossing of the process variable and the
   // setpoint. This means that the deadband is in effect only after the process variable enters the
@@ -494,6 +513,28 @@ TEST(PidLadder, AnInvalidParameterIsMajorFault0036) {
   EXPECT_EQ(plc.i("N10:1") >> 8 & 0xFF, 0x11);
   EXPECT_NE(plc->fault()->message.find("N10:0: PID error 11H: loop update time (word 13) is 0"), std::string::npos)
       << plc->fault()->message;
+}
+
+TEST(PidLadder, TimedModeFollowsVirtualTimeWhateverTheScan) {
+  // RM 9-7/9-8: in timed mode the CV is updated at the loop update rate (0.10 s here), not once per
+  // scan: over 2 s of virtual time DN is set on 20 scans, whatever the scan time.
+  Plc plc("SOR PID N10:0 N10:28 N10:29 EOR");
+  plc.set("N10:0", 1);
+  plc.set("N10:2", 8000);
+  plc.set("N10:3", 10);
+  plc.set("N10:11", 100);
+  plc.set("N10:13", 10);
+  plc.run_scans(1);  // the initial execution
+  ASSERT_TRUE(plc.b("N10:0/13"));
+  int updates = 0;
+  const VirtualTime start = plc->now();
+  while (plc->now() < start + milliseconds(2000)) {
+    plc->scan(1);
+    updates += plc.b("N10:0/13") ? 1 : 0;
+  }
+  EXPECT_GT(plc->stats().scans, 200u) << "many scans per update";
+  EXPECT_EQ(updates, 20);
+  EXPECT_FALSE(plc.b("N10:0/6")) << "TF: the rate is achieved";
 }
 
 TEST(PidLadder, RunsInTheScanWithEnDnAndTheCvWord) {

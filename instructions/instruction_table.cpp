@@ -41,6 +41,7 @@ std::string_view to_string(OperandKind k) {
     case OperandKind::Buffer: return "M-file buffer address (M0:e.x00 / M1:e.x00)";
     case OperandKind::ControlBlock3: return "integer control block (3 words)";
     case OperandKind::ControlBlock70: return "integer control block (70 words)";
+    case OperandKind::ControlBlock23: return "integer control block (23 words)";
     case OperandKind::WordSource: return "integer word address or constant (no F)";
     case OperandKind::WordDest: return "integer word address (no F)";
     case OperandKind::Expression: return "CPT expression";

@@ -35,6 +35,7 @@ enum class OperandKind : std::uint8_t {
   Buffer,          // an M0/M1 block-transfer buffer address M0:e.x00 / M1:e.x00
   ControlBlock3,   // a 3-word integer control block (BTR, BTW)
   ControlBlock70,  // a 70-word integer control block (DEM)
+  ControlBlock23,  // a 23-word integer control block (PID: 1747-RM001G p. 9-3, 9-5)
   // Like Source and Dest, but the instruction works on integer words only: an F address or a
   // floating-point constant is refused by `check` (the bitwise instructions, SCL, DDV, TOD, ...).
   WordSource,      // an integer word address or an integer constant
@@ -84,6 +85,8 @@ enum class Requirement : std::uint8_t {
   Slc502Up,          // SLC 5/02 and later modular processors (RM001 "SLC 5/02" column: SQR, SCL, ENC)
   Os302,             // SLC 5/03 OS302, 5/04 OS401, 5/05 (RM001 4-13: SCP, ABS, CPT, trig, logs, XPY)
   SlcOs302,          // the same SLC processors, not the MicroLogix (RM001 7-15: RHC, TDF in their SLC form)
+  SlcPid,            // PID with an N-file control block: SLC 5/02-5/05 (RM001G p. 9-1); the MicroLogix
+                     // 1100-1500 PID takes a PD file element instead, which softslc does not have
 };
 
 struct OperandSpec {

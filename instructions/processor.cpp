@@ -81,6 +81,11 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::Os302:
       return (is_modular_503_or_later(family) && series >= 'C') || is_micrologix_1100_class();
     case Requirement::SlcOs302: return is_modular_503_or_later(family) && series >= 'C';
+    // RM001G p. 9-1: the PID row marks the 5/02, 5/03, 5/04 and 5/05 (not the fixed controllers or
+    // the 5/01). The MicroLogix PID addresses a PD file element (1762/1763/1766-RM001 "Process
+    // Control Instruction"), a file type softslc does not have: refused there by name.
+    case Requirement::SlcPid:
+      return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
   }
   return false;
 }
@@ -103,12 +108,19 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::MicroLogix1100Class:
       return "is a MicroLogix 1100, 1200, 1400 and 1500 instruction (1763-RM001, 1762-RM001, 1766-RM001); this "
              "program's processor is " + have;
+    case Requirement::SlcPid:
+      if (is_micrologix())
+        return "is not available on the " + have + " in softslc: the MicroLogix PID takes a PD file element "
+               "(1762/1763/1766-RM001, \"Process Control Instruction\"), and softslc has no PD files; the SLC 5/02-5/05 "
+               "PID with an N-file control block is supported (1747-RM001)";
+      return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
+             " (1747-RM001G p. 9-1)";
     case Requirement::Slc502Up:
     case Requirement::Os302:
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
     case Requirement::SlcOs302:
-      if (family == ProcessorFamily::MicroLogix)
+      if (is_micrologix())
         return "is supported in its SLC 5/03-5/05 form only (1747-RM001 p. 7-15); the MicroLogix form "
                "(1762/1763/1764/1766-RM001) is not supported by softslc yet; this program's processor is " + have;
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
@@ -127,6 +139,7 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::SlcOs302: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05";
     case Requirement::SlcOneShot: return "SLC 500 processors, MicroLogix 1000";
     case Requirement::MicroLogix1100Class: return "MicroLogix 1100, 1200, 1400, 1500";
+    case Requirement::SlcPid: return "SLC 5/02, 5/03, 5/04, 5/05";
   }
   return {};
 }

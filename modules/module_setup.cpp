@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 
+#include "modules/process/plant.h"
 #include "parser/loader.h"
 #include "vm/compiler.h"
 
@@ -20,6 +21,7 @@ std::map<int, const BenchNode*> bind_bench_nodes(const Program& program, const B
                                                  const ModuleRegistry& registry, DiagnosticList& diags) {
   std::map<int, const BenchNode*> out;
   for (const auto& n : bench.nodes) {
+    if (n.kind == "process") continue;  // a simulated plant wired to data-table words, not to a slot
     const BenchAttribute* a = n.find("slot");
     if (!a) {
       diags.error(n.pos.line, n.pos.column,
@@ -81,6 +83,37 @@ std::map<int, const BenchNode*> bind_bench_nodes(const Program& program, const B
   return out;
 }
 
+// Simulated processes (modules/process/plant.h): wired to data-table words, not to a slot. Their
+// words must be words of the program's data table, which the compiler lays out from the program:
+// the program is compiled once here so a bench naming a word the program lacks is refused at the
+// attribute, and a setup that is ok() always gives a runtime.
+void add_processes(const Program& program, const BenchFile& bench, ModuleSetup& s) {
+  std::optional<CompileResult> compiled;
+  for (const auto& n : bench.nodes) {
+    if (n.kind != "process") continue;
+    auto config = read_plant_node(n, s.bench_diagnostics);
+    if (!config) continue;
+    if (!compiled) {
+      CompileOptions co;
+      co.module_instruction = s.options.module_instruction;
+      compiled = compile(program, co);
+    }
+    if (compiled->ok()) {
+      bool bad = false;
+      for (const char* key : {"cv", "pv"}) {
+        const std::string why = plant_word_problem(key[0] == 'c' ? config->cv : config->pv, *compiled->program->layout);
+        if (why.empty()) continue;
+        const SourcePos p = n.find(key)->value_pos;
+        s.bench_diagnostics.error(p.line, p.column, n.label() + ": " + key + "=" + why);
+        bad = true;
+      }
+      if (bad) continue;
+    }
+    s.options.field_processes.push_back([c = *config] { return make_plant(c); });
+  }
+  s.bench_diagnostics.sort_by_position();
+}
+
 }  // namespace
 
 ModuleSetup setup_modules(const Program& program, const BenchFile* bench, const ModuleRegistry& registry) {
@@ -134,6 +167,7 @@ ModuleSetup setup_modules(const Program& program, const BenchFile* bench, const 
              " holds a " + it->second.catalog;
     return std::nullopt;
   };
+  if (bench) add_processes(program, *bench, s);
   return s;
 }
 

@@ -483,10 +483,14 @@ class Checker {
         if (op.kind != Operand::Kind::Expression) return expect("a CPT expression");
         return;
       case OperandKind::ControlBlock3:
-      case OperandKind::ControlBlock70: {
-        int len = os.kind == OperandKind::ControlBlock3 ? 3 : 70;
+      case OperandKind::ControlBlock70:
+      case OperandKind::ControlBlock23: {
+        int len = os.kind == OperandKind::ControlBlock3 ? 3 : os.kind == OperandKind::ControlBlock23 ? 23 : 70;
         if (!op.is_address() || op.address.type != FileType::Integer || op.address.has_bit())
-          return expect("an integer file element such as N10:0");
+          return expect(os.kind == OperandKind::ControlBlock23
+                            ? "an integer file element such as N10:0 (the PID control block is 23 words of an N file, "
+                              "1747-RM001G p. 9-3)"
+                            : "an integer file element such as N10:0");
         if (!op.address.indirect_element && op.address.element + len > 256)
           return error(op.pos, where + ": the " + std::to_string(len) + "-word control block starting at " +
                                    op.spelling + " runs past the end of the file (element 255)");
@@ -539,6 +543,7 @@ class Checker {
       check_swap(in);
     if ((in.opcode == Opcode::RHC || in.opcode == Opcode::TDF) && in.operands.size() == s.operand_count)
       check_clock_operands(in);
+    if (in.opcode == Opcode::PID && in.operands.size() == 3) check_pid(in);
   }
 
   // RHC, TDF (1747-RM001G p. 7-17): "an integer address (Nx:x) or Float address (Fx:x)", and TDF's
@@ -577,6 +582,33 @@ class Checker {
       error(in.operands[1].pos, "SWP of " + std::to_string(len) + " words from word " + std::to_string(word) +
                                     " leaves the string element (41 data words; 1747-RM001 p. 4-28: length 1-41, "
                                     "never across a string element boundary)");
+  }
+
+  // PID (1747-RM001G p. 9-3/9-4): the process variable is an element address (not a constant), and
+  // neither it nor the control variable may lie inside the 23-word control block, which the
+  // instruction rewrites every time it runs ("do not write to control block addresses with other
+  // instructions").
+  void check_pid(const Instruction& in) {
+    const Operand& block = in.operands[0];
+    const Operand& pv = in.operands[1];
+    if (pv.is_number())
+      error(pv.pos, "PID process variable: expected an element address that stores the process input (for example "
+                    "I:1.0 or N10:28), found the constant '" + pv.spelling + "' (1747-RM001G p. 9-4)");
+    if (!block.is_address() || block.address.type != FileType::Integer || block.address.indirect_element ||
+        block.address.indirect_file || block.address.indexed)
+      return;
+    const Address& b = block.address;
+    for (std::size_t i = 1; i < 3; ++i) {
+      const Operand& op = in.operands[i];
+      if (!op.is_address()) continue;
+      const Address& a = op.address;
+      if (a.type != FileType::Integer || a.file != b.file || a.indirect_element || a.indirect_file) continue;
+      if (a.element >= b.element && a.element < b.element + 23)
+        error(op.pos, std::string(i == 1 ? "PID process variable " : "PID control variable ") + op.spelling +
+                          " lies inside the control block " + block.spelling + " (N" + std::to_string(b.file) + ":" +
+                          std::to_string(b.element) + " to N" + std::to_string(b.file) + ":" +
+                          std::to_string(b.element + 22) + ", 23 words, 1747-RM001G p. 9-3), which the PID rewrites");
+    }
   }
 
   // CPT: the expression parses, every operand is a word address or constant that could stand as

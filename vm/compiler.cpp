@@ -233,6 +233,7 @@ class Compiler {
         if (i == 2) return len(6) == 0 ? 64 : len(6);
         return 1;
       case Opcode::DEM: return i == 1 ? 70 : 1;
+      case Opcode::PID: return i == 0 ? 23 : 1;  // RM001G p. 9-3: N10:0 allocates N10:0-N10:22
       default: return 1;
     }
   }
@@ -798,7 +799,8 @@ class Compiler {
         case OperandKind::Buffer:
         case OperandKind::ControlBlock3:
         case OperandKind::ControlBlock70:
-          // Only module instructions have these, and a hook that accepted one owns its encoding;
+        case OperandKind::ControlBlock23:
+          // Only module instructions and the PID have these, and a hook that accepted one owns its encoding;
           // the generic encoding keeps the address for the listing.
           if (op.is_address() && !is_mfile(op.address.type) && !needs_dyn(op.address, false)) {
             bool f = false;

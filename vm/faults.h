@@ -27,6 +27,9 @@ inline constexpr std::uint16_t kIndexOutOfRange = 0x002A;
 inline constexpr std::uint16_t kSubroutineNesting = 0x0030;
 // A timer executed with a negative PRE or ACC [S].
 inline constexpr std::uint16_t kNegativeTimerValue = 0x0034;
+// A PID instruction found an invalid parameter; the table 9.36 code is in the high byte of the
+// control block's word 1 [C 1747-RM001G p. 9-21].
+inline constexpr std::uint16_t kPidError = 0x0036;
 // A module refused an M0/M1 access: xx55 with the slot in the high byte [U, softslc's choice].
 constexpr std::uint16_t module_access(int slot) { return static_cast<std::uint16_t>((slot << 8) | 0x55); }
 // A specialty instruction reached a module that does not execute it (or an empty slot); the

@@ -4,6 +4,7 @@
 #include "vm/fused.h"
 
 #include "vm/compiler.h"
+#include "vm/pid.h"
 
 #include <algorithm>
 #include <bit>
@@ -644,6 +645,33 @@ void Interpreter::module_instruction(Op op, const std::uint32_t* o, std::uint32_
   }
   ModuleCall call(*this, to_opcode(op), rung, scan_start_ + now_in_scan, std::span<const ModuleOperand>(ops.data(), n));
   chassis_.module_instruction(static_cast<int>(bc::aux_of(h)), call);
+}
+
+// ---- PID ------------------------------------------------------------------------------------------------------
+
+bool Interpreter::pid(const std::uint32_t* o, bool rung, Nanoseconds now_in_scan) {
+  Span block;
+  if (!file_span(o[0], pid::kBlockWords, block, "PID control block")) {
+    if (!faulted_) raise(fault::kIndexOutOfRange, "PID control block is not a 23-word run of an integer file");
+    return false;
+  }
+  const std::int64_t pv = rd_int(o[1]);
+  const std::int64_t cv = rd_int(o[2]);
+  if (faulted_) return false;
+  pid::Execution x;
+  x.rung = rung;
+  x.first_pass = first_pass_;
+  x.slc502 = prog_.processor.family == ProcessorFamily::Slc502;
+  x.now = scan_start_ + now_in_scan;
+  x.pv = static_cast<std::int16_t>(pv);
+  x.cv = static_cast<std::int16_t>(cv);
+  const pid::Outcome r = pid::execute(std::span<std::uint16_t, pid::kBlockWords>(w_ + block.base, pid::kBlockWords), x);
+  if (r.error != pid::Error::None) {
+    raise(fault::kPidError, prog_.layout->describe(block.base) + ": " + r.message);
+    return false;
+  }
+  if (r.write_cv) st_bits(o[2], r.cv);
+  return !faulted_;
 }
 
 // ---- Timers, counters, reset ----------------------------------------------------------------------------------
@@ -1928,6 +1956,11 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
           if (op == Op::IIM) chassis_.immediate_input(sw / 256, sw % 256, bc::imm_of(o[2]), mask);
           else chassis_.immediate_output(sw / 256, sw % 256, bc::imm_of(o[2]), mask);
         }
+        break;
+
+      // ---- Process control ----
+      case Op::PID:
+        if (!pid(o, rung, elapsed)) goto fault;
         break;
 
       // ---- Specialty-module instructions ----

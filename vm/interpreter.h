@@ -200,6 +200,9 @@ class Interpreter {
   // compiler recorded in the header's aux field (ChassisAccess::module_instruction).
   SOFTSLC_HANDLER void module_instruction(Op op, const std::uint32_t* o, std::uint32_t h, bool rung,
                                           Nanoseconds now_in_scan);
+  // PID (1747-RM001G ch. 9): the control block's 23 words go to pid::execute (vm/pid.h); an invalid
+  // parameter is major fault 0036h. Returns false when it faulted.
+  SOFTSLC_HANDLER bool pid(const std::uint32_t* o, bool rung, Nanoseconds now_in_scan);
   friend class ModuleCall;
 
   // Virtual time spent on the slow paths (M0/M1 accesses, file-instruction words); folded into

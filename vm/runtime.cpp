@@ -38,6 +38,28 @@ std::string RuntimeResult::render_errors() const {
   return s;
 }
 
+// What a field process sees of the runtime: the clock, the event queue and the data table.
+class Runtime::ProcessHost final : public FieldProcessHost {
+ public:
+  explicit ProcessHost(Runtime& rt) : rt_(rt) {}
+  VirtualTime now() const override { return rt_.now(); }
+  Mode mode() const override { return rt_.mode(); }
+  EventQueue::EventId schedule_at(VirtualTime at, EventQueue::Callback cb) override {
+    return rt_.events_.schedule_at(at, std::move(cb));
+  }
+  bool cancel_event(EventQueue::EventId id) override { return rt_.events_.cancel(id); }
+  const DataTableLayout& layout() const override { return *rt_.program_->layout; }
+  std::uint16_t read_word(std::uint32_t index) const override {
+    return index < rt_.data_.size() ? rt_.data_.word(index) : 0;
+  }
+  void write_word(std::uint32_t index, std::uint16_t value) override {
+    if (index < rt_.data_.size()) rt_.data_.set_word(index, value);
+  }
+
+ private:
+  Runtime& rt_;
+};
+
 RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   CompileOptions co;
   co.processor = options.processor;
@@ -49,7 +71,22 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
     return r;
   }
   auto compiled = std::make_unique<CompiledProgram>(std::move(*cr.program));
+  std::vector<FieldProcessFactory> processes = std::move(options.field_processes);
   r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
+  Runtime& rt = *r.runtime;
+  rt.process_host_ = std::make_unique<ProcessHost>(rt);
+  for (const auto& make : processes) {
+    std::unique_ptr<FieldProcess> p = make ? make() : nullptr;
+    if (!p) continue;
+    if (std::string why = p->attach(*rt.process_host_); !why.empty()) {
+      CompileError e;
+      e.message = "process " + p->name() + ": " + why;
+      r.errors.push_back(std::move(e));
+      r.runtime.reset();
+      return r;
+    }
+    rt.processes_.push_back(std::move(p));
+  }
   return r;
 }
 
@@ -637,6 +674,12 @@ RuntimeStatus Runtime::inject(std::string_view device, std::string_view fault, s
     if (st.kind == DeviceStatus::Kind::Refused)
       return RuntimeStatus::failure("device " + f.device + ": " + st.message);
   }
+  for (const auto& p : processes_) {
+    DeviceStatus st = p->inject(f);
+    if (st.kind == DeviceStatus::Kind::Done) return {};
+    if (st.kind == DeviceStatus::Kind::Refused)
+      return RuntimeStatus::failure("device " + f.device + ": " + st.message);
+  }
   return RuntimeStatus::failure("no simulated field device is named '" + f.device + "'");
 }
 
@@ -644,6 +687,8 @@ std::optional<std::vector<std::int64_t>> Runtime::observe(std::string_view devic
   for (const Module* m : modules_)
     if (m)
       if (auto v = m->observe(device, what)) return v;
+  for (const auto& p : processes_)
+    if (auto v = p->observe(device, what)) return v;
   return std::nullopt;
 }
 
@@ -652,6 +697,7 @@ std::vector<std::string> Runtime::devices() const {
   for (const Module* m : modules_)
     if (m)
       for (auto& n : m->device_names()) out.push_back(std::move(n));
+  for (const auto& p : processes_) out.push_back(p->name());
   return out;
 }
 

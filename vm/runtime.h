@@ -41,6 +41,7 @@
 #include "vm/data_table.h"
 #include "vm/event_queue.h"
 #include "vm/faults.h"
+#include "vm/field_process.h"
 #include "vm/interpreter.h"
 #include "vm/module.h"
 #include "vm/scan_time_model.h"
@@ -56,6 +57,9 @@ struct RuntimeOptions {
   std::shared_ptr<const ScanTimeModel> time_model;  // default: DefaultScanTimeModel
   ModuleFactory module_factory;
   ModuleInstructionHook module_instruction;
+  // Simulated plants wired to data-table words (vm/field_process.h), attached in this order once
+  // the runtime exists; one that cannot resolve its words fails create() with its message.
+  std::vector<FieldProcessFactory> field_processes;
 };
 
 // Success, or a message saying why a request was refused.
@@ -209,6 +213,10 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   VirtualClock clock_;
   EventQueue events_{clock_};
   std::vector<std::unique_ptr<Module>> owned_modules_;
+  // Field processes and the host they see (vm/field_process.h).
+  class ProcessHost;
+  std::unique_ptr<ProcessHost> process_host_;
+  std::vector<std::unique_ptr<FieldProcess>> processes_;
   std::array<Module*, kMaxSlots> modules_{};
   // The modules in slot order with their image-transfer costs, for the input and output scans.
   struct ScannedModule {

@@ -14,6 +14,9 @@ Expected values come from the ladder and the manuals, as in the examples' .test 
     (appendix A's block-transfer throughput), the status words 0xC484 (EN echo, ST, EW, RW,
     address) and 0xE484; the ladder then buffers the data (N10:1 = 200 from the bench) and drops
     EN, and the scanner frees the status within 41 ms.
+  pid_level.slc (see pid_level.test): a PI level loop on a tank with a 0.5 s dead time and a 5 s
+    lag; the trace shows the valve (the PID's CV) open at once and the level (its PV) start after
+    the dead time and settle at the setpoint.
 """
 
 import os
@@ -189,6 +192,37 @@ class BlockTransfer(unittest.TestCase):
         self.assertLessEqual(freed - dropped, 41_000)
         self.assertEqual(first_time(vcd["CHECK_STATUS"], lambda v: v == 0, after=dropped) is not None, True)
         self.assertEqual(signed(m0.at(enabled), 16), -32636)
+
+
+class PidStepResponse(unittest.TestCase):
+    """examples/ladder/pid: the level loop's step response as `softslc run --trace` records it. The
+    tank (pid_level.bench) has a 0.5 s dead time and a 5 s lag; the loop starts from an empty tank
+    with the setpoint at 50.0 % (8191.5 counts)."""
+
+    def test_the_trace_shows_the_step_response(self):
+        d = os.path.join(EXAMPLES, "ladder", "pid")
+        with tempfile.TemporaryDirectory() as tmp:
+            path = os.path.join(tmp, "pid.vcd")
+            softslc("run", os.path.join(d, "pid_level.slc"), "--bench", os.path.join(d, "pid_level.bench"),
+                    "--for", "30s", "--trace", path)
+            with open(path) as f:
+                vcd = Vcd(f.read())
+        pv, cv = vcd["LEVEL"], vcd["VALVE"]
+        self.assertEqual(pv.size, 16)
+        # The valve opens fully in the first scan (the error is the whole setpoint).
+        self.assertEqual(cv.at(vcd["scan"].times[1]), 16383)
+        # Nothing reaches the level before the dead time (within one 10 ms plant period after it).
+        rises = first_time(pv, lambda v: signed(v, 16) > 0)
+        self.assertIsNotNone(rises)
+        self.assertGreaterEqual(rises, 500_000)
+        self.assertLessEqual(rises, 520_000)
+        # It settles within 1 % of 8191.5 and does not overshoot by more than 10 %.
+        self.assertLessEqual(max(signed(v, 16) for _, v in pv.changes()), 9011)
+        settled = 20_000_000
+        for t, v in pv.changes():
+            if t >= settled:
+                self.assertTrue(8109 <= signed(v, 16) <= 8274, (t, v))
+        self.assertTrue(8109 <= signed(pv.at(30_000_000), 16) <= 8274)
 
 
 class TestTraceDir(unittest.TestCase):

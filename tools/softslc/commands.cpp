@@ -410,6 +410,7 @@ int run_run(const RunOptions& o) {
   if (!modules.ok()) return kInputError;
   options.module_factory = modules.options.module_factory;
   options.module_instruction = modules.options.module_instruction;
+  options.field_processes = modules.options.field_processes;
 
   auto created = Runtime::create(program, std::move(options));
   if (!created.ok()) {

@@ -83,6 +83,10 @@ enum class Requirement : std::uint8_t {
   MicroLogix1100Class,  // MicroLogix 1100, 1200, 1400, 1500 (ONS, two-operand OSR/OSF, CPW, ...)
   Slc502Up,          // SLC 5/02 and later modular processors (RM001 "SLC 5/02" column: SQR, SCL, ENC)
   Os302,             // SLC 5/03 OS302, 5/04 OS401, 5/05 (RM001 4-13: SCP, ABS, CPT, trig, logs, XPY)
+  // The selectable timed interrupt: SLC 5/02 and later modular processors (RM 11-8). The
+  // MicroLogix 1100-1500 also have STS/INT, on their STI function file, not simulated yet.
+  TimedInterrupt,
+  SlcInterruptControl,  // STD/STE: the SLC 5/02-5/05 only (RM 11-14; the MicroLogix use UID/UIE)
 };
 
 struct OperandSpec {

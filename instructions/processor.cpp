@@ -47,6 +47,10 @@ bool is_modular_503_or_later(ProcessorFamily f) {
   return f == ProcessorFamily::Slc503 || f == ProcessorFamily::Slc504 || f == ProcessorFamily::Slc505;
 }
 
+// The selectable timed interrupt and STD/STE/STS: the SLC 5/02 and later (RM 11-8 availability row:
+// not the fixed controllers or the 5/01).
+bool slc_has_sti(ProcessorFamily f) { return f == ProcessorFamily::Slc502 || is_modular_503_or_later(f); }
+
 }  // namespace
 
 int ProcessorModel::max_subroutine_depth() const {
@@ -80,6 +84,10 @@ bool ProcessorModel::supports(Requirement r) const {
     // same condition as BTR/BTW. The MicroLogix 1000 has no floating point, so none of them.
     case Requirement::Os302:
       return (is_modular_503_or_later(family) && series >= 'C') || is_micrologix_1100_class();
+    // The MicroLogix 1100-1500 have STS and INT too, but they drive the STI function file, which
+    // softslc does not simulate yet (docs/semantics.md "MicroLogix"): refused there until it does.
+    case Requirement::TimedInterrupt: return slc_has_sti(family);
+    case Requirement::SlcInterruptControl: return slc_has_sti(family);
   }
   return false;
 }
@@ -104,6 +112,8 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
              "program's processor is " + have;
     case Requirement::Slc502Up:
     case Requirement::Os302:
+    case Requirement::TimedInterrupt:
+    case Requirement::SlcInterruptControl:
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
   }
@@ -119,6 +129,8 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::Os302: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05, MicroLogix 1100/1200/1400/1500";
     case Requirement::SlcOneShot: return "SLC 500 processors, MicroLogix 1000";
     case Requirement::MicroLogix1100Class: return "MicroLogix 1100, 1200, 1400, 1500";
+    case Requirement::TimedInterrupt: return "SLC 5/02, 5/03, 5/04, 5/05 (the MicroLogix STI function file is not simulated yet)";
+    case Requirement::SlcInterruptControl: return "SLC 5/02, 5/03, 5/04, 5/05";
   }
   return {};
 }

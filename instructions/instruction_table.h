@@ -87,6 +87,9 @@ enum class Requirement : std::uint8_t {
   // MicroLogix 1100-1500 also have STS/INT, on their STI function file, not simulated yet.
   TimedInterrupt,
   SlcInterruptControl,  // STD/STE: the SLC 5/02-5/05 only (RM 11-14; the MicroLogix use UID/UIE)
+  // Instructions that drive the MicroLogix STI function file (the one-operand STS): no processor
+  // has them in softslc until that function file is simulated.
+  MicroLogixStiFile,
 };
 
 struct OperandSpec {

@@ -88,6 +88,7 @@ bool ProcessorModel::supports(Requirement r) const {
     // softslc does not simulate yet (docs/semantics.md "MicroLogix"): refused there until it does.
     case Requirement::TimedInterrupt: return slc_has_sti(family);
     case Requirement::SlcInterruptControl: return slc_has_sti(family);
+    case Requirement::MicroLogixStiFile: return false;
   }
   return false;
 }
@@ -110,6 +111,10 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::MicroLogix1100Class:
       return "is a MicroLogix 1100, 1200, 1400 and 1500 instruction (1763-RM001, 1762-RM001, 1766-RM001); this "
              "program's processor is " + have;
+    case Requirement::MicroLogixStiFile:
+      return "with one operand (time) is the MicroLogix form, which starts the STI function file (STI:0); softslc "
+             "does not simulate the MicroLogix STI function file yet (docs/semantics.md \"MicroLogix\")" +
+             std::string(is_micrologix() ? "" : "; the SLC STS takes a file and a time (1747-RM001 11-16)");
     case Requirement::Slc502Up:
     case Requirement::Os302:
     case Requirement::TimedInterrupt:
@@ -131,6 +136,7 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::MicroLogix1100Class: return "MicroLogix 1100, 1200, 1400, 1500";
     case Requirement::TimedInterrupt: return "SLC 5/02, 5/03, 5/04, 5/05 (the MicroLogix STI function file is not simulated yet)";
     case Requirement::SlcInterruptControl: return "SLC 5/02, 5/03, 5/04, 5/05";
+    case Requirement::MicroLogixStiFile: return "none yet (MicroLogix 1100-1500 once the STI function file is simulated)";
   }
   return {};
 }

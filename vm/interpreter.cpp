@@ -17,6 +17,17 @@ namespace softslc {
 namespace {
 
 constexpr std::uint16_t kStatusBits = 0x000F;  // S:0 C V Z S
+// S:33/9, the status scan toggle bit (RM B-48, SLC 5/03 and later): cleared on entry into Run,
+// changes state at every END, TND or REF.
+constexpr std::uint16_t kScanToggle = 1u << 9;
+
+// Changes (or, with `clear`, clears) S:33/9 on the processors that have it.
+void scan_toggle(const CompiledProgram& p, std::uint16_t* w, bool clear) {
+  const ProcessorFamily f = p.processor.family;
+  if (f != ProcessorFamily::Slc503 && f != ProcessorFamily::Slc504 && f != ProcessorFamily::Slc505) return;
+  std::uint16_t& s33 = w[p.layout->status_word(status::kCommBits)];
+  s33 = static_cast<std::uint16_t>(clear ? (s33 & ~kScanToggle) : (s33 ^ kScanToggle));
+}
 
 std::string hex4(unsigned v) {
   static const char* digits = "0123456789ABCDEF";
@@ -1496,8 +1507,10 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
   bool ok = true;
   // Entering Run: the STI starts timing now (RM 11-12); an invalid S:30/S:31 faults at once.
   if (first_pass && !configure_sti(scan_start + elapsed, true)) ok = false;
+  if (first_pass) scan_toggle(prog_, w_, true);
   update_limit(elapsed);
   if (ok) ok = run_routine(2, elapsed, max_depth_);
+  if (ok) scan_toggle(prog_, w_, false);  // END or TND
   if (ok) {
     // PT1 20-2: the overflow trap still set at END or TND is major fault 0020h.
     if (w_[s5_] & status::kOverflowTrap)
@@ -1928,6 +1941,7 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       case Op::REF:
         if (rung) {
           elapsed += chassis_.io_refresh();
+          scan_toggle(prog_, w_, false);
           // PT1 20-2 (facts §3): the overflow trap still set at END, TND or REF is fault 0020h.
           if (w_[s5_] & status::kOverflowTrap) {
             raise(fault::kMinorErrorAtEnd, "math overflow trap S:5/0 still set at REF");
@@ -1953,6 +1967,11 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
         if (rung) sti_start(o, elapsed);
         if (faulted_) goto fault;
         break;
+      case Op::STS_ML:
+        // The checker refuses it on every processor (Requirement::MicroLogixStiFile); never
+        // silently ignored if a program ever got here.
+        raise(fault::kUnsupportedInstruction, "STS on the MicroLogix STI function file is not simulated");
+        goto fault;
 
       // ---- Immediate I/O ----
       case Op::IIM:

@@ -118,6 +118,20 @@ std::string slow_rungs(int label = 1) {
 }
 constexpr int kLoops35ms = 5500;
 
+TEST(Refresh, ScanToggleBitChangesAtEveryEndAndRef) {
+  // RM B-48: S:33/9 is cleared on entry into Run and changes state at every END, TND or REF.
+  Plc plc("SOR MOV S:33 N7:0 EOR\nSOR XIC B3:0/0 REF EOR\nSOR MOV S:33 N7:1 EOR");
+  plc.set("S:33", 1 << 9);
+  plc.run_scans(1);
+  EXPECT_EQ(plc.i("N7:0") & (1 << 9), 0) << "cleared on entry into Run";
+  EXPECT_TRUE(plc.i("S:33") & (1 << 9)) << "the END toggled it";
+  plc.set("B3:0/0", 1);
+  plc->scan(1);
+  EXPECT_TRUE(plc.i("N7:0") & (1 << 9));
+  EXPECT_EQ(plc.i("N7:1") & (1 << 9), 0) << "the REF toggled it";
+  EXPECT_TRUE(plc.i("S:33") & (1 << 9)) << "and the END again";
+}
+
 TEST(Refresh, RefRestartsTheWatchdogCount) {
   // Two long loops, each under the 100 ms watchdog, together over it.
   const std::string body = slow_rungs(1) + "SOR REF EOR\n" + slow_rungs(2) +
@@ -317,9 +331,32 @@ TEST(Sti, CheckerRules) {
   EXPECT_EQ(try_build("START 1747-L511\nLADDER 2\nSOR STD EOR\n", errors), nullptr);
   EXPECT_NE(errors.find("STD is not available"), std::string::npos) << errors;
   errors.clear();
+  // The MicroLogix STS (time only, sti_1000ms_live.pdf) is refused until STI:0 is simulated; the
+  // SLC form is refused on the MicroLogix.
+  EXPECT_EQ(try_build("START Bul.1763\nLADDER 2\nSOR STS 2000 EOR\n", errors), nullptr);
+  EXPECT_NE(errors.find("STS with one operand (time) is the MicroLogix form"), std::string::npos) << errors;
+  errors.clear();
+  EXPECT_EQ(try_build(program_text("SOR STS 5 EOR"), errors), nullptr);
+  EXPECT_NE(errors.find("the SLC STS takes a file and a time"), std::string::npos) << errors;
+  errors.clear();
+  EXPECT_EQ(try_build("START Bul.1766\nLADDER 2\nSOR STS 3 1 EOR\nLADDER 3\nSOR INT ADD N7:0 1 N7:0 EOR\n", errors),
+            nullptr);
+  EXPECT_NE(errors.find("STS is not available on the MicroLogix 1400"), std::string::npos) << errors;
+  errors.clear();
   EXPECT_NE(try_build(program_text("SOR STD EOR\nSOR STE EOR\nSOR STS 3 1 EOR\nLADDER 3\nSOR INT ADD N7:0 1 N7:0 EOR"), errors),
             nullptr)
       << errors;
+}
+
+TEST(Sti, DisassemblerLabelsTheOperandsFromTheTable) {
+  Plc plc("SOR STS 3 25 EOR\nSOR SUS -3 EOR\nSOR STD EOR\nSOR REF EOR\nLADDER 3\nSOR INT ADD N7:0 1 N7:0 EOR");
+  const std::string listing = disassemble(plc->compiled());
+  EXPECT_NE(listing.find("STS"), std::string::npos) << listing;
+  EXPECT_NE(listing.find("file=3"), std::string::npos) << listing;
+  EXPECT_NE(listing.find("time=25"), std::string::npos) << listing;
+  EXPECT_NE(listing.find("suspend ID=-3"), std::string::npos) << listing;
+  EXPECT_NE(listing.find("INT"), std::string::npos) << listing;
+  EXPECT_NE(listing.find("REF"), std::string::npos) << listing;
 }
 
 // ---- The user fault routine ------------------------------------------------------------------------------------

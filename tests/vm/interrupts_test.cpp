@@ -296,6 +296,37 @@ TEST(Sti, InvalidFileIsFault0023AndInvalidSetpoint0024) {
   EXPECT_EQ(slc502.fault_code(), 0x0024) << "5/02: setpoint 1-255 (RM 11-12)";
 }
 
+TEST(Sti, ResolutionBitSelectsMillisecondsAtTheTransitionToRun) {
+  // RM 11-13: S:2/10 set selects 1 ms units for S:30, read on the Program-to-Run transition.
+  Plc plc = sti_plc("SOR ADD N7:1 1 N7:1 EOR");
+  plc.set("S:2", 0x0002 | 0x0400);
+  plc.set("S:30", 5);
+  plc.run();
+  const VirtualTime start = plc->now();
+  plc->run_for(100 * kMs);
+  EXPECT_LE(std::llabs(plc.i("N7:0") - (plc->now() - start) / (5 * kMs)), 1) << "every 5 ms";
+  plc.set("S:2", 0x0002);  // cleared while running: no effect until the next entry into Run
+  const std::int64_t before = plc.i("N7:0");
+  plc->run_for(50 * kMs);
+  EXPECT_GE(plc.i("N7:0") - before, 9);
+
+  // RM 11-8: the 5/03 range starts at 2 ms, the 5/04's at 1 ms.
+  Plc l532 = sti_plc("SOR ADD N7:1 1 N7:1 EOR");
+  l532.set("S:2", 0x0002 | 0x0400);
+  l532.set("S:30", 1);
+  l532.run_scans(1);
+  EXPECT_EQ(l532.fault_code(), 0x0024);
+  constexpr std::string_view k504 = "START 1747-L541\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\n";
+  Plc l541("SOR ADD N7:1 1 N7:1 EOR\nLADDER 3\nSOR ADD N7:0 1 N7:0 EOR", {}, k504);
+  l541.set("S:2", 0x0002 | 0x0400);
+  l541.set("S:30", 1);
+  l541.set("S:31", 3);
+  l541.run();
+  l541->run_for(20 * kMs);
+  EXPECT_FALSE(l541->fault().has_value());
+  EXPECT_GE(l541.i("N7:0"), 19) << "every 1 ms";
+}
+
 TEST(Sti, LoadedSetpointStartsTimingAtTheEndOfThatScan) {
   Plc plc("SOR XIC B3:0/0 MOV 3 S:31 MOV 5 S:30 EOR\nLADDER 3\nSOR ADD N7:0 1 N7:0 EOR");
   plc.run_scans(2);

@@ -87,6 +87,13 @@ enum class Requirement : std::uint8_t {
   SlcOs302,          // the same SLC processors, not the MicroLogix (RM001 7-15: RHC, TDF in their SLC form)
   SlcPid,            // PID with an N-file control block: SLC 5/02-5/05 (RM001G p. 9-1); the MicroLogix
                      // 1100-1500 PID takes a PD file element instead, which softslc does not have
+  // The selectable timed interrupt: SLC 5/02 and later modular processors (RM 11-8). The
+  // MicroLogix 1100-1500 also have STS/INT, on their STI function file, not simulated yet.
+  TimedInterrupt,
+  SlcInterruptControl,  // STD/STE: the SLC 5/02-5/05 only (RM 11-14; the MicroLogix use UID/UIE)
+  // Instructions that drive the MicroLogix STI function file (the one-operand STS): no processor
+  // has them in softslc until that function file is simulated.
+  MicroLogixStiFile,
 };
 
 struct OperandSpec {

@@ -47,6 +47,10 @@ bool is_modular_503_or_later(ProcessorFamily f) {
   return f == ProcessorFamily::Slc503 || f == ProcessorFamily::Slc504 || f == ProcessorFamily::Slc505;
 }
 
+// The selectable timed interrupt and STD/STE/STS: the SLC 5/02 and later (RM 11-8 availability row:
+// not the fixed controllers or the 5/01).
+bool slc_has_sti(ProcessorFamily f) { return f == ProcessorFamily::Slc502 || is_modular_503_or_later(f); }
+
 }  // namespace
 
 int ProcessorModel::max_subroutine_depth() const {
@@ -86,6 +90,11 @@ bool ProcessorModel::supports(Requirement r) const {
     // Control Instruction"), a file type softslc does not have: refused there by name.
     case Requirement::SlcPid:
       return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
+    // The MicroLogix 1100-1500 have STS and INT too, but they drive the STI function file, which
+    // softslc does not simulate yet (docs/semantics.md "MicroLogix"): refused there until it does.
+    case Requirement::TimedInterrupt: return slc_has_sti(family);
+    case Requirement::SlcInterruptControl: return slc_has_sti(family);
+    case Requirement::MicroLogixStiFile: return false;
   }
   return false;
 }
@@ -115,8 +124,14 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
                "PID with an N-file control block is supported (1747-RM001)";
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001G p. 9-1)";
+    case Requirement::MicroLogixStiFile:
+      return "with one operand (time) is the MicroLogix form, which starts the STI function file (STI:0); softslc "
+             "does not simulate the MicroLogix STI function file yet (docs/semantics.md \"MicroLogix\")" +
+             std::string(is_micrologix() ? "" : "; the SLC STS takes a file and a time (1747-RM001 11-16)");
     case Requirement::Slc502Up:
     case Requirement::Os302:
+    case Requirement::TimedInterrupt:
+    case Requirement::SlcInterruptControl:
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
     case Requirement::SlcOs302:
@@ -140,6 +155,9 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::SlcOneShot: return "SLC 500 processors, MicroLogix 1000";
     case Requirement::MicroLogix1100Class: return "MicroLogix 1100, 1200, 1400, 1500";
     case Requirement::SlcPid: return "SLC 5/02, 5/03, 5/04, 5/05";
+    case Requirement::TimedInterrupt: return "SLC 5/02, 5/03, 5/04, 5/05 (the MicroLogix STI function file is not simulated yet)";
+    case Requirement::SlcInterruptControl: return "SLC 5/02, 5/03, 5/04, 5/05";
+    case Requirement::MicroLogixStiFile: return "none yet (MicroLogix 1100-1500 once the STI function file is simulated)";
   }
   return {};
 }

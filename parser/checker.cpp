@@ -60,6 +60,7 @@ class Checker {
   std::map<int, FileUse> file_types_;
   std::vector<std::pair<Address, SourcePos>> osr_bits_;
   std::vector<std::pair<int, SourcePos>> jsr_targets_;
+  std::vector<std::pair<int, SourcePos>> sts_targets_;
   bool unknown_in_rung_ = false;  // the rung being checked names an unknown instruction
 
   void error(SourcePos p, std::string m) { diags_.error(p.line, p.column, std::move(m)); }
@@ -534,8 +535,13 @@ class Checker {
         error(in.operands[0].pos, "the " + mnemonic_of(in) + " storage bit must be in a B or N file");
       osr_bits_.emplace_back(a, in.operands[0].pos);
     }
-    if (in.opcode == Opcode::JSR && in.operands.size() == 1 && in.operands[0].kind == Operand::Kind::Integer)
-      jsr_targets_.emplace_back(static_cast<int>(in.operands[0].integer), in.operands[0].pos);
+    // JSR's file, and the STI file STS names (RM 11-16), must be program files of this program.
+    if ((in.opcode == Opcode::JSR || in.opcode == Opcode::STS) && in.operands.size() == s.operand_count &&
+        in.operands[0].kind == Operand::Kind::Integer)
+      (in.opcode == Opcode::JSR ? jsr_targets_ : sts_targets_)
+          .emplace_back(static_cast<int>(in.operands[0].integer), in.operands[0].pos);
+    if (in.opcode == Opcode::INT && (file_number < 3 || rung_index != 0))
+      error(in.pos, "INT belongs at the start of the first rung of an interrupt subroutine file (3-255)");
     if (in.opcode == Opcode::CPT && in.operands.size() == 2 && in.operands[1].kind == Operand::Kind::Expression)
       check_cpt(in);
     if (in.opcode == Opcode::SWP && in.operands.size() == 2 && in.operands[0].is_address() &&
@@ -808,6 +814,10 @@ class Checker {
     for (const auto& [target, pos] : jsr_targets_)
       if (!program_.find_file(target))
         error(pos, "JSR to program file " + std::to_string(target) + ", which is not defined (no LADDER " +
+                       std::to_string(target) + ")");
+    for (const auto& [target, pos] : sts_targets_)
+      if (!program_.find_file(target))
+        error(pos, "STS names STI file " + std::to_string(target) + ", which is not defined (no LADDER " +
                        std::to_string(target) + ")");
   }
 

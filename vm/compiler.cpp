@@ -450,6 +450,9 @@ class Compiler {
     // Watchdog: S:3 high byte, default 10 ticks = 100 ms (PT1 27-13) when no DATA gives one.
     const std::uint32_t s3 = layout_.status_word(status::kWatchdog);
     if ((init_[s3] >> 8) == 0) init_[s3] = static_cast<std::uint16_t>((init_[s3] & 0x00FF) | (10u << 8));
+    // STI enable: S:2/1 "The default value is 1 (set)" (RM 11-12) when no DATA block gives S:2.
+    const std::uint32_t s2 = layout_.status_word(status::kControl);
+    if (!initialised_[s2]) init_[s2] = static_cast<std::uint16_t>(init_[s2] | status::kStiEnabled);
   }
 
   // A literal operand initialises an element word unless DATA (or an earlier instruction) did.

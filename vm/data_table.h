@@ -69,6 +69,13 @@ inline constexpr int kAvgScan = 23;    // S:23: average scan
 inline constexpr int kIndex = 24;      // S:24: index register
 inline constexpr int kCommBits = 33;   // S:33: /13 selects 1 ms units for S:22/S:23
 inline constexpr int kLastScanMs = 35; // S:35: last scan in 1 ms
+// Program control and interrupts (RM 11-2 to 11-16, RM ch. 6 SUS).
+inline constexpr int kSuspendCode = 7;   // S:7: the ID of the SUS that suspended the processor
+inline constexpr int kSuspendFile = 8;   // S:8: the program file holding that SUS
+inline constexpr int kFaultRoutine = 29; // S:29: user fault routine file (0 = none)
+inline constexpr int kStiSetpoint = 30;  // S:30: STI setpoint (10 ms units; 1 ms with S:2/10 on 5/03+)
+inline constexpr int kStiFile = 31;      // S:31: STI program file (0 = none)
+inline constexpr int kMinorExtended = 36;  // S:36: extended minor errors, /9 STI lost (5/03+)
 
 inline constexpr std::uint16_t kCarry = 1u << 0;
 inline constexpr std::uint16_t kOverflow = 1u << 1;
@@ -83,6 +90,12 @@ inline constexpr std::uint16_t kOverflowTrap = 1u << 0;
 // S:5/2: control register error, set with a sequencer's ER bit (PT1 24-8).
 inline constexpr std::uint16_t kControlRegisterError = 1u << 2;
 inline constexpr std::uint16_t kScanIn1ms = 1u << 13;
+inline constexpr std::uint16_t kStiPending = 1u << 0;     // S:2/0
+inline constexpr std::uint16_t kStiEnabled = 1u << 1;     // S:2/1
+inline constexpr std::uint16_t kStiExecuting = 1u << 2;   // S:2/2
+inline constexpr std::uint16_t kStiResolution = 1u << 10; // S:2/10: S:30 in 1 ms units (5/03+)
+inline constexpr std::uint16_t kStiOverflow = 1u << 10;   // S:5/10
+inline constexpr std::uint16_t kStiLost = 1u << 9;        // S:36/9
 }  // namespace status
 
 // T/C/R control-word bits (RM 1-6, 1-8; PT1 4-9).

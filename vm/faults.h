@@ -19,6 +19,10 @@ namespace fault {
 inline constexpr std::uint16_t kMinorErrorAtEnd = 0x0020;
 // The scan exceeded the watchdog S:3 high byte [C RM 16-7].
 inline constexpr std::uint16_t kWatchdog = 0x0022;
+// S:31 (or STS) names an STI file that is not a subroutine file of the program [C facts §3, RM 11-12].
+inline constexpr std::uint16_t kInvalidStiFile = 0x0023;
+// S:30 (or the STS time) is outside the processor's STI setpoint range [C RM 16-7, RM 11-12].
+inline constexpr std::uint16_t kInvalidStiSetpoint = 0x0024;
 // An indirect address points outside the data space (file missing, element past the file) [S].
 inline constexpr std::uint16_t kIndirectOutOfRange = 0x0029;
 // An indexed address (S:24 offset) or a file instruction's range runs past its data file [S].

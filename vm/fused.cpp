@@ -199,7 +199,7 @@ inline unsigned gather(const std::uint16_t* w, const std::uint32_t* c) {
 }  // namespace
 
 std::uint32_t FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
-                                    Nanoseconds watchdog) const {
+                                    Nanoseconds limit) const {
   const Run& r = runs_[static_cast<std::size_t>(run)];
   const std::uint32_t* s = stream_.data() + r.first;
   const std::uint32_t* const end = stream_.data() + r.last;
@@ -244,8 +244,8 @@ std::uint32_t FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseco
     s = o_end;
     if (s == end) break;
     ++rung;
-    // The next rung's SOR: the general path raises the watchdog fault there.
-    if (t >= watchdog) [[unlikely]] {
+    // The next rung's SOR: the general path raises the watchdog fault or runs the interrupt there.
+    if (t >= limit) [[unlikely]] {
       elapsed = t;
       count += n;
       return sor_[rung];

@@ -23,8 +23,9 @@
 // Exactness. Gathering every contact before any coil writes is only correct when no contact
 // reads a bit that a coil earlier in the same rung writes; such rungs are left to the general
 // path. A run of consecutive fused rungs is executed in one call; before each rung after the
-// first it checks the watchdog and, when the scan time has reached it, returns that rung's SOR
-// so the general path raises fault 0022h exactly where it would have. The interpreter enters a
+// first it checks the interpreter's rung-start limit (the watchdog, or sooner a timed interrupt
+// that is due: vm/interrupts.cpp) and, when the scan time has reached it, returns that rung's SOR
+// so the general path raises fault 0022h or runs the interrupt exactly where it would have. The interpreter enters a
 // run only when no coverage recorder is attached and the rung is not inside a false MCR zone
 // (fused rungs hold no MCR, so the zone cannot change inside a run); in every other case the
 // general path runs, instruction by instruction, as before. Results, scan time and instruction
@@ -74,9 +75,9 @@ class FusedProgram {
   // Executes run `run` whose first rung's SOR the caller has already executed (rung-in true).
   // Adds the scan time to `elapsed` and the instructions executed to `count`; returns the code
   // offset where the general path continues (the SOR of the next rung, the file's EOF, or the
-  // SOR of a rung at which the watchdog was reached).
+  // SOR of a rung at which `limit`, the watchdog or an interrupt point, was reached).
   std::uint32_t execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
-                        Nanoseconds watchdog) const;
+                        Nanoseconds limit) const;
 
   std::size_t runs() const { return runs_.size(); }
   std::size_t fused_rungs() const { return fused_rungs_; }

@@ -18,6 +18,17 @@ namespace softslc {
 namespace {
 
 constexpr std::uint16_t kStatusBits = 0x000F;  // S:0 C V Z S
+// S:33/9, the status scan toggle bit (RM B-48, SLC 5/03 and later): cleared on entry into Run,
+// changes state at every END, TND or REF.
+constexpr std::uint16_t kScanToggle = 1u << 9;
+
+// Changes (or, with `clear`, clears) S:33/9 on the processors that have it.
+void scan_toggle(const CompiledProgram& p, std::uint16_t* w, bool clear) {
+  const ProcessorFamily f = p.processor.family;
+  if (f != ProcessorFamily::Slc503 && f != ProcessorFamily::Slc504 && f != ProcessorFamily::Slc505) return;
+  std::uint16_t& s33 = w[p.layout->status_word(status::kCommBits)];
+  s33 = static_cast<std::uint16_t>(clear ? (s33 & ~kScanToggle) : (s33 ^ kScanToggle));
+}
 
 std::string hex4(unsigned v) {
   static const char* digits = "0123456789ABCDEF";
@@ -61,6 +72,15 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
   s13_ = L.status_word(status::kMathLow);
   s14_ = L.status_word(status::kMathHigh);
   s24_ = L.status_word(status::kIndex);
+  s1_ = L.status_word(status::kMode);
+  s6_ = L.status_word(status::kFaultCode);
+  s7_ = L.status_word(status::kSuspendCode);
+  s8_ = L.status_word(status::kSuspendFile);
+  s29_ = L.status_word(status::kFaultRoutine);
+  s30_ = L.status_word(status::kStiSetpoint);
+  s31_ = L.status_word(status::kStiFile);
+  if (L.files[2].elements > static_cast<std::uint32_t>(status::kMinorExtended))
+    s36_ = L.status_word(status::kMinorExtended);
   fused_ = std::make_shared<const FusedProgram>(program, cost_);
 }
 
@@ -1567,14 +1587,68 @@ void Interpreter::stack(Op op, const std::uint32_t* o, bool rung) {
 
 ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds elapsed, bool first_pass,
                                             Nanoseconds watchdog) {
-  ProgramScanResult res;
-  scan_start_ = scan_start;
   first_pass_ = first_pass;
+  begin_pass(scan_start, watchdog);
+  watchdog_span_ = watchdog;
+  watchdog_from_ = 0;
+  bool ok = true;
+  // Entering Run: the STI starts timing now (RM 11-12); an invalid S:30/S:31 faults at once.
+  if (first_pass && !configure_sti(scan_start + elapsed, true)) ok = false;
+  if (first_pass) scan_toggle(prog_, w_, true);
+  update_limit(elapsed);
+  if (ok) ok = run_routine(2, elapsed, max_depth_);
+  if (ok) scan_toggle(prog_, w_, false);  // END or TND
+  if (ok) {
+    // PT1 20-2: the overflow trap still set at END or TND is major fault 0020h.
+    if (w_[s5_] & status::kOverflowTrap)
+      raise(fault::kMinorErrorAtEnd, "math overflow trap S:5/0 still set at the end of the program scan");
+    // PT1 24-8: a sequencer error (ER, with S:5/2) not cleared before END or TND is a major error.
+    else if (w_[s5_] & status::kControlRegisterError)
+      raise(fault::kMinorErrorAtEnd,
+            "control register error S:5/2 (a sequencer's ER) still set at the end of the program scan");
+    if (faulted_) {
+      fault_.file = last_file_;
+      fault_.rung = last_rung_;
+      fault_located_ = true;
+      // RM 11-2: a recoverable fault at the end of the scan can be cleared by the fault routine.
+      ok = user_fault_routine(elapsed);
+    }
+  }
+  ProgramScanResult res = pass_result(ok, elapsed);
+  res.watchdog_from = watchdog_from_;
+  return res;
+}
+
+void Interpreter::begin_pass(VirtualTime scan_start, Nanoseconds watchdog) {
+  scan_start_ = scan_start;
   faulted_ = false;
+  fault_located_ = false;
+  suspended_ = false;
   fault_ = {};
   extra_ns_ = 0;
+  count_ = 0;
   w_ = table_.words();
+  watchdog_ = watchdog;
+  interrupt_level_ = 0;
+  in_fault_routine_ = false;
+}
 
+ProgramScanResult Interpreter::pass_result(bool ok, Nanoseconds elapsed) const {
+  ProgramScanResult res;
+  res.elapsed = elapsed;
+  res.instructions = count_;
+  res.last_file = last_file_;
+  res.last_rung = last_rung_;
+  if (suspended_) {
+    res.suspended = true;
+  } else if (!ok) {
+    res.faulted = true;
+    res.fault = fault_;
+  }
+  return res;
+}
+
+bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
   struct BranchFrame {
     bool entry;  // the rung condition at BST: every leg starts from it
     bool acc;    // OR of the legs finished so far
@@ -1592,17 +1666,16 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
   int bsp = 0;
   int bsp_base = 0;
   int fsp = 0;
-  int cur_file = 2;
   int cur_rung = -1;
   bool mcr_off = false;  // inside an MCR zone whose MCR rung was false
   bool rung = true;
   // The instruction count and the cost table are reached through `this` in the general switch,
   // which leaves the compiler registers for the program counter and the scan time.
-  count_ = 0;
-  const CompiledFile* main_file = prog_.file(2);
-  const std::uint32_t* pc = code_ + main_file->begin;
+  int cur_file = file;
+  const std::uint32_t* pc = code_ + prog_.file(file)->begin;
 
   for (;;) {
+  resume:
     // The bit-logic fast path: the ops a ladder program is mostly made of, in a tight loop with
     // only pc, the rung condition, the scan time and the branch stack live, so they stay in
     // registers. Everything else leaves it for the general switch below. (Measured with
@@ -1682,10 +1755,9 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
       case Op::SOR:
         cur_rung = static_cast<int>(bc::aux_of(h));
         bsp = bsp_base;  // a JMP out of a branch leaves nothing behind
-        if (elapsed >= watchdog) [[unlikely]] {
-          raise(fault::kWatchdog, "scan time reached the watchdog (S:3 high byte, " +
-                                      std::to_string(watchdog / kTick) + " x 10 ms)");
-          goto fault;
+        // limit_ is the watchdog, or sooner an STI expiry: one compare per rung either way.
+        if (elapsed >= limit_) [[unlikely]] {
+          if (!at_limit(elapsed)) goto fault;
         }
         rung = !mcr_off || (bc::flags_of(h) & bc::kFlagA);
         // A run of fused rungs (vm/fused.h) starting here executes in one call; coverage keeps
@@ -1695,7 +1767,7 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
           if (run >= 0) {
             Nanoseconds t = elapsed;
             std::uint64_t n = 0;
-            pc = code_ + fused_->execute(run, w_, t, n, watchdog);
+            pc = code_ + fused_->execute(run, w_, t, n, limit_);
             elapsed = t;
             count_ += n;
             continue;
@@ -1907,13 +1979,16 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
         }
         break;
       case Op::LBL:
-      case Op::SBR: break;
+      case Op::SBR:
+      case Op::INT: break;
       case Op::JSR:
         if (rung) {
-          if (fsp >= max_depth_) {
+          if (fsp >= max_depth) {
             raise(fault::kSubroutineNesting, "JSR " + std::to_string(bc::imm_of(o[0])) + " would nest subroutines " +
                                                  std::to_string(fsp + 1) + " deep; " + prog_.processor.display_name +
-                                                 " allows " + std::to_string(max_depth_) + " (RM 6-4)");
+                                                 " allows " + std::to_string(max_depth) +
+                                                 (interrupt_level_ ? " inside an interrupt or fault routine" : "") +
+                                                 " (RM 6-4)");
             goto fault;
           }
           frames[static_cast<std::size_t>(fsp++)] = {o + bc::count_of(h), cur_file, cur_rung, mcr_off, bsp, bsp_base};
@@ -1946,6 +2021,53 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
         // when its rung is true. In a false zone every rung's rung-in is false (SOR above).
         mcr_off = (bc::flags_of(h) & bc::kFlagA) ? false : !rung;
         break;
+
+      // ---- Program control and interrupts (issue 15) ----
+      case Op::SUS:
+        if (rung) {
+          // RM ch. 6 (SUS): the suspend ID goes to S:7 and the file holding the SUS to S:8; the
+          // processor then stops in Suspend Idle (the runtime de-energises the outputs).
+          w_[s7_] = static_cast<std::uint16_t>(bc::imm_of(o[0]));
+          w_[s8_] = static_cast<std::uint16_t>(cur_file);
+          if (coverage_) [[unlikely]] coverage_->record(static_cast<std::uint32_t>(pc - code_), op, rung_in, rung);
+          suspended_ = true;
+          goto fault;
+        }
+        break;
+      case Op::REF:
+        if (rung) {
+          elapsed += chassis_.io_refresh();
+          scan_toggle(prog_, w_, false);
+          // PT1 20-2 (facts §3): the overflow trap still set at END, TND or REF is fault 0020h.
+          if (w_[s5_] & status::kOverflowTrap) {
+            raise(fault::kMinorErrorAtEnd, "math overflow trap S:5/0 still set at REF");
+            goto fault;
+          }
+          // RM B-19: the scan-time count (and so the watchdog) restarts on return from REF.
+          watchdog_from_ = elapsed;
+          watchdog_ = elapsed + watchdog_span_;
+          update_limit(elapsed);
+        }
+        break;
+      case Op::STD:
+        if (rung) w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~status::kStiEnabled);
+        break;
+      case Op::STE:
+        if (rung) {
+          w_[s2_] = static_cast<std::uint16_t>(w_[s2_] | status::kStiEnabled);
+          // A pending STI runs at once: at the next rung start (docs/semantics.md).
+          update_limit(elapsed);
+        }
+        break;
+      case Op::STS:
+        if (rung) sti_start(o, elapsed);
+        if (faulted_) goto fault;
+        break;
+      case Op::STS_ML:
+        // The checker refuses it on every processor (Requirement::MicroLogixStiFile); never
+        // silently ignored if a program ever got here.
+        raise(fault::kUnsupportedInstruction, "STS on the MicroLogix STI function file is not simulated");
+        goto fault;
 
       // ---- Immediate I/O ----
       case Op::IIM:
@@ -1997,33 +2119,32 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
   }
 
 end_of_scan:
-  // PT1 20-2: the overflow trap still set at END or TND is major fault 0020h.
-  if (w_[s5_] & status::kOverflowTrap) {
-    raise(fault::kMinorErrorAtEnd, "math overflow trap S:5/0 still set at the end of the program scan");
-    goto fault;
-  }
-  // PT1 24-8: a sequencer error (ER, with S:5/2) not cleared before END or TND is a major error.
-  if (w_[s5_] & status::kControlRegisterError) {
-    raise(fault::kMinorErrorAtEnd,
-          "control register error S:5/2 (a sequencer's ER) still set at the end of the program scan");
-    goto fault;
-  }
-  res.elapsed = elapsed;
-  res.instructions = count_;
-  res.last_file = cur_file;
-  res.last_rung = cur_rung;
-  return res;
+  last_file_ = cur_file;
+  last_rung_ = cur_rung;
+  return true;
 
 fault:
-  res.faulted = true;
-  res.fault = fault_;
-  res.fault.file = cur_file;
-  res.fault.rung = cur_rung;
-  res.elapsed = elapsed;
-  res.instructions = count_;
-  res.last_file = cur_file;
-  res.last_rung = cur_rung;
-  return res;
+  last_file_ = cur_file;
+  last_rung_ = cur_rung;
+  if (suspended_) return false;
+  if (!fault_located_) {
+    // The innermost routine places the fault and offers it to the user fault routine once.
+    fault_located_ = true;
+    fault_.file = cur_file;
+    fault_.rung = cur_rung;
+    if (user_fault_routine(elapsed)) {
+      // Recovered (RM 11-2): the scan goes on at the start of the next rung of this file; the
+      // faulting instruction wrote nothing (its operand went to scratch).
+      fault_located_ = false;
+      fault_ = {};
+      const CompiledFile* cf = prog_.file(cur_file);
+      const auto next = static_cast<std::size_t>(cur_rung + 1);
+      pc = code_ + (next < cf->rungs.size() ? cf->rungs[next].offset : cf->end - 1);
+      rung = true;
+      goto resume;
+    }
+  }
+  return false;
 }
 
 }  // namespace softslc

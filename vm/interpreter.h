@@ -29,8 +29,10 @@
 //
 // Virtual time. Each executed instruction adds its cost (from the ScanTimeModel, tabulated once)
 // to the scan time. Timers read the 10 ms tick count at the current virtual time
-// (scan start + scan time so far); every rung start checks the watchdog (S:3 high byte), so an
-// endless JMP loop ends in fault 0022h after the watchdog's worth of virtual time.
+// (scan start + scan time so far); every rung start compares the scan time with limit_, which is
+// the watchdog (S:3 high byte) or, sooner, the next selectable timed interrupt (vm/interrupts.cpp:
+// interrupt routines run recursively through run_routine from a rung start), so an endless JMP
+// loop ends in fault 0022h after the watchdog's worth of virtual time.
 //
 // Invariants: the branch stack and call stack are fixed arrays bounded by kMaxBranchDepth and
 // the processor's nesting limit (checked before every push); the program counter only takes
@@ -64,6 +66,9 @@ class ChassisAccess {
   virtual void immediate_input(int slot, int first, int count, std::uint16_t mask) = 0;
   // IOM: send `count` O-file words of `slot` from word `first` to the module under `mask`.
   virtual void immediate_output(int slot, int first, int count, std::uint16_t mask) = 0;
+  // REF: an output scan then an input scan in the middle of the program scan. Returns the virtual
+  // time the two scans took. The default does nothing and takes no time (no chassis).
+  virtual Nanoseconds io_refresh() { return 0; }
   // A specialty-module instruction (BTR, BTW, DEM) addressed to the module in `slot`. The default
   // faults: there is no module to execute it.
   virtual void module_instruction(int slot, ModuleInstructionContext& ctx);
@@ -76,6 +81,22 @@ struct ProgramScanResult {
   std::uint64_t instructions = 0;  // instruction-table instructions executed
   int last_file = 2;
   int last_rung = -1;
+  // A true SUS stopped the scan (S:7 and S:8 written): the processor enters Suspend Idle.
+  bool suspended = false;
+  // The scan time at which the watchdog count last restarted (0, or the end of the last REF):
+  // the runtime measures its end-of-scan watchdog check from here (RM B-19).
+  Nanoseconds watchdog_from = 0;
+};
+
+// The selectable timed interrupt as the interpreter keeps it between scans (RM 11-8 to 11-16).
+// S:30/S:31 (or the MicroLogix STI function file) are the program's view; this is the timer.
+struct StiTimer {
+  int file = 0;                  // the STI program file, 0 = not running
+  Nanoseconds period = 0;        // time between expiries
+  Nanoseconds next_period = 0;   // a changed setpoint, applied at the next expiry (RM 11-12)
+  VirtualTime due = 0;           // the next expiry, when file != 0
+  std::uint16_t setpoint = 0;    // the S:30 (or .SPM) value the period was made from
+  std::uint64_t runs = 0;        // STI routine executions since the runtime was created
 };
 
 // Maximum call depth the interpreter's call stack holds (the processor's limit is at most 8).
@@ -102,6 +123,21 @@ class Interpreter {
   // Fused rungs (vm/fused.h) are on by default; off, every rung takes the general path. The
   // result is the same either way; tests compare the two.
   void set_fusion(bool on) { fusion_ = on; }
+
+  // ---- Interrupts (docs/semantics.md "Program control and interrupts") ----
+  // At the end of a program scan (and, with `entering_run`, before the first scan in Run): reads
+  // S:30/S:31/S:2/10 and starts, changes or stops the STI timer as RM 11-12 says. Returns false
+  // with fault() set (0023h, 0024h) when the configuration is invalid.
+  bool configure_sti(VirtualTime now, bool entering_run);
+  // Runs every STI that is due by scan time `elapsed` of the scan that started at `scan_start`
+  // (expiries during the output scan and housekeeping). Returns the new scan time; a fault in
+  // the routine is reported in the result like a program-scan fault.
+  ProgramScanResult service_interrupts_between(VirtualTime scan_start, Nanoseconds elapsed, Nanoseconds watchdog);
+  // Leaving Run/Test: the STI timer stops and S:2/0, S:2/2 are cleared (RM 11-12, 11-13).
+  void stop_interrupts();
+  const StiTimer& sti() const { return sti_; }
+  // The fault configure_sti raised.
+  const FaultInfo& last_fault() const { return fault_; }
 
   // The cost table (ns) indexed by op * 2 + rung-in.
   const std::vector<Nanoseconds>& costs() const { return cost_; }
@@ -203,6 +239,34 @@ class Interpreter {
   // PID (1747-RM001G ch. 9): the control block's 23 words go to pid::execute (vm/pid.h); an invalid
   // parameter is major fault 0036h. Returns false when it faulted.
   SOFTSLC_HANDLER bool pid(const std::uint32_t* o, bool rung, Nanoseconds now_in_scan);
+  // STS: S:31/S:30 (or the STI function file) := file/time, enable, restart the timer from now.
+  SOFTSLC_HANDLER void sti_start(const std::uint32_t* o, Nanoseconds now_in_scan);
+
+  // The dispatch loop: runs program file `file` from its first rung until it ends (END, EOF, TND,
+  // or RET at its own level) or faults. Interrupt routines run through it recursively from a
+  // rung start. Returns false on a fault (fault_ located) or a SUS (suspended_).
+  bool run_routine(int file, Nanoseconds& elapsed, int max_depth);
+  // Per-pass state for a program scan or a between-scans interrupt pass, and its result.
+  void begin_pass(VirtualTime scan_start, Nanoseconds watchdog);
+  ProgramScanResult pass_result(bool ok, Nanoseconds elapsed) const;
+  // Rung-start hook, reached only when the scan time has passed limit_: raises the watchdog fault,
+  // or takes the STI expiries due by now and runs the STI routine when it may run.
+  [[gnu::noinline, gnu::cold]] bool at_limit(Nanoseconds& elapsed);
+  bool service_interrupts(Nanoseconds& elapsed);
+  bool run_sti(Nanoseconds& elapsed);
+  void sti_expire();
+  // limit_ := the scan time of the next thing a rung start must look at (watchdog, STI expiry).
+  void update_limit(Nanoseconds elapsed);
+  Nanoseconds sti_period(std::int64_t setpoint) const;
+  // A fault raised in a routine: runs the user fault routine (S:29) once. True when the fault
+  // was recoverable and the routine cleared S:1/13, so the scan goes on.
+  bool user_fault_routine(Nanoseconds& elapsed);
+  // Saved and restored around an interrupt or fault routine (PT1 30-3; RM B-5, B-43).
+  struct SavedStatus {
+    std::uint16_t s0, s13, s14, s24;
+  };
+  SavedStatus save_status() const;
+  void restore_status(const SavedStatus& s);
   friend class ModuleCall;
 
   // Virtual time spent on the slow paths (M0/M1 accesses, file-instruction words); folded into
@@ -224,6 +288,10 @@ class Interpreter {
   std::array<std::uint8_t, kOpCount> countable_{};
   int max_depth_;
   std::uint32_t s0_, s2_, s5_, s13_, s14_, s24_;
+  // Interrupt status words (the status file always has S:0-S:35); S:36 is absent (-1) on the
+  // processors whose status file stops before it.
+  std::uint32_t s1_, s6_, s7_, s8_, s29_, s30_, s31_;
+  std::int64_t s36_ = -1;
   CoverageRecorder* coverage_ = nullptr;
   // Whole rungs of direct-bit logic, built once from the program and the cost table.
   std::shared_ptr<const FusedProgram> fused_;
@@ -235,6 +303,21 @@ class Interpreter {
   bool faulted_ = false;
   std::uint64_t count_ = 0;  // instructions executed this scan
   FaultInfo fault_;
+  // The fault has been located (file, rung) and offered to the user fault routine; outer
+  // routines only pass it on.
+  bool fault_located_ = false;
+  bool suspended_ = false;
+  // Rung starts look at interrupts and the watchdog only when the scan time reaches limit_.
+  Nanoseconds limit_ = 0;
+  Nanoseconds watchdog_ = 0;       // the scan time at which fault 0022h is raised
+  Nanoseconds watchdog_span_ = 0;  // S:3 high byte in ns (REF restarts the count from here)
+  Nanoseconds watchdog_from_ = 0;
+  int interrupt_level_ = 0;        // 0 in the main program; > 0 inside an STI or fault routine
+  bool in_fault_routine_ = false;
+  bool sti_ms_units_ = false;      // S:2/10 latched on entry to Run (RM 11-13)
+  StiTimer sti_;
+  int last_file_ = 2;
+  int last_rung_ = -1;
   std::array<std::uint16_t, 64> scratch_{};  // where a faulting operand's access lands
 #undef SOFTSLC_HANDLER
 };

@@ -10,6 +10,7 @@ std::string_view to_string(Mode m) {
     case Mode::Run: return "run";
     case Mode::Test: return "test";
     case Mode::Faulted: return "faulted";
+    case Mode::Suspended: return "suspended";
   }
   return "?";
 }

@@ -48,7 +48,8 @@ namespace softslc {
 
 // Processor modes (S:1/0-4 codes in brackets, DF1 p.10-3): Program (1), Run (6), Test single
 // scan (8), and Faulted (a major error halted the processor, S:1/13).
-enum class Mode : std::uint8_t { Program, Run, Test, Faulted };
+// Suspended: Suspend Idle after a true SUS (RM ch. 6): no program scan, outputs off, not a fault.
+enum class Mode : std::uint8_t { Program, Run, Test, Faulted, Suspended };
 std::string_view to_string(Mode m);
 
 enum class MFile : std::uint8_t { M0 = 0, M1 = 1 };

@@ -23,6 +23,7 @@ std::uint16_t mode_code(Mode m) {
     case Mode::Run: return 6;
     case Mode::Test: return 8;
     case Mode::Faulted: return 1;
+    case Mode::Suspended: return 3;  // "3 idle (SUS)" (DF1 p. 10-3, facts §3)
   }
   return 1;
 }
@@ -199,11 +200,14 @@ void Runtime::raise_major_fault(std::uint16_t code, std::string message) {
 
 RuntimeStatus Runtime::set_mode(Mode m) {
   if (m == Mode::Faulted) return RuntimeStatus::failure("only a major fault puts the processor in Faulted mode");
+  if (m == Mode::Suspended) return RuntimeStatus::failure("only a true SUS instruction suspends the processor");
   if (fault_ || mode_ == Mode::Faulted)
     return RuntimeStatus::failure("a major fault is active (" + fault_->to_string() + "); clear it first");
   if (m == mode_) return {};
   const Mode from = mode_;
   mode_ = m;
+  // Leaving Run or Test stops the STI and clears S:2/0 and S:2/2 (RM 11-12, 11-13).
+  if (m != Mode::Run && m != Mode::Test) interp_->stop_interrupts();
   if (m == Mode::Run || m == Mode::Test) {
     // Entering Run or Test: a first pass (S:1/15) and S:4 zeroed (PT1 27-13).
     first_pass_ = true;
@@ -234,7 +238,23 @@ void Runtime::enter_fault(const FaultInfo& f) {
   data_.set_status(status::kMode, static_cast<std::uint16_t>(data_.status(status::kMode) | status::kMajorHalt));
   const Mode from = mode_;
   mode_ = Mode::Faulted;
+  interp_->stop_interrupts();
   notify_modes(from, mode_);
+}
+
+void Runtime::enter_suspend() {
+  // RM ch. 6 (SUS): Suspend Idle, outputs de-energised (the output scan sends zeros outside Run);
+  // S:7 and S:8 were written by the instruction. Not a fault: S:1/13 and S:6 are untouched.
+  const Mode from = mode_;
+  mode_ = Mode::Suspended;
+  interp_->stop_interrupts();
+  write_mode_bits();
+  notify_modes(from, mode_);
+}
+
+Nanoseconds Runtime::io_refresh() {
+  // REF (RM ch. 6): the output scan, then the input scan, in the middle of the program scan.
+  return output_scan() + input_scan();
 }
 
 // ---- The scan cycle ----------------------------------------------------------------------------------------
@@ -335,18 +355,35 @@ void Runtime::scan_once(bool single_scan_step) {
     ProgramScanResult r = program_scan(start, used);
     used = r.elapsed;
     stats_.instructions += r.instructions;
-    if (r.faulted) enter_fault(r.fault);
+    const Nanoseconds watchdog_span = static_cast<Nanoseconds>(data_.status(status::kWatchdog) >> 8) * kTick;
+    if (r.suspended) {
+      enter_suspend();
+    } else if (r.faulted) {
+      enter_fault(r.fault);
+    } else if (mode_ == Mode::Run && !interp_->configure_sti(start + used, false)) {
+      // RM 11-12: an S:30/S:31 loaded by the program starts timing at the end of this scan.
+      enter_fault(interp_->last_fault());
+    }
     used += output_scan();
     used += model_->housekeeping_cost();
+    // STI expiries during the output scan and housekeeping run here, at the end of the cycle.
+    if (mode_ == Mode::Run) {
+      ProgramScanResult late = interp_->service_interrupts_between(start, used, r.watchdog_from + watchdog_span);
+      used = late.elapsed;
+      stats_.instructions += late.instructions;
+      if (late.suspended) enter_suspend();
+      else if (late.faulted) enter_fault(late.fault);
+    }
     // The watchdog covers the whole scan cycle: a scan whose I/O pushed it past S:3H faults at
-    // its end (the program-scan check only sees the time up to each rung).
-    const Nanoseconds watchdog = static_cast<Nanoseconds>(data_.status(status::kWatchdog) >> 8) * kTick;
-    if (!r.faulted && used >= watchdog) {
+    // its end (the program-scan check only sees the time up to each rung). A REF restarts the
+    // count (RM B-19), so it runs from the end of the last REF.
+    if (!fault_ && mode_ != Mode::Suspended && used - r.watchdog_from >= watchdog_span) {
       FaultInfo f;
       f.code = fault::kWatchdog;
       f.file = r.last_file;
       f.rung = r.last_rung;
-      f.message = "scan time reached the watchdog (S:3 high byte, " + std::to_string(watchdog / kTick) + " x 10 ms)";
+      f.message =
+          "scan time reached the watchdog (S:3 high byte, " + std::to_string(watchdog_span / kTick) + " x 10 ms)";
       enter_fault(f);
     }
     housekeeping(used, true);

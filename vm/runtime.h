@@ -187,6 +187,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void advance_rtc(VirtualTime now);
   Nanoseconds housekeeping(Nanoseconds scan_time, bool executed);
   void enter_fault(const FaultInfo& f);
+  void enter_suspend();
   void apply_input_forces(std::uint32_t first, std::uint32_t count);
   std::uint16_t forced_output(std::uint32_t i) const;
   void write_mode_bits();
@@ -205,6 +206,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::string m_refusal(int slot, MFile f, int word, bool write) const override;
   void immediate_input(int slot, int first, int count, std::uint16_t mask) override;
   void immediate_output(int slot, int first, int count, std::uint16_t mask) override;
+  Nanoseconds io_refresh() override;
   void module_instruction(int slot, ModuleInstructionContext& ctx) override;
 
   std::unique_ptr<CompiledProgram> program_;

@@ -342,18 +342,20 @@ TEST(AutomaxMaster, SharkConfigurationRules) {
 
 // Section 4.6.4: a drive that stops answering: the head clears its input registers, keeps the
 // drop on-line and keeps trying.
+// (The reference register is DRV_REF: REF is the I/O refresh instruction, and a symbol may not
+// spell a mnemonic.)
 TEST(AutomaxMaster, DriveHeadClearsInputsOfASilentDrive) {
   const std::string bench = "automax NET slot=8 {\n  drive_head DH drop=6 ports=0,1\n}\n";
   const std::string defs =
       "IODEF RIO_D06@[SLOT=8,REGISTER=4,BIT=6]\n"
-      "RIODEF REF%[MASTER_SLOT=8,DROP=6,SLOT=1,REGISTER=0]\n"
+      "RIODEF DRV_REF%[MASTER_SLOT=8,DROP=6,SLOT=1,REGISTER=0]\n"
       "RIODEF FDBK%[MASTER_SLOT=8,DROP=6,SLOT=1,REGISTER=2]\n"
       "RIODEF P2%[MASTER_SLOT=8,DROP=6,SLOT=2,REGISTER=0]\n";
   Bench b(program(kNoRungs, defs), bench);
   b->scan(1);  // the master's power-up poll is its first event
   b.inject("DH", "input", {"1", "2", "500"});
   b.run();
-  EXPECT_TRUE(b->set(A(b, "REF"), Value::of_int(300)));
+  EXPECT_TRUE(b->set(A(b, "DRV_REF"), Value::of_int(300)));
   EXPECT_FALSE(b->set(A(b, "FDBK"), Value::of_int(1)));
   EXPECT_FALSE(b->get(A(b, "P2")).has_value());
   b->run_for(milliseconds(10));

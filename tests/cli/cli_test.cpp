@@ -116,6 +116,19 @@ TEST(Cli, RunForAVirtualDurationTripsTheOverload) {
   EXPECT_EQ(late.out, "OL_TRIPPED = 1\nTRIP_LAMP = 1\n");
 }
 
+TEST(Cli, RunStopsAtASusAndSaysSo) {
+  // examples/ladder/sti: STOP_PB (I:1/1) makes rung 7 of file 2 execute SUS 99 (RM ch. 6: S:7 := ID,
+  // S:8 := file; the processor stops in Suspend Idle). The run ends there, without a fault.
+  const std::string sti = std::string(SOFTSLC_SOURCE_DIR) + "/examples/ladder/sti/sti_clock.slc";
+  auto r = run("run " + sti + " --set STOP_PB=1 --for 1s --print SECONDS");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out,
+            "SECONDS = 0\nsuspended: SUS 99 in file 2 (Suspend Idle, outputs off; S:7 and S:8 hold the ID and file)\n");
+  auto j = run("run " + sti + " --set STOP_PB=1 --for 1s --json");
+  EXPECT_NE(j.out.find("\"suspended\": {"), std::string::npos) << j.out;
+  EXPECT_NE(j.out.find("\"id\": 99"), std::string::npos) << j.out;
+}
+
 TEST(Cli, RunJsonHasTheContractFields) {
   auto r = run("run " + kExample + " --scans 3 --json --print T4:0.PRE --print MOTOR");
   ASSERT_EQ(r.exit_code, 0) << r.out;

@@ -554,7 +554,7 @@ const std::vector<RssFixture> kRssFixtures = {
     {"drbitboy-PLC_2s_lamp_flash/free_running_clock_bit_14.RSS", nullptr},
     {"drbitboy-PLC_2s_lamp_flash/rtc_bit_1.RSS", nullptr},
     {"drbitboy-PLC_2s_lamp_flash/single_timer.RSS", nullptr},
-    {"drbitboy-PLC_2s_lamp_flash/sti_1000ms_live.RSS", "instruction STS is not supported"},
+    {"drbitboy-PLC_2s_lamp_flash/sti_1000ms_live.RSS", "does not simulate the MicroLogix STI function file yet"},
     {"drbitboy-PLC_SLC_adjust_clock/slc_adjust_clock.RSS", nullptr},
     {"drbitboy-PLC_lowpass/training_bubble_sort_running.RSS", nullptr},
     {"drbitboy-PLC_lowpass/training_two_setpoints_running_0.965.RSS", nullptr},

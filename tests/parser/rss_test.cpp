@@ -268,13 +268,13 @@ TEST(RssReader, InstructionsSoftslcLacksAreNamedNotSupported) {
 }
 
 // Diagnostics about a converted project name the program file and rung (sti_1000ms_live.pdf,
-// LAD 2 rung 0000 holds STS, a MicroLogix instruction softslc does not have).
+// LAD 2 rung 0000 holds the MicroLogix STS, whose STI function file softslc does not simulate yet).
 TEST(RssReader, DiagnosticsNameTheProgramFileAndRung) {
   fs::path f = kFixtures / "drbitboy-PLC_2s_lamp_flash" / "sti_1000ms_live.RSS";
   if (!fs::exists(f)) GTEST_SKIP() << "no fixture " << f;
   auto r = softslc::load_program_file(f);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 0: instruction STS is not supported by softslc yet"), std::string::npos)
+  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 0: STS with one operand (time) is the MicroLogix form"), std::string::npos)
       << r.render_diagnostics();
 }
 

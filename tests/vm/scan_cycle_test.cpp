@@ -139,29 +139,9 @@ TEST(ScanCycle, ForceBlocksFromTheProgram) {
   EXPECT_FALSE(plc.b("B3:0/1")) << "OFF column bit 1 clear: I:1/1 forced off";
 }
 
-// A card whose input word counts the times it was read: the input scan and each IIM.
-class CountingInputs : public DiscreteIoModule {
- public:
-  using DiscreteIoModule::DiscreteIoModule;
-  void input_scan(std::span<std::uint16_t> image) override { image[0] = ++reads_; }
-  std::vector<std::vector<std::uint16_t>> outputs;
-  void output_scan(std::span<const std::uint16_t> image) override {
-    outputs.emplace_back(image.begin(), image.end());
-    DiscreteIoModule::output_scan(image);
-  }
-
- private:
-  std::uint16_t reads_ = 0;
-};
-
 TEST(ScanCycle, ImmediateInputAndOutput) {
-  RuntimeOptions opts;
   std::vector<CountingInputs*> cards;
-  opts.module_factory = [&](const SlotConfig& s) -> std::unique_ptr<Module> {
-    auto m = std::make_unique<CountingInputs>(s.slot, s.catalog, s.scan_in, s.scan_out);
-    cards.push_back(m.get());
-    return m;
-  };
+  RuntimeOptions opts = counting_cards(cards);
   Plc plc(
       "SOR MOV I:1.0 N7:0 EOR\n"
       "SOR IIM I:1.0 0x00FF 1 EOR\n"

@@ -13,9 +13,11 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "parser/loader.h"
 #include "vm/disassembler.h"
+#include "vm/discrete_io.h"
 #include "vm/runtime.h"
 
 namespace softslc::test {
@@ -88,6 +90,35 @@ inline int arith_flags(Plc& plc) { return static_cast<int>(plc.i("S:0") & 0xF); 
 // (PT1 20-2).
 inline std::string with_trap_sample(std::string_view rungs) {
   return std::string(rungs) + "\nSOR XIC S:5/0 OTE B3:1/0 EOR\nSOR OTU S:5/0 EOR";
+}
+
+// A card whose input word counts the times it was read (the input scan, each IIM or REF) and
+// which records every output image it is sent.
+class CountingInputs : public DiscreteIoModule {
+ public:
+  using DiscreteIoModule::DiscreteIoModule;
+  void input_scan(std::span<std::uint16_t> image) override {
+    if (!image.empty()) image[0] = ++reads_;
+  }
+  std::vector<std::vector<std::uint16_t>> outputs;
+  void output_scan(std::span<const std::uint16_t> image) override {
+    outputs.emplace_back(image.begin(), image.end());
+    DiscreteIoModule::output_scan(image);
+  }
+
+ private:
+  std::uint16_t reads_ = 0;
+};
+
+// Options that put a CountingInputs card in every slot, collected in `cards` in slot order.
+inline RuntimeOptions counting_cards(std::vector<CountingInputs*>& cards) {
+  RuntimeOptions opts;
+  opts.module_factory = [&cards](const SlotConfig& s) -> std::unique_ptr<Module> {
+    auto m = std::make_unique<CountingInputs>(s.slot, s.catalog, s.scan_in, s.scan_out);
+    cards.push_back(m.get());
+    return m;
+  };
+  return opts;
 }
 
 }  // namespace softslc::test

@@ -497,11 +497,13 @@ int run_run(const RunOptions& o) {
   };
   if (duration > 0) {
     const VirtualTime end = rt.now() + duration;
-    while (rt.now() < end && !rt.fault() && !g_interrupted) one_scan();
+    // A fault or a SUS (Suspend Idle) ends the run: nothing executes after either.
+    while (rt.now() < end && !rt.fault() && rt.mode() != Mode::Suspended && !g_interrupted) one_scan();
   } else {
     const int n = o.scans > 0 ? o.scans : 1;
-    for (int i = 0; i < n && !rt.fault() && !g_interrupted; ++i) one_scan();
+    for (int i = 0; i < n && !rt.fault() && rt.mode() != Mode::Suspended && !g_interrupted; ++i) one_scan();
   }
+  const bool suspended = rt.mode() == Mode::Suspended;
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   saved_ok &= save_state();
@@ -524,6 +526,8 @@ int run_run(const RunOptions& o) {
                     {"message", fault->message}};
     else
       j["fault"] = nullptr;
+    if (suspended)  // only when it happened, so the usual output keeps its keys
+      j["suspended"] = {{"id", rt.value("S:7").as_int()}, {"file", rt.value("S:8").as_int()}};
     j["scan_time_us"] = {{"last", to_us(rt.stats().last)}, {"max", to_us(rt.stats().max)}, {"avg", to_us(rt.stats().avg())}};
     std::cout << json_text(j) << "\n";
   } else {
@@ -534,6 +538,9 @@ int run_run(const RunOptions& o) {
     if (fault)
       std::cout << "fault: " << fault_code_text(fault->code) << " file " << fault->file << " rung " << fault->rung << ": "
                 << fault->message << "\n";
+    if (suspended)
+      std::cout << "suspended: SUS " << rt.value("S:7").as_int() << " in file " << rt.value("S:8").as_int()
+                << " (Suspend Idle, outputs off; S:7 and S:8 hold the ID and file)\n";
   }
   if (g_interrupted) return 128 + g_interrupted;
   if (!saved_ok) return kInputError;

@@ -13,6 +13,7 @@ std::string_view mode_word(Mode m) {
     case Mode::Run: return "run";
     case Mode::Test: return "test";
     case Mode::Faulted: return "faulted";
+    case Mode::Suspended: return "suspended";
   }
   return "?";
 }

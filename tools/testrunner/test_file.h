@@ -69,7 +69,7 @@ struct Operand {
   Location loc;
 };
 
-// The mode as a test file spells it: "program", "run", "test", "faulted".
+// The mode as a test file spells it: "program", "run", "test", "faulted", "suspended".
 std::string_view mode_word(Mode m);
 
 enum class CompareOp : std::uint8_t { Eq, Ne, Lt, Le, Gt, Ge, In };

@@ -78,6 +78,7 @@ struct kw_mode_program : TAO_PEGTL_KEYWORD("program") {};
 struct kw_mode_run : TAO_PEGTL_KEYWORD("run") {};
 struct kw_mode_test : TAO_PEGTL_KEYWORD("test") {};
 struct kw_mode_faulted : TAO_PEGTL_KEYWORD("faulted") {};
+struct kw_mode_suspended : TAO_PEGTL_KEYWORD("suspended") {};
 
 // Words that a condition reads as keywords; a program SYMBOL spelled exactly so cannot be named
 // in a condition (symbols are case-sensitive, and these are lower case).
@@ -162,7 +163,7 @@ struct fault_code : value {};
 struct fault_primary : seq<kw_fault, opt<ws, fault_code>> {};
 struct fault_after_no : kw_fault {};
 struct no_fault_primary : seq<kw_no, ws, must<fault_after_no>> {};
-struct mode_name : sor<kw_mode_program, kw_mode_run, kw_mode_test, kw_mode_faulted> {};
+struct mode_name : sor<kw_mode_program, kw_mode_run, kw_mode_test, kw_mode_faulted, kw_mode_suspended> {};
 struct condition_mode_name : mode_name {};
 struct mode_primary : seq<kw_mode, ws, must<condition_mode_name>> {};
 

@@ -36,7 +36,7 @@ template <> inline constexpr auto error_message<scans_rhs> = "expected a number 
 template <> inline constexpr auto error_message<scans_tail> =
     "expected a comparison after 'scans': ==, !=, <, <=, >, >= and a number, or 'in LOW..HIGH'";
 template <> inline constexpr auto error_message<fault_after_no> = "expected 'fault' after 'no'";
-template <> inline constexpr auto error_message<condition_mode_name> = "expected a mode: program, run, test or faulted";
+template <> inline constexpr auto error_message<condition_mode_name> = "expected a mode: program, run, test, faulted or suspended";
 template <> inline constexpr auto error_message<paren_close> = "expected ')' to close the '('";
 template <> inline constexpr auto error_message<next_primary> = "expected a condition after 'and'";
 template <> inline constexpr auto error_message<next_conjunction> = "expected a condition after 'or'";

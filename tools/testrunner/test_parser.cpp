@@ -343,6 +343,7 @@ Mode mode_from(std::string_view name) {
   if (name == "program") return Mode::Program;
   if (name == "test") return Mode::Test;
   if (name == "faulted") return Mode::Faulted;
+  if (name == "suspended") return Mode::Suspended;
   return Mode::Run;
 }
 

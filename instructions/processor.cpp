@@ -92,7 +92,7 @@ bool ProcessorModel::supports(Requirement r) const {
       return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
     // The MicroLogix 1100-1500 have STS and INT too, but they drive the STI function file, which
     // softslc does not simulate yet (docs/semantics.md "MicroLogix"): refused there until it does.
-    case Requirement::TimedInterrupt: return slc_has_sti(family);
+    case Requirement::TimedInterrupt:
     case Requirement::SlcInterruptControl: return slc_has_sti(family);
     case Requirement::MicroLogixStiFile: return false;
   }

@@ -2138,7 +2138,7 @@ fault:
       fault_located_ = false;
       fault_ = {};
       const CompiledFile* cf = prog_.file(cur_file);
-      const auto next = static_cast<std::size_t>(cur_rung + 1);
+      const auto next = static_cast<std::size_t>(cur_rung) + 1;
       pc = code_ + (next < cf->rungs.size() ? cf->rungs[next].offset : cf->end - 1);
       rung = true;
       goto resume;

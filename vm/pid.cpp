@@ -37,7 +37,7 @@ Error check_parameters(std::span<const std::uint16_t, kBlockWords> b, bool slc50
   const int smax = s16(b[kSetpointMax]), smin = s16(b[kSetpointMin]), db = s16(b[kDeadband]);
   const int omax = s16(b[kOutputMax]), omin = s16(b[kOutputMin]);
   auto fail = [&](Error e, std::string text) {
-    why = text;
+    why = std::move(text);
     return e;
   };
   if (slc502) {

@@ -28,9 +28,9 @@ std::optional<double> read_real(BenchReader& r, std::string_view key, double lo,
   auto t = r.text(key);
   if (!t) return std::nullopt;
   double v = 0.0;
-  const char* b = t->data();
-  const char* e = b + t->size();
-  auto [p, ec] = std::from_chars(b, e, v);
+  const std::string& s = *t;
+  const char* e = s.data() + s.size();
+  auto [p, ec] = std::from_chars(s.data(), e, v);
   if (ec != std::errc() || p != e || !std::isfinite(v) || v < lo || v > hi) {
     auto text = [](double x) {
       char buf[32];

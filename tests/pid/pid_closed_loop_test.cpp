@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -60,7 +61,7 @@ struct Loop {
   // runtime runs whole scans, so each sample is taken at the end of the first scan that reaches
   // the next multiple of 100 ms (the samples do not drift by a scan per call).
   void run(double seconds) {
-    const int steps = static_cast<int>(seconds * 10 + 0.5);
+    const int steps = static_cast<int>(std::lround(seconds * 10));
     for (int k = 0; k < steps; ++k) {
       next += milliseconds(100);
       if (next > rt->now()) rt->run_for(next - rt->now());

@@ -255,7 +255,7 @@ TEST(PidBits, AntiResetWindupHoldsTheIntegralAtTheLimit) {
   b.set(kSetpoint, 10000);
   b.run(0, 0);  // P alone is 10000 > 50 % (8191.5)
   const std::int32_t held = integral_sum(b.w);
-  for (int k = 1; k <= 100; ++k) b.run(0, ms(100 * k));
+  for (int k = 1; k <= 100; ++k) b.run(0, ms(std::int64_t{100} * k));
   EXPECT_EQ(integral_sum(b.w), held);
   EXPECT_EQ(b.last_cv, 8192);
   // PV passes the setpoint: the output leaves the limit at once.
@@ -309,8 +309,8 @@ TEST(PidBits, RationalApproximationChangesNothingHere) {
     x->set(kSetpoint, 7000);
   }
   for (int k = 0; k < 50; ++k) {
-    a.run(3000 + 40 * k, ms(100 * k));
-    b.run(3000 + 40 * k, ms(100 * k));
+    a.run(3000 + 40 * k, ms(std::int64_t{100} * k));
+    b.run(3000 + 40 * k, ms(std::int64_t{100} * k));
     EXPECT_EQ(a.last_cv, b.last_cv);
   }
   EXPECT_TRUE(b.has(kRA)) << "the instruction leaves the control bit alone";
@@ -383,7 +383,7 @@ TEST(PidNumbers, RgSetGainAndResetUnitsRm911) {
   b.set(kSetpoint, 5000);
   b.run(4000, 0);
   EXPECT_EQ(b.last_cv, 1000);
-  for (int k = 1; k <= 6; ++k) b.run(4000, ms(100 * k));
+  for (int k = 1; k <= 6; ++k) b.run(4000, ms(std::int64_t{100} * k));
   EXPECT_EQ(b.last_cv, 2000);
   // The integral sum is a long in words 17 (MSW) and 18 (LSW) (RM 9-14 table 9.24), here 16.16
   // fixed-point counts: 1000 counts and the few 1/65536 that six roundings of 166.67 leave.
@@ -404,7 +404,7 @@ TEST(PidNumbers, RgClearGainAndResetUnitsRm911) {
   b.set(kReset, 1);
   b.set(kSetpoint, 5000);
   b.run(4000, 0);
-  for (int k = 1; k <= 59; ++k) b.run(4000, ms(100 * k));
+  for (int k = 1; k <= 59; ++k) b.run(4000, ms(std::int64_t{100} * k));
   EXPECT_EQ(b.last_cv, 1983) << "1000 + 59/60 x 1000 = 1983.3";
   b.run(4000, ms(6000));
   EXPECT_EQ(b.last_cv, 2000) << "one repeat in 6.0 s";

@@ -265,7 +265,7 @@ TEST(DataHandling, SwpReproducesTheManualsStringExample) {
   plc.run_scans(1);
   const std::string after = "badcfehgjilknmporqtsvuxwzy";
   EXPECT_EQ(plc.i("ST10:1.0"), 26) << "the length word is not swapped";
-  for (int w = 0; w < 13; ++w) {
+  for (std::size_t w = 0; w < 13; ++w) {
     const int expected = (static_cast<unsigned char>(after[2 * w]) << 8) | static_cast<unsigned char>(after[2 * w + 1]);
     EXPECT_EQ(static_cast<std::uint16_t>(plc.i("ST10:1." + std::to_string(w + 1))), expected) << "word " << w + 1;
   }

@@ -156,7 +156,10 @@ bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
   }
   const int file = static_cast<std::int16_t>(w_[s31_]);
   const int setpoint = static_cast<std::int16_t>(w_[s30_]);
-  if (file == 0 || setpoint == 0) {
+  // S:30/S:31 are the STI's only on the processors that have the SLC's STI (RM 11-8: 5/02 and
+  // later). The MicroLogix keep their STI in a function file; a saved MicroLogix status file can
+  // hold other values there (an .RSS fixture has S:30 = 300, S:31 = 13), which must not arm it.
+  if (!prog_.processor.supports(Requirement::TimedInterrupt) || file == 0 || setpoint == 0) {
     // RM 11-12: "A value of zero disables the STI function" (file or setpoint).
     sti_.file = 0;
     sti_.next_period = 0;

@@ -243,6 +243,23 @@ TEST(MicroLogixOneShots, OnsPassesTheRungForOneScanPerRisingEdge) {
   EXPECT_EQ(plc.get_int("N7:0"), 2);
 }
 
+// S:30/S:31 are the SLC STI's setpoint and file (RM 11-12) only on the SLC 5/02-5/05; the
+// MicroLogix STI is a function file (1763-RM001). A saved MicroLogix status file with values
+// there (the .RSS fixture TVZ_1100_REV02_LatchmoorAnnotations has S:30 = 300, S:31 = 13) arms
+// nothing; the same words on an SLC 5/03 run file 13 every 3 s (300 x 10 ms).
+TEST(MicroLogixStatusFile, S30AndS31DoNotArmTheSlcStiOnAMicroLogix) {
+  const std::string rest =
+      "LADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n"
+      "LADDER 13\nSOR ADD N7:0 1 N7:0 EOR\n"
+      "DATA S:30\n% S:30 % 300 13\n";
+  Controller ml = Controller::from_text("START Bul.1763\n" + rest);
+  ml.run_for(10 * kNsPerS);
+  EXPECT_EQ(ml.get_int("N7:0"), 0);
+  Controller slc = Controller::from_text("START 1747-L532\nSLOT 0 1747-L532\n" + rest);
+  slc.run_for(10 * kNsPerS);
+  EXPECT_EQ(slc.get_int("N7:0"), 3) << "the SLC 5/03's STI runs file 13 at 3, 6 and 9 s";
+}
+
 // OSR (MicroLogix form): an output instruction with a storage bit and an output bit; "when the
 // rung goes from false to true, the OSR sets the output bit for one scan"; it is reset on the
 // next scan. OSF sets it for one scan when the rung goes from true to false.

@@ -509,17 +509,20 @@ struct ProcessorCode {
 };
 constexpr ProcessorCode kProcessors[] = {{0x009C, "Bul.1763", 'B', 6, 4}};
 
-std::string decode_processor(std::string_view data) {
+const ProcessorCode& decode_processor(std::string_view data) {
   Archive a(data, "PROCESSOR");
   a.expect("CProc");
   a.u16();  // record version
   std::size_t at = a.offset();
   std::uint16_t code = a.u16();
   for (const auto& p : kProcessors)
-    if (p.code == code)
-      return "START " + std::string(p.catalog) + " SERIES " + std::string(1, p.series) + "\nSLOT 0 " + std::string(p.catalog) +
-             " SCAN_IN " + std::to_string(p.input_words) + " SCAN_OUT " + std::to_string(p.output_words) + "\n";
+    if (p.code == code) return p;
   a.fail("unknown processor type code " + hex(code, 4), at);
+}
+
+std::string processor_text(const ProcessorCode& p) {
+  return "START " + std::string(p.catalog) + " SERIES " + std::string(1, p.series) + "\nSLOT 0 " + std::string(p.catalog) +
+         " SCAN_IN " + std::to_string(p.input_words) + " SCAN_OUT " + std::to_string(p.output_words) + "\n";
 }
 
 // ---- MEM DATABASE: symbols, address descriptions, rung comments ----------------------------------
@@ -685,6 +688,7 @@ struct DataFileRecord {
   int elements = 0;
   int words_per_element = 0;
   std::string_view values;
+  std::string_view forces;  // O and I: an ON word and an OFF word per image word
 };
 
 DataFileRecord data_file_record(Archive& a) {
@@ -697,13 +701,14 @@ DataFileRecord data_file_record(Archive& a) {
   a.u16();
   a.u16();
   r.values = a.bytes(static_cast<std::size_t>(r.elements) * static_cast<std::size_t>(r.words_per_element) * 2);
-  if (r.type == DtOutput || r.type == DtInput) a.bytes(static_cast<std::size_t>(r.elements) * 4);
+  if (r.type == DtOutput || r.type == DtInput) r.forces = a.bytes(static_cast<std::size_t>(r.elements) * 4);
   r.number = a.u16();
   a.cstring();
   a.cstring();
   a.bytes(4);
-  static constexpr std::pair<std::uint16_t, int> kWords[] = {{DtBinary, 1}, {DtInteger, 1}, {DtTimer, 3}, {DtCounter, 3}, {DtControl, 3},
-                                                            {DtFloat, 2}, {DtLong, 2}, {DtString, 42}};
+  static constexpr std::pair<std::uint16_t, int> kWords[] = {{DtOutput, 1}, {DtInput, 1},   {DtStatus, 1}, {DtBinary, 1},
+                                                            {DtInteger, 1}, {DtTimer, 3},   {DtCounter, 3}, {DtControl, 3},
+                                                            {DtFloat, 2},   {DtLong, 2},    {DtString, 42}};
   for (auto [t, w] : kWords)
     if (t == r.type && w != r.words_per_element)
       a.fail("data file " + std::to_string(r.number) + " has " + std::to_string(r.words_per_element) + " words per element", at);
@@ -715,10 +720,41 @@ std::uint16_t word_at(std::string_view v, std::size_t w) {
   return static_cast<std::uint16_t>(static_cast<unsigned char>(v[2 * w]) | static_cast<unsigned char>(v[2 * w + 1]) << 8);
 }
 
-void write_data_file(const DataFileRecord& r, Archive& a, std::string& out) {
+std::string hex_word(std::uint16_t w) {
+  char buf[8];
+  std::snprintf(buf, sizeof buf, "0X%04X", w);
+  return buf;
+}
+
+// The O and I files hold the embedded slot's image words (docs/program-format.md): the saved
+// image as a DATA block and the force table as a FORCE block, in the export's own form
+// ("FORCE O:00", one "ON OFF" row per word; 0X0000 0XFFFF is "nothing forced", the pair every
+// fixture stores for every word). A file larger than the embedded image means expansion I/O,
+// whose modules the reader does not decode: that is an error, not a silent loss of slots.
+void write_io_file(const DataFileRecord& r, const ProcessorCode& processor, Archive& a, std::string& out, std::string& forces) {
+  const bool output = r.type == DtOutput;
+  const int embedded = output ? processor.output_words : processor.input_words;
+  const std::string letter = output ? "O" : "I";
+  if (r.elements != embedded)
+    a.fail(std::string(output ? "OUTPUT" : "INPUT") + " file of " + std::to_string(r.elements) + " words; the " + std::string(processor.catalog) +
+               "'s embedded I/O has " + std::to_string(embedded) +
+               ": expansion I/O is not read by softslc yet (docs/program-format.md)",
+           a.offset());
+  out += "\nDATA " + letter + ":0\n% " + letter + ":0.0 %";
+  for (int w = 0; w < r.elements; ++w) out += " " + hex_word(word_at(r.values, static_cast<std::size_t>(w)));
+  out += "\n";
+  forces += "\nFORCE " + letter + ":00\n% ON     OFF  %\n";
+  for (int w = 0; w < r.elements; ++w)
+    forces += hex_word(word_at(r.forces, 2 * static_cast<std::size_t>(w))) + " " + hex_word(word_at(r.forces, 2 * static_cast<std::size_t>(w) + 1)) +
+              " % FORCE " + letter + ":0." + std::to_string(w) + " %\n";
+}
+
+void write_data_file(const DataFileRecord& r, const ProcessorCode& processor, Archive& a, std::string& out, std::string& forces) {
   if (r.elements == 0) return;
+  if (r.type == DtOutput || r.type == DtInput) return write_io_file(r, processor, a, out, forces);
   std::string letter;
   switch (r.type) {
+    case DtStatus: letter = "S"; break;
     case DtBinary: letter = "B"; break;
     case DtTimer: letter = "T"; break;
     case DtCounter: letter = "C"; break;
@@ -727,9 +763,10 @@ void write_data_file(const DataFileRecord& r, Archive& a, std::string& out) {
     case DtFloat: letter = "F"; break;
     case DtLong: letter = "L"; break;
     case DtString: letter = "ST"; break;
-    default: return;  // O, I, S, MG, unused numbers: not carried (docs/program-format.md)
+    default: return;  // MG, unused numbers: not carried (docs/program-format.md)
   }
-  const std::string file = letter + std::to_string(r.number);
+  // The status file is addressed without its number: DATA S:0, rows "% S:10 %".
+  const std::string file = r.type == DtStatus ? letter : letter + std::to_string(r.number);
   out += "\nDATA " + file + ":0\n";
   auto element = [&](int e) { return "% " + file + ":" + std::to_string(e) + " %"; };
   if (r.type == DtTimer || r.type == DtCounter || r.type == DtControl) {
@@ -785,16 +822,19 @@ void write_data_file(const DataFileRecord& r, Archive& a, std::string& out) {
   out += "\n";
 }
 
-void decode_data_files(std::string_view data, std::string& out) {
+void decode_data_files(std::string_view data, const ProcessorCode& processor, std::string& out) {
   Archive a(data, "DATA FILES");
   a.expect("CDataHolder");
   std::uint16_t files = a.u16();
+  std::string forces;
   for (std::uint16_t i = 0; i < files; ++i) {
     a.set_context("data file entry " + std::to_string(i));
     a.expect("CDataFile");
     DataFileRecord r = data_file_record(a);
-    write_data_file(r, a, out);
+    write_data_file(r, processor, a, out, forces);
   }
+  // As in an RSLogix export, the force tables follow the data files.
+  out += forces;
   // The function files and M files that follow are not read (docs/program-format.md).
 }
 
@@ -803,6 +843,18 @@ void decode_data_files(std::string_view data, std::string& out) {
 bool looks_like_ole2(std::string_view bytes) {
   static constexpr unsigned char kSig[] = {0xD0, 0xCF, 0x11, 0xE0, 0xA1, 0xB1, 0x1A, 0xE1};
   return bytes.size() >= sizeof kSig && std::memcmp(bytes.data(), kSig, sizeof kSig) == 0;
+}
+
+ReadResult decode_data_files_payload(std::string_view payload) {
+  ReadResult result;
+  try {
+    std::string text;
+    decode_data_files(payload, kProcessors[0], text);
+    result.text = std::move(text);
+  } catch (const DecodeError& e) {
+    result.error = e.what();
+  }
+  return result;
 }
 
 bool is_known_rslogix_mnemonic(std::string_view mnemonic) {
@@ -831,13 +883,14 @@ ReadResult read_project(std::string_view bytes, std::string_view source_name) {
     for (char& ch : base)
       if (static_cast<unsigned char>(ch) < 0x20 || ch == '%' || static_cast<unsigned char>(ch) >= 0x7F) ch = '_';
     std::string text = "% Converted from the RSLogix project file " + base + " by softslc %\n";
-    text += decode_processor(payload(*proc, "PROCESSOR"));
+    const ProcessorCode& processor = decode_processor(payload(*proc, "PROCESSOR"));
+    text += processor_text(processor);
     MemDatabase db;
     if (auto mem = c.object_data("MEM DATABASE")) db = decode_mem_database(payload(*mem, "MEM DATABASE"));
     std::string program = payload(*prog, "PROGRAM FILES");
     Archive a(program, "PROGRAM FILES");
     ProgramDecoder(a, db.comments).decode(text, result.origins);
-    if (auto data = c.object_data("DATA FILES")) decode_data_files(payload(*data, "DATA FILES"), text);
+    if (auto data = c.object_data("DATA FILES")) decode_data_files(payload(*data, "DATA FILES"), processor, text);
     write_symbols(db, text);
     // Every rung is one line starting with SOR, in the order of `origins`.
     std::uint32_t line = 1;

@@ -4,7 +4,8 @@
 // as an MFC archive, most of them zlib-compressed after a 16-byte header (inflated with zlib).
 // The reader decodes the parts softslc needs (the processor; every ladder program file with its
 // rungs, branches, instructions and operands; symbols, address descriptions and rung comments from
-// MEM DATABASE; every B/N/T/C/R/F/L/ST data file with its saved values from DATA FILES) and writes
+// MEM DATABASE; every O/I/S/B/N/T/C/R/F/L/ST data file with its saved values, and the O/I force
+// tables, from DATA FILES) and writes
 // them as RSLogix 500 library export text. The text then goes through the same loader and checker as a .SLC file, so the program
 // model, every check and every later stage are exactly those of the text front end, and
 // `softslc import` is simply this text, formatted.
@@ -51,6 +52,11 @@ bool looks_like_ole2(std::string_view bytes);
 // Decodes a whole project. `source_name` is named in the generated text's first comment;
 // `error` does not repeat it (the loader's diagnostic rendering puts it in front).
 ReadResult read_project(std::string_view bytes, std::string_view source_name);
+
+// Decodes an inflated DATA FILES payload (the MFC archive) of a MicroLogix 1100 project into the
+// DATA and FORCE blocks read_project writes for it. For tests of data-file layouts no fixture has
+// (expansion I/O); read_project is the way in for everything else.
+ReadResult decode_data_files_payload(std::string_view payload);
 
 // True when `mnemonic` is an instruction the .RSS reader knows by name (the selector table).
 // The loader uses it to say "not supported yet" rather than "unknown instruction".

@@ -485,6 +485,14 @@ std::map<std::string, std::string> our_values(const std::string& text) {
   return out;
 }
 
+// Whether the report was printed from this very file: its page headers name the file in capitals
+// ("SINGLE_TIMER_LIVE.RSS" is a later, online save of single_timer.RSS, not this one).
+bool report_is_of_this_save(const std::string& report, const fs::path& rss) {
+  std::string upper = rss.filename().string();
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return report.find(" " + upper + "\n") != std::string::npos || report.find(" " + upper + " ") != std::string::npos;
+}
+
 bool same_value(const std::string& key, const std::string& ours, const std::string& theirs) {
   if (ours == theirs) return true;
   if (key[0] != 'F') return false;
@@ -510,9 +518,7 @@ TEST(RssReader, DataValuesAgreeWithTheRslogixReports) {
     std::string report = pdftotext(*pdf);
     auto r = read_project(slurp(f), f.filename().string());
     ASSERT_TRUE(r.text) << r.error;
-    std::string upper = f.filename().string();
-    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-    bool same_save = report.find(" " + upper + "\n") != std::string::npos || report.find(" " + upper + " ") != std::string::npos;
+    const bool same_save = report_is_of_this_save(report, f);
     auto theirs = report_values(report);
     auto ours = our_values(*r.text);
     for (const auto& [key, value] : theirs) {
@@ -526,6 +532,188 @@ TEST(RssReader, DataValuesAgreeWithTheRslogixReports) {
   }
   EXPECT_GE(exact, 2000) << "values compared where the report is of the same save";
   EXPECT_GE(presets, 8) << "presets compared where the report is of a later save";
+}
+
+namespace {
+
+// Words the report prints bit by bit: "O:0.0  0 0 ... 1  Bul.1763 ..." (O, I) and "B3:0  0 ... 0"
+// (B), bit 15 first. Key "O:0.0", "B3:0"; value the 16-bit word.
+std::map<std::string, std::uint16_t> report_bit_words(const std::string& report) {
+  std::map<std::string, std::uint16_t> out;
+  std::istringstream in(report);
+  std::string line;
+  static const std::regex row(R"(^((?:O|I):\d+\.\d+|B\d+:\d+)((?:\s+[01]){16})(\s.*)?$)");
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (!std::regex_match(line, m, row)) continue;
+    std::istringstream bits(m[2].str());
+    std::uint16_t w = 0;
+    int b = 0;
+    for (int k = 15; bits >> b; --k) w = static_cast<std::uint16_t>(w | b << k);
+    out[m[1].str()] = w;
+  }
+  return out;
+}
+
+// The status-file page: "Free Running Clock S:4 = 0001-1011-0011-0001", "S:22 = 25",
+// "S:3 (high byte) = 10", "S:2/14 = 1", "S:63 = 8108h", "S:1/5 = Yes". Key "S:4", "S:3H",
+// "S:2/14"; values the report prints as text, a letter or "?" are left out.
+std::map<std::string, int> report_status(const std::string& report) {
+  std::map<std::string, int> out;
+  // "S:14-S:13 = 280" (the math register as a pair) is not a field of one word: a field's "S:"
+  // follows a blank or starts the line.
+  static const std::regex field(R"((?:^|\s)(S:\d+)(/\d+)?( \((high|low) byte\))? = ([0-9A-Fa-f-]+h|[01]{4}(?:-[01]{4}){3}|\d+|Yes|No|True|False)(?=\s|$))");
+  for (std::sregex_iterator it(report.begin(), report.end(), field), end; it != end; ++it) {
+    const std::smatch& m = *it;
+    std::string key = m[1].str() + m[2].str() + (m[4].matched ? (m[4] == "high" ? "H" : "L") : "");
+    std::string v = m[5].str();
+    int value = 0;
+    if (v == "Yes" || v == "True") value = 1;
+    else if (v == "No" || v == "False") value = 0;
+    else if (v.back() == 'h') value = std::stoi(v.substr(0, v.size() - 1), nullptr, 16);
+    else if (v.size() == 19 && v[4] == '-') {
+      for (char c : v)
+        if (c != '-') value = value * 2 + (c - '0');
+    } else value = std::stoi(v);
+    out[key] = value;
+  }
+  return out;
+}
+
+// The reader's DATA O:0 / I:0 (hex), B (decimal) and S:0 (decimal) rows as 16-bit words.
+std::map<std::string, std::uint16_t> our_words(const std::string& text) {
+  std::map<std::string, std::uint16_t> out;
+  std::istringstream in(text);
+  std::string line;
+  static const std::regex io(R"(^% ([OI]):0\.0 %(.*)$)"), dec(R"(^% (B\d+|S):(\d+) %(.*)$)");
+  while (std::getline(in, line)) {
+    std::smatch m;
+    std::istringstream vs;
+    std::string v;
+    if (std::regex_match(line, m, io)) {
+      vs.str(m[2].str());
+      for (int k = 0; vs >> v; ++k) out[m[1].str() + ":0." + std::to_string(k)] = static_cast<std::uint16_t>(std::stoul(v.substr(2), nullptr, 16));
+    } else if (std::regex_match(line, m, dec)) {
+      vs.str(m[3].str());
+      for (int k = std::stoi(m[2]); vs >> v; ++k) out[m[1].str() + ":" + std::to_string(k)] = static_cast<std::uint16_t>(std::stoi(v));
+    }
+  }
+  return out;
+}
+
+// A status field of the report, computed from our S words: "S:4", "S:3H", "S:2/14".
+std::optional<int> our_status_field(const std::map<std::string, std::uint16_t>& words, const std::string& key) {
+  static const std::regex k(R"(S:(\d+)(?:/(\d+))?([HL])?)");
+  std::smatch m;
+  if (!std::regex_match(key, m, k)) return std::nullopt;
+  auto it = words.find("S:" + m[1].str());
+  if (it == words.end()) return std::nullopt;
+  int w = it->second;
+  if (m[2].matched) return (w >> std::stoi(m[2])) & 1;
+  if (m[3].matched) return m[3] == "H" ? w >> 8 : w & 0xFF;
+  return w;
+}
+
+}  // namespace
+
+// The image (O0, I1), status (S2) and bit (B) files against the reports' data-file pages, where
+// the report was printed from this very save: every O/I/B word the report prints bit by bit, and
+// every status field it prints as a number, bit or Yes/No (1763-RM001-style page: "Free Running
+// Clock S:4", "Watchdog S:3 (high byte)", "Math Overflow Selected S:2/14", ...). This is the
+// oracle for `DATA O:0`, `DATA I:0` and `DATA S:0`, which carry them into the program.
+TEST(RssReader, ImageStatusAndBitFilesAgreeWithTheRslogixReports) {
+  auto all = fixtures();
+  if (all.empty()) GTEST_SKIP() << "no fixtures at " << kFixtures;
+  int io = 0, bits = 0, status = 0, fixtures_compared = 0;
+  for (const auto& f : all) {
+    auto pdf = report_for(f);
+    if (!pdf) continue;
+    std::string report = pdftotext(*pdf);
+    if (!report_is_of_this_save(report, f)) continue;
+    SCOPED_TRACE(f.filename().string());
+    auto r = read_project(slurp(f), f.filename().string());
+    ASSERT_TRUE(r.text) << r.error;
+    auto ours = our_words(*r.text);
+    ++fixtures_compared;
+    for (const auto& [key, word] : report_bit_words(report)) {
+      auto it = ours.find(key);
+      ASSERT_NE(it, ours.end()) << key << " is in the report's data files";
+      EXPECT_EQ(it->second, word) << key;
+      ++(key[0] == 'B' ? bits : io);
+    }
+    for (const auto& [key, value] : report_status(report)) {
+      auto v = our_status_field(ours, key);
+      ASSERT_TRUE(v) << key << " is on the report's status page";
+      EXPECT_EQ(*v, value) << key;
+      ++status;
+    }
+  }
+  EXPECT_GE(fixtures_compared, 3);
+  EXPECT_GE(io, 50) << "O and I words compared";
+  EXPECT_GE(bits, 30) << "B words compared";
+  EXPECT_GE(status, 200) << "status fields compared";
+}
+
+// A DATA FILES payload in the layout the reader documents (rss_reader.cpp, "DATA FILES"): a
+// CDataHolder with one CDataFile record of `type` holding `words` one-word elements.
+std::string data_holder(std::uint16_t type, std::uint16_t number, const std::vector<std::uint16_t>& words,
+                        const std::vector<std::uint16_t>& forces) {
+  std::string out;
+  auto u16 = [&](std::uint16_t v) {
+    out += static_cast<char>(v & 0xFF);
+    out += static_cast<char>(v >> 8);
+  };
+  auto cls = [&](const std::string& name) {
+    u16(0xFFFF);
+    u16(1);
+    u16(static_cast<std::uint16_t>(name.size()));
+    out += name;
+  };
+  cls("CDataHolder");
+  u16(1);
+  cls("CDataFile");
+  u16(type);
+  out += std::string(6, '\0');
+  u16(static_cast<std::uint16_t>(words.size()));
+  u16(1);
+  u16(0);
+  u16(0xFFFF);
+  for (auto w : words) u16(w);
+  for (auto w : forces) u16(w);
+  u16(number);
+  out += '\0';  // description
+  out += '\0';  // name
+  out += std::string(4, '\0');
+  return out;
+}
+
+// The O and I files become the embedded slot's DATA and FORCE blocks; a file larger than the
+// embedded image is expansion I/O, which the reader does not decode: a named error, not a project
+// that silently loses its slots (MicroLogix 1100 embedded I/O: 4 output words).
+TEST(RssReader, OutputFileAndForcesOfTheEmbeddedSlot) {
+  auto ok = softslc::rss::decode_data_files_payload(
+      data_holder(0, 0, {0x0001, 0, 0, 0x8000}, {0x0001, 0xFFFF, 0, 0xFFFF, 0, 0xFFFF, 0, 0x7FFF}));
+  ASSERT_TRUE(ok.text) << ok.error;
+  EXPECT_EQ(*ok.text,
+            "\nDATA O:0\n% O:0.0 % 0X0001 0X0000 0X0000 0X8000\n"
+            "\nFORCE O:00\n% ON     OFF  %\n0X0001 0XFFFF % FORCE O:0.0 %\n0X0000 0XFFFF % FORCE O:0.1 %\n"
+            "0X0000 0XFFFF % FORCE O:0.2 %\n0X0000 0X7FFF % FORCE O:0.3 %\n");
+  auto expansion = softslc::rss::decode_data_files_payload(data_holder(0, 0, {0, 0, 0, 0, 0}, std::vector<std::uint16_t>(10, 0)));
+  ASSERT_FALSE(expansion.text);
+  EXPECT_NE(expansion.error.find("OUTPUT file of 5 words; the Bul.1763's embedded I/O has 4: expansion I/O is not read"), std::string::npos)
+      << expansion.error;
+}
+
+// A forced output saved in the project is forced when the converted program runs: the FORCE
+// block reaches the runtime like an export's (docs/program-format.md "FORCE blocks").
+TEST(RssReader, SavedForcesLoadAsTheExportsForceBlocks) {
+  auto r = softslc::rss::decode_data_files_payload(data_holder(0, 0, {0, 0, 0, 0}, {0x0004, 0xFFFF, 0, 0xFFFF, 0, 0xFFFF, 0, 0xFFFF}));
+  ASSERT_TRUE(r.text) << r.error;
+  auto program = softslc::load_program("START Bul.1763 SERIES B\nSLOT 0 Bul.1763 SCAN_IN 6 SCAN_OUT 4\nLADDER 2\nSOR XIC B3:0/0 OTE O:0/0 EOR\n" + *r.text,
+                                       "forces.slc");
+  ASSERT_TRUE(program.ok()) << program.render_diagnostics();
+  ASSERT_EQ(program.program->forces.size(), 1u);
+  EXPECT_EQ(program.program->forces[0].words[0].on, 0x0004);
 }
 
 // Pasted rungs (issue 14): bare SOR ... EOR lines are program file 2 of the processor named,

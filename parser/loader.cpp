@@ -11,6 +11,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 #include <sstream>
@@ -729,7 +730,10 @@ template <> struct action<instruction> {
   template <typename Input>
   static void apply(const Input&, LoadState& s) {
     if (!s.instruction_known) return;
-    s.instruction.operands = std::move(s.operands);
+    // Moved into a vector of exactly their count, so s.operands keeps its capacity for the next
+    // instruction: moving the vector itself made every instruction grow a new one from empty.
+    s.instruction.operands.reserve(s.operands.size());
+    std::move(s.operands.begin(), s.operands.end(), std::back_inserter(s.instruction.operands));
     s.operands.clear();
     // A mnemonic with several forms (OSR) takes the form its operand count names.
     s.instruction.opcode =
@@ -1155,7 +1159,8 @@ struct SyntaxOutcome {
 SyntaxOutcome parse_statements(LoadState& state, std::string_view text, const std::string& source_name) {
   SyntaxOutcome outcome;
   for (const auto& span : split_statements(text)) {
-    pegtl::memory_input in(text.data() + span.begin, text.data() + span.end, source_name, span.begin, span.line, 1);
+    // The source name by pointer: a memory_input over a std::string copies it, one allocation per statement.
+    pegtl::memory_input in(text.data() + span.begin, text.data() + span.end, source_name.c_str(), span.begin, span.line, 1);
     const std::size_t errors_before = state.diags.error_count();
     const std::size_t rungs_before = state.current_file >= 0 ? state.program.files[state.current_file].rungs.size() : 0;
     try {

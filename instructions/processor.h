@@ -50,6 +50,11 @@ struct ProcessorModel {
   // 1000 have 0.01 s and 1.0 s only).
   bool has_millisecond_timebase() const { return is_micrologix_1100_class(); }
 
+  // The S:4 free-running clock's tick: 10 ms on the SLC 500 and the MicroLogix 1000, 100 us on
+  // the MicroLogix 1100, 1200 and 1500 (1763-RM001C p. 476, "S:4 Free Running Clock Comparison");
+  // the 1400 is taken to be the 1100's (docs/semantics.md, decision).
+  std::int64_t free_running_clock_tick_ns() const { return is_micrologix_1100_class() ? 100'000 : 10'000'000; }
+
   // Subroutine nesting limit: 8 on 5/02 and later, 4 on fixed controllers and 5/01 (RM 6-4).
   int max_subroutine_depth() const;
   // F files and float math: SLC 5/03 OS301 and later, 5/04, 5/05, MicroLogix 1200/1400/1500.

@@ -212,7 +212,7 @@ RuntimeStatus Runtime::set_mode(Mode m) {
     // Entering Run or Test: a first pass (S:1/15) and S:4 zeroed (PT1 27-13).
     first_pass_ = true;
     data_.set_status(status::kClock, 0);
-    s4_tick_ = clock_.now() / kTick;
+    s4_tick_ = clock_.now() / program_->processor.free_running_clock_tick_ns();
     single_scan_pending_ = false;
   }
   write_mode_bits();
@@ -287,8 +287,9 @@ std::uint16_t Runtime::forced_output(std::uint32_t i) const {
 }
 
 ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elapsed) {
-  // S:4 counts 10 ms ticks of virtual time; it is brought up to date once per scan.
-  const std::int64_t tick = (scan_start + elapsed) / kTick;
+  // S:4 counts the processor's free-running clock ticks of virtual time (10 ms, or 100 us on the
+  // MicroLogix 1100-1500); it is brought up to date once per scan.
+  const std::int64_t tick = (scan_start + elapsed) / program_->processor.free_running_clock_tick_ns();
   data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
   s4_tick_ = tick;
   advance_rtc(scan_start + elapsed);

@@ -7,6 +7,7 @@
 // project's sources have them (slc500-facts.md, "ML"); otherwise the chapter and section.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -258,6 +259,34 @@ TEST(MicroLogixStatusFile, S30AndS31DoNotArmTheSlcStiOnAMicroLogix) {
   Controller slc = Controller::from_text("START 1747-L532\nSLOT 0 1747-L532\n" + rest);
   slc.run_for(10 * kNsPerS);
   EXPECT_EQ(slc.get_int("N7:0"), 3) << "the SLC 5/03's STI runs file 13 at 3, 6 and 9 s";
+}
+
+// The free-running clock S:4 counts 100 us ticks on the MicroLogix 1100 (1763-RM001C p. 476: S:4/14
+// is on 1.6384 s and off 1.6384 s; 163.84 s each on an SLC). The .RSS fixture
+// free_running_clock_bit_14 toggles O:0/0 with S:4/14 and logs the S:4 difference between
+// successive toggles in N9; its live report (free_running_clock_bit_14_live.pdf, "Data File N9")
+// shows 139 such half-periods measured on the real controller, every one 16,368-16,404 ticks. In
+// 20 s of virtual time softslc logs the same half-periods, each within that range, at 1.6384 s each.
+TEST(MicroLogixStatusFile, FreeRunningClockCountsHundredMicrosecondTicks) {
+  const std::string path = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rss/drbitboy-PLC_2s_lamp_flash/free_running_clock_bit_14.RSS";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "no fixture " << path;
+  Controller plc = Controller::load(path);
+  plc.run_for(seconds(20));
+  ASSERT_FALSE(plc.fault().has_value()) << plc.fault()->to_string();
+  // N7:0 indexes the log; each toggle of O:0/0 logs one half-period: 20 s / 1.6384 s = 12.2.
+  const int logged = plc.get_int("N7:0");
+  EXPECT_EQ(logged, 12) << "one log entry per 1.6384 s half-period of S:4/14";
+  // The first entry is measured from the power-up value of S:4, not from a toggle.
+  for (int i = 1; i < logged; ++i) {
+    const int delta = plc.get_int("N9:" + std::to_string(i));
+    EXPECT_GE(delta, 16368) << "N9:" << i;
+    EXPECT_LE(delta, 16404) << "N9:" << i;
+  }
+  // An SLC 5/03 counts 10 ms ticks: in 20 s S:4 reaches about 2,000 and S:4/14 never sets.
+  Controller slc = Controller::from_text("START 1747-L532\nSLOT 0 1747-L532\nLADDER 2\nSOR XIC S:4/14 OTE B3:0/0 EOR\n");
+  slc.run_for(seconds(20));
+  EXPECT_NEAR(slc.get_int("S:4"), 2000, 5);
+  EXPECT_FALSE(slc.get_bit("B3:0/0"));
 }
 
 // OSR (MicroLogix form): an output instruction with a storage bit and an output bit; "when the

@@ -331,7 +331,7 @@ Nanoseconds Runtime::output_scan() {
 Nanoseconds Runtime::housekeeping(Nanoseconds scan_time, bool executed) {
   if (!executed) return model_->housekeeping_cost();
   // RM B-19, B-42: S:3 low byte = this scan in 10 ms ticks; S:22 max, S:23 running average
-  // (avg*7 + scan)/8, both in 10 ms units unless S:33/13 selects 1 ms; S:35 = last scan in ms.
+  // (avg*7 + scan)/8, both in 10 ms units unless S:33/13 selects 1 ms; S:35 = last scan.
   const std::int64_t ticks = scan_time / kTick;
   const std::uint16_t s3 = data_.status(status::kWatchdog);
   data_.set_status(status::kWatchdog, static_cast<std::uint16_t>((s3 & 0xFF00) | clamp_u8(ticks)));
@@ -340,7 +340,10 @@ Nanoseconds Runtime::housekeeping(Nanoseconds scan_time, bool executed) {
   data_.set_status(status::kMaxScan, std::max<std::uint16_t>(data_.status(status::kMaxScan), clamp_u16(unit)));
   const std::int64_t avg = (static_cast<std::int64_t>(data_.status(status::kAvgScan)) * 7 + unit) / 8;
   data_.set_status(status::kAvgScan, clamp_u16(avg));
-  data_.set_status(status::kLastScanMs, clamp_u16(scan_time / kNsPerMs));
+  // S:35 is the last scan in 1 ms on the SLC and in 100 us on the MicroLogix 1100-1500 (RSLogix's
+  // own status page for the 1100: "Last 100 uSec Scan Time S:35"; docs/semantics.md).
+  const Nanoseconds s35_unit = program_->processor.is_micrologix_1100_class() ? 100 * kNsPerUs : kNsPerMs;
+  data_.set_status(status::kLastScanMs, clamp_u16(scan_time / s35_unit));
   stats_.scans += 1;
   stats_.last = scan_time;
   stats_.max = std::max(stats_.max, scan_time);

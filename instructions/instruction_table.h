@@ -94,6 +94,15 @@ enum class Requirement : std::uint8_t {
   // Instructions that drive the MicroLogix STI function file (the one-operand STS): no processor
   // has them in softslc until that function file is simulated.
   MicroLogixStiFile,
+  // ---- s7-control (issue 15) ----
+  // The I/O event-driven interrupt's instructions IID, IIE, RPI: the SLC 5/02-5/05 (RM 11-27).
+  IoInterrupt,
+  // FBC, DDT: the SLC 5/03 OS302, 5/04 OS401 and 5/05 (RM 7-18, firmware history A-9); the
+  // MicroLogix instruction sets have no FBC or DDT.
+  FileBitCompare,
+  // UID, UIE, UIF: the MicroLogix 1100-1500 user interrupt disable/enable/flush, which act on the
+  // STI, EII and HSC function files softslc does not simulate yet; the SLC has none of them.
+  MicroLogixUserInterrupt,
 };
 
 struct OperandSpec {
@@ -105,7 +114,9 @@ struct OperandSpec {
   std::int32_t max;
 };
 
-inline constexpr std::size_t kMaxOperands = 7;
+// FBC and DDT have nine operands (1747-RM001G p. 7-18: three files, two control elements with
+// their lengths and positions).
+inline constexpr std::size_t kMaxOperands = 9;
 
 enum class Opcode : std::uint8_t {
 #define OPERAND(...) 0

@@ -95,6 +95,11 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::TimedInterrupt:
     case Requirement::SlcInterruptControl: return slc_has_sti(family);
     case Requirement::MicroLogixStiFile: return false;
+    // s7-control: RM 11-27's availability row marks the 5/02, 5/03, 5/04 and 5/05 for the I/O
+    // interrupt; FBC/DDT came with a Series C operating system (RM A-9), the same condition as SCP.
+    case Requirement::IoInterrupt: return slc_has_sti(family);
+    case Requirement::FileBitCompare: return is_modular_503_or_later(family) && series >= 'C';
+    case Requirement::MicroLogixUserInterrupt: return false;
   }
   return false;
 }
@@ -134,6 +139,25 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::SlcInterruptControl:
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
+    // s7-control.
+    case Requirement::IoInterrupt:
+      return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
+             " (1747-RM001G p. 11-27)" +
+             (is_micrologix() ? "; the MicroLogix controllers have no I/O event interrupt (their UID/UIE act on "
+                                "function files)" : "");
+    case Requirement::FileBitCompare:
+      if (is_micrologix())
+        return "is not a MicroLogix instruction (1762/1763/1766-RM001 have no FBC or DDT); it needs " +
+               std::string(requirement_processors(r)) + " (1747-RM001G p. 7-18); this program's processor is " + have;
+      return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
+             " (1747-RM001G p. 7-18, A-9)";
+    case Requirement::MicroLogixUserInterrupt:
+      if (is_micrologix())
+        return "is the MicroLogix user interrupt instruction (1763-RM001 / 1766-RM001 \"Using Interrupts\"), which acts "
+               "on the STI, EII and HSC function files; softslc does not simulate those yet (docs/semantics.md "
+               "\"MicroLogix\")";
+      return "is not an SLC 500 instruction: 1747-RM001G chapter 11 has STD/STE/STS and IID/IIE/RPI, and UID/UIE/UIF "
+             "belong to the MicroLogix 1100-1500 (1763-RM001, 1766-RM001); this program's processor is " + have;
     case Requirement::SlcOs302:
       if (is_micrologix())
         return "is supported in its SLC 5/03-5/05 form only (1747-RM001 p. 7-15); the MicroLogix form "
@@ -158,6 +182,10 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::TimedInterrupt: return "SLC 5/02, 5/03, 5/04, 5/05 (the MicroLogix STI function file is not simulated yet)";
     case Requirement::SlcInterruptControl: return "SLC 5/02, 5/03, 5/04, 5/05";
     case Requirement::MicroLogixStiFile: return "none yet (MicroLogix 1100-1500 once the STI function file is simulated)";
+    case Requirement::IoInterrupt: return "SLC 5/02, 5/03, 5/04, 5/05";
+    case Requirement::FileBitCompare: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05";
+    case Requirement::MicroLogixUserInterrupt:
+      return "none yet (MicroLogix 1100-1500 once their STI/EII/HSC function files are simulated)";
   }
   return {};
 }

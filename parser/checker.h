@@ -13,6 +13,7 @@
 #pragma once
 
 #include <set>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -43,6 +44,9 @@ std::string check_tool_address(const Program& program, const Address& a);
 // "unknown instruction 'FOO'", or, for a real SLC 500 / MicroLogix instruction the table does not
 // have, that it is not supported — so a real instruction does not read like a typo.
 std::string unknown_instruction_message(std::string_view name);
+// SLC 500 and MicroLogix mnemonics that have no instruction-table row yet: `check` says they are
+// "not supported by softslc yet" rather than unknown.
+std::span<const std::string_view> real_mnemonics_without_rows();
 
 // The number of words of the status file on this processor.
 int status_file_words(const ProcessorModel& p);

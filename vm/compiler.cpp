@@ -234,6 +234,13 @@ class Compiler {
         return 1;
       case Opcode::DEM: return i == 1 ? 70 : 1;
       case Opcode::PID: return i == 0 ? 23 : 1;  // RM001G p. 9-3: N10:0 allocates N10:0-N10:22
+      // FBC/DDT (RM 7-18): source and reference hold `cmp length` bits; the result file one word
+      // per result position.
+      case Opcode::FBC:
+      case Opcode::DDT:
+        if (i <= 1) return (len(4) + 15) / 16;
+        if (i == 2) return len(7);
+        return 1;
       default: return 1;
     }
   }
@@ -453,6 +460,19 @@ class Compiler {
     // STI enable: S:2/1 "The default value is 1 (set)" (RM 11-12) when no DATA block gives S:2.
     const std::uint32_t s2 = layout_.status_word(status::kControl);
     if (!initialised_[s2]) init_[s2] = static_cast<std::uint16_t>(init_[s2] | status::kStiEnabled);
+    // s7-control (docs/semantics.md "I/O and discrete input interrupts"): the DII enable S:2/12 on
+    // the 5/03-5/05 and the I/O interrupt enables S:27/S:28 (slots 1-30) on the 5/02 and later start
+    // set unless DATA gives them, as the STI enable does; the manual pages that would say were not
+    // reached.
+    const bool modular_503 = proc_.family == ProcessorFamily::Slc503 || proc_.family == ProcessorFamily::Slc504 ||
+                             proc_.family == ProcessorFamily::Slc505;
+    if (!initialised_[s2] && modular_503) init_[s2] = static_cast<std::uint16_t>(init_[s2] | status::kDiiEnabled);
+    if (proc_.supports(Requirement::IoInterrupt) &&
+        layout_.files[2].elements > static_cast<std::uint32_t>(status::kIoEnableLow + 1)) {
+      const std::uint32_t s27 = layout_.status_word(status::kIoEnableLow);
+      if (!initialised_[s27]) init_[s27] = 0xFFFE;      // S:27/1-15: slots 1-15
+      if (!initialised_[s27 + 1]) init_[s27 + 1] = 0x7FFF;  // S:28/0-14: slots 16-30
+    }
   }
 
   // A literal operand initialises an element word unless DATA (or an earlier instruction) did.
@@ -793,8 +813,12 @@ class Compiler {
           } else if (op.integer < os.min || op.integer > os.max) {
             error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + " must be " + std::to_string(os.min) +
                            "-" + std::to_string(os.max));
-          } else {
+          } else if (op.integer >= bc::kImmMin && op.integer <= bc::kImmMax) {
             w = bc::imm(static_cast<std::int32_t>(op.integer));
+          } else {
+            // A literal wider than an immediate (the 30-slot mask of IID/IIE/RPI): a constant.
+            out_.int_constants.push_back(op.integer);
+            w = bc::operand(bc::kKInt, static_cast<std::uint32_t>(out_.int_constants.size() - 1));
           }
           break;
         case OperandKind::SlotWord: w = slot_word_operand(in, op, pos); break;
@@ -878,6 +902,14 @@ class Compiler {
       case Opcode::LFU:
         init_literal(ops[2], 1, literal(in, 3));
         init_literal(ops[2], 2, literal(in, 4));
+        break;
+      case Opcode::FBC:
+      case Opcode::DDT:
+        // The box's lengths and positions are the two control elements' LEN and POS (RM 7-18).
+        init_literal(ops[3], 1, literal(in, 4));
+        init_literal(ops[3], 2, literal(in, 5));
+        init_literal(ops[6], 1, literal(in, 7));
+        init_literal(ops[6], 2, literal(in, 8));
         break;
       case Opcode::BTR:
       case Opcode::BTW:

@@ -96,6 +96,24 @@ inline constexpr std::uint16_t kStiExecuting = 1u << 2;   // S:2/2
 inline constexpr std::uint16_t kStiResolution = 1u << 10; // S:2/10: S:30 in 1 ms units (5/03+)
 inline constexpr std::uint16_t kStiOverflow = 1u << 10;   // S:5/10
 inline constexpr std::uint16_t kStiLost = 1u << 9;        // S:36/9
+// s7-control: the discrete input interrupt (RM 11-18 .. 11-26, B-24, B-56) and the I/O event
+// interrupt (RM 11-27 .. 11-35, B-43, B-46). Bit numbers marked [U] are from RSLogix 500's status
+// file layout, their RM pages (B-9 .. B-12, B-48, B-50) not reached (docs/semantics.md).
+inline constexpr int kIoPendingLow = 25;   // S:25/S:26: I/O interrupt pending, bit n = slot n (B-43)
+inline constexpr int kIoEnableLow = 27;    // S:27/S:28: I/O interrupt enable, bit n = slot n (11-31)
+inline constexpr int kIsrExecuting = 32;   // S:32: slot of the executing ISR (B-46)
+inline constexpr int kDiiFile = 46;        // S:46: DII subroutine file (0 = none)
+inline constexpr int kDiiSlot = 47;        // S:47: DII input slot
+inline constexpr int kDiiMask = 48;        // S:48: bit mask (bits 0-7 used)
+inline constexpr int kDiiCompare = 49;     // S:49: compare value (bits 0-7 used)
+inline constexpr int kDiiPreset = 50;      // S:50: preset (0/1 event mode, 2-32767 counter mode)
+inline constexpr int kDiiReturnMask = 51;  // S:51: the transitions that caused the interrupt
+inline constexpr int kDiiAccumulator = 52; // S:52: accumulator
+inline constexpr std::uint16_t kDiiPending = 1u << 11;    // S:2/11 [U]
+inline constexpr std::uint16_t kDiiEnabled = 1u << 12;    // S:2/12 [U]
+inline constexpr std::uint16_t kDiiExecuting = 1u << 13;  // S:2/13 [U]
+inline constexpr std::uint16_t kDiiOverflow = 1u << 12;   // S:5/12 (B-24)
+inline constexpr std::uint16_t kDiiLost = 1u << 8;        // S:36/8 [U]
 }  // namespace status
 
 // T/C/R control-word bits (RM 1-6, 1-8; PT1 4-9).

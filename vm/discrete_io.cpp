@@ -22,7 +22,10 @@ void DiscreteIoModule::output_scan(std::span<const std::uint16_t> image) {
 bool DiscreteIoModule::set_field_input(int word, std::uint16_t value, std::uint16_t mask) {
   if (word < 0 || static_cast<std::size_t>(word) >= field_inputs_.size()) return false;
   auto& w = field_inputs_[static_cast<std::size_t>(word)];
+  const std::uint16_t before = w;
   w = static_cast<std::uint16_t>((w & ~mask) | (value & mask));
+  // The discrete input interrupt sees the terminals change (RM 11-20: it reads the card itself).
+  if (w != before && host()) host()->field_input_changed(slot(), word, before, w);
   return true;
 }
 

@@ -81,6 +81,28 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
   s31_ = L.status_word(status::kStiFile);
   if (L.files[2].elements > static_cast<std::uint32_t>(status::kMinorExtended))
     s36_ = L.status_word(status::kMinorExtended);
+  // s7-control: the DII's words S:46-S:52 exist on the 5/03-5/05 (RM 11-18); the I/O event
+  // interrupt's S:25-S:28 and S:32 on the 5/02 and later (RM 11-27, B-43, B-46).
+  dii_supported_ = !program.processor.is_micrologix() &&
+                   program.processor.supports(Requirement::IoInterrupt) &&
+                   program.processor.family != ProcessorFamily::Slc502 &&
+                   L.files[2].elements > static_cast<std::uint32_t>(status::kDiiAccumulator);
+  io_supported_ = program.processor.supports(Requirement::IoInterrupt) &&
+                  L.files[2].elements > static_cast<std::uint32_t>(status::kIsrExecuting);
+  if (io_supported_) {
+    s25_ = L.status_word(status::kIoPendingLow);
+    s27_ = L.status_word(status::kIoEnableLow);
+    s32_ = L.status_word(status::kIsrExecuting);
+    // OPTION ISR=n on the SLOT line: the slot's ISR file (RM 11-31; checked by `check`).
+    for (const auto& slot : program.slots) {
+      auto it = slot.options.find("ISR");
+      if (it == slot.options.end() || slot.slot < 1 || slot.slot > 30) continue;
+      int file = 0;
+      for (char c : it->second) file = (c >= '0' && c <= '9' && file < 1000) ? file * 10 + (c - '0') : 1000;
+      if (file >= 3 && file <= 255 && program.file(file)) isr_file_[static_cast<std::size_t>(slot.slot)] = file;
+    }
+  }
+  if (dii_supported_) s46_ = L.status_word(status::kDiiFile);
   fused_ = std::make_shared<const FusedProgram>(program, cost_);
 }
 
@@ -1583,6 +1605,84 @@ void Interpreter::stack(Op op, const std::uint32_t* o, bool rung) {
   w_[s24_] = static_cast<std::uint16_t>(load ? entry_pos : pos);
 }
 
+// ---- FBC and DDT (issue 15, s7-control) ---------------------------------------------------------------------
+// 1747-RM001G p. 7-18 .. 7-22 (7-19 and 7-20 not reached: docs/semantics.md "FBC and DDT" marks what
+// rests on them). Operands: source, reference, result files; compare control (LEN bits, POS the next
+// bit); its box length/position; result control (LEN words, POS the next word); its length/position.
+// Bit k of a file is bit k % 16 of its word k / 16, counted from the file address.
+void Interpreter::bit_compare(Op op, const std::uint32_t* o, bool rung) {
+  std::uint16_t* cmp = element(o[3]);
+  if (faulted_) return;
+  std::uint16_t* res = element(o[6]);
+  if (faulted_) return;
+  if (!rung) {
+    // RM 7-21: "The instruction control bits are reset when the rung's input conditions go false";
+    // RM 7-18: the found bit resets when the rung goes false. ER stays for the ladder to reset, IN
+    // is the mode the ladder chose, and the result DN waits for the next false-to-true transition.
+    cmp[0] &= static_cast<std::uint16_t>(~(bits::kEN | bits::kDN | bits::kFD));
+    return;
+  }
+  if (cmp[0] & bits::kEN) return;  // works on a false-to-true transition only
+  cmp[0] |= bits::kEN;
+  if (cmp[0] & bits::kER) return;  // table 7.8: stopped until the ladder resets ER
+  int len = static_cast<std::int16_t>(cmp[1]);
+  int pos = static_cast<std::int16_t>(cmp[2]);
+  const int rlen = static_cast<std::int16_t>(res[1]);
+  int rpos = static_cast<std::int16_t>(res[2]);
+  // Table 7.8: an error when a length is <= 0 or a position < 0; a position past its length is
+  // one too (softslc's reading, docs/semantics.md).
+  if (len <= 0 || pos < 0 || pos > len || rlen <= 0 || rpos < 0 || rpos > rlen) {
+    cmp[0] |= bits::kER;
+    return;
+  }
+  // RM 7-21: on a false-to-true transition the control elements reset when the compare position
+  // equals the compare length (both positions cleared) and when the result position equals the
+  // result length (result position cleared; its DN reset and the search continues).
+  if (pos == len) {
+    pos = 0;
+    rpos = 0;
+    cmp[0] &= static_cast<std::uint16_t>(~bits::kDN);
+  }
+  if (rpos == rlen) {
+    rpos = 0;
+    res[0] &= static_cast<std::uint16_t>(~bits::kDN);
+  }
+  cmp[0] &= static_cast<std::uint16_t>(~bits::kFD);
+  const auto words = static_cast<std::uint32_t>((len + 15) / 16);
+  Span src, ref, out;
+  if (!file_span(o[0], words, src, mnemonic(op)) || !file_span(o[1], words, ref, mnemonic(op)) ||
+      !file_span(o[2], static_cast<std::uint32_t>(rlen), out, mnemonic(op)))
+    return;
+  const bool one_at_a_time = (cmp[0] & bits::kIN) != 0;
+  const int stop = one_at_a_time ? pos + 1 : len;
+  bool found = false;
+  for (; pos < stop; ++pos) {
+    const std::uint32_t wi = static_cast<std::uint32_t>(pos) / 16;
+    const auto mask = static_cast<std::uint16_t>(1u << (pos % 16));
+    const std::uint16_t s_bit = w_[src.base + wi] & mask;
+    std::uint16_t& r_word = w_[ref.base + wi];
+    if (s_bit == (r_word & mask)) continue;
+    w_[out.base + static_cast<std::uint32_t>(rpos++)] = static_cast<std::uint16_t>(pos);
+    found = true;
+    // RM 7-18: DDT also makes the reference bit match the source bit.
+    if (op == Op::DDT) r_word = static_cast<std::uint16_t>((r_word & ~mask) | s_bit);
+    if (rpos == rlen) {
+      // RM 7-21: the result file is full: result DN, and the instruction stops after this bit
+      // until the next false-to-true transition, which wraps the result position to 0.
+      res[0] |= bits::kDN;
+      ++pos;
+      break;
+    }
+  }
+  charge_words(op, words);
+  // Table 7.8: FD each time a mismatch is recorded (one at a time) or after recording all of them
+  // (all per scan); DN when the end of the files is reached.
+  if (found) cmp[0] |= bits::kFD;
+  if (pos >= len) cmp[0] |= bits::kDN;
+  cmp[2] = static_cast<std::uint16_t>(pos);
+  res[2] = static_cast<std::uint16_t>(rpos);
+}
+
 // ---- The dispatch loop -----------------------------------------------------------------------------------------
 
 ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds elapsed, bool first_pass,
@@ -1594,6 +1694,8 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
   bool ok = true;
   // Entering Run: the STI starts timing now (RM 11-12); an invalid S:30/S:31 faults at once.
   if (first_pass && !configure_sti(scan_start + elapsed, true)) ok = false;
+  // s7-control: the DII's S:46-S:50 too (RM 11-24).
+  if (ok && first_pass && !configure_dii(true)) ok = false;
   if (first_pass) scan_toggle(prog_, w_, true);
   update_limit(elapsed);
   if (ok) ok = run_routine(2, elapsed, max_depth_);
@@ -1630,6 +1732,7 @@ void Interpreter::begin_pass(VirtualTime scan_start, Nanoseconds watchdog) {
   w_ = table_.words();
   watchdog_ = watchdog;
   interrupt_level_ = 0;
+  priority_ = 0;
   in_fault_routine_ = false;
 }
 
@@ -2046,6 +2149,8 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
           // RM B-19: the scan-time count (and so the watchdog) restarts on return from REF.
           watchdog_from_ = elapsed;
           watchdog_ = elapsed + watchdog_span_;
+          // RM 11-24: S:46-S:50 are applied at each end of scan (END, TND or REF).
+          if (dii_supported_ && !apply_dii_config()) goto fault;
           update_limit(elapsed);
         }
         break;
@@ -2068,6 +2173,26 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
         // silently ignored if a program ever got here.
         raise(fault::kUnsupportedInstruction, "STS on the MicroLogix STI function file is not simulated");
         goto fault;
+
+      // ---- I/O interrupts and diagnostics (issue 15, s7-control) ----
+      case Op::IID:
+      case Op::IIE:
+      case Op::RPI:
+        if (rung) io_interrupt_control(op, o, elapsed);
+        break;
+      case Op::UID:
+      case Op::UIE:
+      case Op::UIF:
+        // Refused by the checker on every processor (Requirement::MicroLogixUserInterrupt).
+        raise(fault::kUnsupportedInstruction,
+              std::string(mnemonic(op)) + " on the MicroLogix interrupt function files is not simulated");
+        goto fault;
+      case Op::FBC:
+      case Op::DDT:
+        bit_compare(op, o, rung);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
 
       // ---- Immediate I/O ----
       case Op::IIM:

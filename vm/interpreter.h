@@ -72,6 +72,11 @@ class ChassisAccess {
   // A specialty-module instruction (BTR, BTW, DEM) addressed to the module in `slot`. The default
   // faults: there is no module to execute it.
   virtual void module_instruction(int slot, ModuleInstructionContext& ctx);
+  // s7-control. Whether `slot` holds a discrete input card (the DII's S:47, RM 11-18); the default
+  // has no chassis.
+  virtual bool discrete_input_card(int /*slot*/) const { return false; }
+  // The ISR for the module in `slot` completed, or an RPI reset its request (RM 11-27 step 3).
+  virtual void interrupt_serviced(int /*slot*/) {}
 };
 
 struct ProgramScanResult {
@@ -97,6 +102,21 @@ struct StiTimer {
   VirtualTime due = 0;           // the next expiry, when file != 0
   std::uint16_t setpoint = 0;    // the S:30 (or .SPM) value the period was made from
   std::uint64_t runs = 0;        // STI routine executions since the runtime was created
+};
+
+// s7-control. The discrete input interrupt as the interpreter keeps it (RM 11-18 .. 11-26): the
+// configuration last applied from S:46-S:50 (at the end of a scan, a DII routine's exit, entry to
+// Run) and what the last interrupt did. S:2/11-13, S:51 and S:52 are the program's view.
+struct DiiState {
+  int file = 0;                 // S:46 applied; 0 = off
+  int slot = 0;                 // S:47
+  std::uint16_t mask = 0;       // S:48 bits 0-7
+  std::uint16_t compare = 0;    // S:49 bits 0-7
+  int preset = 0;               // S:50
+  std::uint16_t return_mask = 0;  // S:51 for the pending interrupt
+  VirtualTime requested_at = 0;   // the input transition that generated the pending interrupt
+  Nanoseconds last_latency = 0;   // from that transition to the routine's first rung
+  std::uint64_t runs = 0;         // DII routine executions since the runtime was created
 };
 
 // Maximum call depth the interpreter's call stack holds (the processor's limit is at most 8).
@@ -133,8 +153,19 @@ class Interpreter {
   // (expiries during the output scan and housekeeping). Returns the new scan time; a fault in
   // the routine is reported in the result like a program-scan fault.
   ProgramScanResult service_interrupts_between(VirtualTime scan_start, Nanoseconds elapsed, Nanoseconds watchdog);
-  // Leaving Run/Test: the STI timer stops and S:2/0, S:2/2 are cleared (RM 11-12, 11-13).
+  // Leaving Run/Test: the STI timer stops and S:2/0, S:2/2 are cleared (RM 11-12, 11-13); so do the
+  // DII (S:2/11, S:2/13) and the I/O interrupt requests.
   void stop_interrupts();
+  // s7-control. At the end of a program scan (and with `entering_run` before the first one): applies
+  // S:46-S:50 (RM 11-24). Returns false with last_fault() set (0042h, 0043h) when they are invalid.
+  bool configure_dii(bool entering_run);
+  // A field input word of the card in `slot` changed at `at` (between scans, in Run): counts towards
+  // the DII preset and, at the preset, makes the DII pending (it runs at the next rung start).
+  void dii_input(int slot, int word, std::uint16_t before, std::uint16_t after, VirtualTime at);
+  // The module in `slot` requests its I/O interrupt (between scans, in Run; RM 11-27).
+  void io_interrupt_request(int slot);
+  const DiiState& dii() const { return dii_; }
+  std::uint64_t isr_runs() const { return isr_runs_; }
   const StiTimer& sti() const { return sti_; }
   // The fault configure_sti raised.
   const FaultInfo& last_fault() const { return fault_; }
@@ -241,6 +272,9 @@ class Interpreter {
   SOFTSLC_HANDLER bool pid(const std::uint32_t* o, bool rung, Nanoseconds now_in_scan);
   // STS: S:31/S:30 (or the STI function file) := file/time, enable, restart the timer from now.
   SOFTSLC_HANDLER void sti_start(const std::uint32_t* o, Nanoseconds now_in_scan);
+  // s7-control. IID, IIE, RPI (RM 11-33, B-43) on S:25-S:28; FBC, DDT (RM 7-18 .. 7-22).
+  SOFTSLC_HANDLER void io_interrupt_control(Op op, const std::uint32_t* o, Nanoseconds now_in_scan);
+  SOFTSLC_HANDLER void bit_compare(Op op, const std::uint32_t* o, bool rung);
 
   // The dispatch loop: runs program file `file` from its first rung until it ends (END, EOF, TND,
   // or RET at its own level) or faults. Interrupt routines run through it recursively from a
@@ -254,6 +288,21 @@ class Interpreter {
   [[gnu::noinline, gnu::cold]] bool at_limit(Nanoseconds& elapsed);
   bool service_interrupts(Nanoseconds& elapsed);
   bool run_sti(Nanoseconds& elapsed);
+  // s7-control: the DII and the I/O event interrupt, and the priorities of RM 11-30 (an interrupt
+  // runs only inside a routine of lower priority: fault routine > DII > STI > ISR > main program).
+  bool sti_runnable() const;
+  bool dii_runnable() const;
+  int runnable_isr_slot() const;  // the lowest requesting slot that may run now, 0 = none
+  bool run_dii(Nanoseconds& elapsed);
+  bool run_isr(int slot, Nanoseconds& elapsed);
+  bool apply_dii_config();
+  bool io_enabled(int slot) const;
+  // Forgets slot's request and answers its module (RPI, leaving Run).
+  void drop_io_request(int slot);
+  void set_io_pending(int slot, bool on);
+  // Runs `file` as an interrupt routine of `priority`, charged as a true JSR and RET, with S:0,
+  // S:13, S:14 and S:24 saved and restored (STI, DII, ISR).
+  bool run_interrupt_routine(int file, int priority, Nanoseconds& elapsed);
   void sti_expire();
   // limit_ := the scan time of the next thing a rung start must look at (watchdog, STI expiry).
   void update_limit(Nanoseconds elapsed);
@@ -316,6 +365,16 @@ class Interpreter {
   bool in_fault_routine_ = false;
   bool sti_ms_units_ = false;      // S:2/10 latched on entry to Run (RM 11-13)
   StiTimer sti_;
+  // s7-control. The priority of the routine running now (kPriority* in vm/interrupts.cpp).
+  int priority_ = 0;
+  DiiState dii_;
+  bool dii_supported_ = false;     // the status file has S:46-S:52 (SLC 5/03-5/05)
+  bool io_supported_ = false;      // the processor has the I/O event interrupt (SLC 5/02-5/05)
+  std::uint32_t s25_ = 0, s27_ = 0, s32_ = 0, s46_ = 0;
+  std::array<int, 31> isr_file_{};        // per slot, OPTION ISR (0 = none)
+  std::array<bool, 31> io_requested_{};   // a module's request not yet serviced
+  int io_requests_ = 0;                   // how many of io_requested_ are set
+  std::uint64_t isr_runs_ = 0;
   int last_file_ = 2;
   int last_rung_ = -1;
   std::array<std::uint16_t, 64> scratch_{};  // where a faulting operand's access lands

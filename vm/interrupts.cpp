@@ -18,6 +18,15 @@
 // starts timing "from the end of the program scan in which the status registers were loaded");
 // S:2/1 is read when the timer expires and when STE runs, which is the "takes effect upon the STI
 // timer expiration or next end of scan" of RM 11-13.
+//
+// s7-control: the discrete input interrupt (DII, RM 11-18 .. 11-26) and the I/O event-driven
+// interrupt (ISR, RM 11-27 .. 11-35) reuse the same machinery: a request makes its routine runnable,
+// update_limit brings limit_ down to "now", and the next rung start runs it through
+// run_interrupt_routine. Priorities (RM 11-30 and the 5/03+ order): the fault routine, then the DII,
+// the STI, the ISRs; a routine is interrupted only by one of higher priority. Field input changes
+// and module requests reach the runtime between scans (events and tools), so a DII or ISR they make
+// runnable starts at the first rung of the next scan: its latency is the rest of the scan in which
+// the input changed, the input scan and the entry cost (docs/semantics.md).
 #include <algorithm>
 #include <string>
 
@@ -26,6 +35,13 @@
 namespace softslc {
 
 namespace {
+
+// Interrupt priorities (RM 11-30: "an executing interrupt can only be interrupted by an interrupt
+// having higher priority"; the 5/03+ order fault routine, DII, STI, ISR).
+constexpr int kPriorityIsr = 1;
+constexpr int kPrioritySti = 2;
+constexpr int kPriorityDii = 3;
+constexpr int kPriorityFault = 4;
 
 bool slc_503_or_later(const ProcessorModel& p) {
   return p.family == ProcessorFamily::Slc503 || p.family == ProcessorFamily::Slc504 ||
@@ -73,12 +89,39 @@ Nanoseconds Interpreter::sti_period(std::int64_t setpoint) const {
   return ms * kNsPerMs;
 }
 
+bool Interpreter::sti_runnable() const {
+  return priority_ < kPrioritySti && sti_.file != 0 && (w_[s2_] & status::kStiPending) &&
+         (w_[s2_] & status::kStiEnabled);
+}
+
+bool Interpreter::dii_runnable() const {
+  return priority_ < kPriorityDii && dii_.file != 0 && (w_[s2_] & status::kDiiPending) &&
+         (w_[s2_] & status::kDiiEnabled);
+}
+
+bool Interpreter::io_enabled(int slot) const {
+  const std::uint32_t word = s27_ + static_cast<std::uint32_t>(slot / 16);
+  return (w_[word] >> (slot % 16)) & 1u;
+}
+
+void Interpreter::set_io_pending(int slot, bool on) {
+  std::uint16_t& word = w_[s25_ + static_cast<std::uint32_t>(slot / 16)];
+  const auto bit = static_cast<std::uint16_t>(1u << (slot % 16));
+  word = static_cast<std::uint16_t>(on ? (word | bit) : (word & ~bit));
+}
+
+int Interpreter::runnable_isr_slot() const {
+  if (io_requests_ == 0 || priority_ >= kPriorityIsr) return 0;
+  // RM 11-30: requests seen together are served lowest slot first.
+  for (int slot = 1; slot <= 30; ++slot)
+    if (io_requested_[static_cast<std::size_t>(slot)] && io_enabled(slot)) return slot;
+  return 0;
+}
+
 void Interpreter::update_limit(Nanoseconds elapsed) {
   Nanoseconds limit = watchdog_;
-  if (sti_.file != 0) {
-    const bool runnable = interrupt_level_ == 0 && (w_[s2_] & status::kStiPending) && (w_[s2_] & status::kStiEnabled);
-    limit = std::min(limit, runnable ? elapsed : sti_.due - scan_start_);
-  }
+  if (sti_.file != 0) limit = std::min(limit, sti_runnable() ? elapsed : sti_.due - scan_start_);
+  if (dii_runnable() || runnable_isr_slot() != 0) limit = std::min(limit, elapsed);
   limit_ = limit;
 }
 
@@ -114,10 +157,19 @@ bool Interpreter::service_interrupts(Nanoseconds& elapsed) {
   for (;;) {
     const VirtualTime now = scan_start_ + elapsed;
     while (sti_.file != 0 && sti_.due <= now) sti_expire();
-    if (interrupt_level_ == 0 && sti_.file != 0 && (w_[s2_] & status::kStiPending) &&
-        (w_[s2_] & status::kStiEnabled)) {
+    // Highest priority first; after each routine look again: the timer may have expired, or a
+    // lower-priority request become runnable, while it ran.
+    if (dii_runnable()) {
+      if (!run_dii(elapsed)) return false;
+      continue;
+    }
+    if (sti_runnable()) {
       if (!run_sti(elapsed)) return false;
-      continue;  // the timer may have expired again while the routine ran
+      continue;
+    }
+    if (const int slot = runnable_isr_slot(); slot != 0) {
+      if (!run_isr(slot, elapsed)) return false;
+      continue;
     }
     break;
   }
@@ -125,22 +177,206 @@ bool Interpreter::service_interrupts(Nanoseconds& elapsed) {
   return true;
 }
 
-bool Interpreter::run_sti(Nanoseconds& elapsed) {
-  // RM 11-12/11-13: starting the routine resets the pending bit and sets the executing bit.
-  w_[s2_] = static_cast<std::uint16_t>((w_[s2_] & ~status::kStiPending) | status::kStiExecuting);
+bool Interpreter::run_interrupt_routine(int file, int priority, Nanoseconds& elapsed) {
   const SavedStatus saved = save_status();
   elapsed += cost_[static_cast<std::size_t>(Op::JSR) * 2 + 1];  // entry, charged as a true JSR
+  const int outer = priority_;
+  priority_ = priority;
   ++interrupt_level_;
   update_limit(elapsed);
   // RM 6-4 (facts §4): 3 levels of subroutines from inside an STI, DII, event or fault routine.
-  const bool ok = run_routine(sti_.file, elapsed, std::min(3, max_depth_));
+  const bool ok = run_routine(file, elapsed, std::min(3, max_depth_));
   --interrupt_level_;
+  priority_ = outer;
   if (!ok) return false;
   elapsed += cost_[static_cast<std::size_t>(Op::RET) * 2 + 1];  // exit, charged as a true RET
   restore_status(saved);
+  return true;
+}
+
+bool Interpreter::run_sti(Nanoseconds& elapsed) {
+  // RM 11-12/11-13: starting the routine resets the pending bit and sets the executing bit.
+  w_[s2_] = static_cast<std::uint16_t>((w_[s2_] & ~status::kStiPending) | status::kStiExecuting);
+  if (!run_interrupt_routine(sti_.file, kPrioritySti, elapsed)) return false;
   w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~status::kStiExecuting);
   ++sti_.runs;
   return true;
+}
+
+// ---- The discrete input interrupt (s7-control) -------------------------------------------------------------------
+
+bool Interpreter::run_dii(Nanoseconds& elapsed) {
+  // RM B-56: the return mask is written just before the routine is entered. The pending bit gives
+  // way to the executing bit as for the STI (S:2/11, S:2/13).
+  w_[s46_ + 5] = dii_.return_mask;
+  w_[s2_] = static_cast<std::uint16_t>((w_[s2_] & ~status::kDiiPending) | status::kDiiExecuting);
+  const int file = dii_.file;
+  dii_.last_latency = scan_start_ + elapsed + cost_[static_cast<std::size_t>(Op::JSR) * 2 + 1] - dii_.requested_at;
+  if (!run_interrupt_routine(file, kPriorityDii, elapsed)) return false;
+  w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~status::kDiiExecuting);
+  ++dii_.runs;
+  // RM 11-24: S:46-S:50 are applied at each DII ISR exit (the routine may reconfigure the DII).
+  return apply_dii_config();
+}
+
+bool Interpreter::apply_dii_config() {
+  if (!dii_supported_) return true;
+  const int file = static_cast<std::int16_t>(w_[s46_]);
+  if (file == 0) {
+    // No DII: nothing waits (a pending one is dropped with it).
+    dii_.file = 0;
+    w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~status::kDiiPending);
+    return true;
+  }
+  if (file < 3 || file > 255 || !prog_.file(file)) {
+    raise(fault::kInvalidDiiFile, "S:46 names DII file " + std::to_string(file) +
+                                      ", which is not a subroutine file of this program (3-255, RM 11-18)");
+    return false;
+  }
+  const int slot = static_cast<std::int16_t>(w_[s46_ + 1]);
+  if (slot < 1 || slot > 30 || !chassis_.discrete_input_card(slot)) {
+    raise(fault::kInvalidDiiConfig, "S:47 names DII input slot " + std::to_string(slot) +
+                                        ", which holds no discrete input card (1-30, RM 11-18)");
+    return false;
+  }
+  const int preset = static_cast<std::int16_t>(w_[s46_ + 4]);
+  if (preset < 0) {
+    raise(fault::kInvalidDiiConfig,
+          "S:50 DII preset " + std::to_string(preset) + " is outside 0-32767 (RM 11-24)");
+    return false;
+  }
+  // RM 11-24: "Only bits 0 to 7 are used" of the mask and the compare value.
+  dii_.file = file;
+  dii_.slot = slot;
+  dii_.mask = static_cast<std::uint16_t>(w_[s46_ + 2] & 0xFF);
+  dii_.compare = static_cast<std::uint16_t>(w_[s46_ + 3] & 0xFF);
+  dii_.preset = preset;
+  return true;
+}
+
+bool Interpreter::configure_dii(bool entering_run) {
+  faulted_ = false;
+  fault_ = {};
+  w_ = table_.words();
+  if (!dii_supported_) return true;
+  if (entering_run) {
+    // Entering Run: nothing pending or executing, the accumulator from zero (softslc's reading of
+    // the STI's rule, RM 11-12; docs/semantics.md).
+    w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~(status::kDiiPending | status::kDiiExecuting));
+    w_[s46_ + 6] = 0;
+    const std::uint64_t runs = dii_.runs;
+    dii_ = DiiState{};
+    dii_.runs = runs;
+  }
+  return apply_dii_config();
+}
+
+void Interpreter::dii_input(int slot, int word, std::uint16_t before, std::uint16_t after, VirtualTime at) {
+  if (dii_.file == 0 || slot != dii_.slot || word != 0) return;
+  w_ = table_.words();
+  // RM 11-18/11-24: the first byte of the card under the mask is compared with the compare value;
+  // the transition that makes the pattern match counts (a mask of 0 watches nothing).
+  const unsigned mask = dii_.mask;
+  const bool matched_before = ((before ^ dii_.compare) & mask) == 0;
+  const bool matches = ((after ^ dii_.compare) & mask) == 0;
+  if (mask == 0 || matched_before || !matches) return;
+  const auto transitions = static_cast<std::uint16_t>((before ^ after) & mask);
+  std::uint16_t& acc = w_[s46_ + 6];
+  if (dii_.preset >= 2) {
+    // Counter mode (RM 11-24, B-56): each match counts; at the preset the interrupt is generated
+    // and the accumulator "immediately wraps around and begins counting again at zero" (RM 11-18).
+    const int count = static_cast<std::int16_t>(acc) + 1;
+    if (count < dii_.preset) {
+      acc = static_cast<std::uint16_t>(count);
+      return;
+    }
+    acc = 0;
+  }
+  // RM B-24: S:5/12 when the interrupt occurs while the routine executes, or while one is pending
+  // or the DII is disabled. One already pending: this one is lost (S:36/8, as the STI's S:36/9).
+  const std::uint16_t s2 = w_[s2_];
+  if ((s2 & (status::kDiiExecuting | status::kDiiPending)) || !(s2 & status::kDiiEnabled))
+    w_[s5_] = static_cast<std::uint16_t>(w_[s5_] | status::kDiiOverflow);
+  if (s2 & status::kDiiPending) {
+    if (s36_ >= 0) w_[s36_] = static_cast<std::uint16_t>(w_[s36_] | status::kDiiLost);
+    return;
+  }
+  w_[s2_] = static_cast<std::uint16_t>(s2 | status::kDiiPending);
+  dii_.return_mask = transitions;
+  dii_.requested_at = at;
+}
+
+// ---- The I/O event-driven interrupt (s7-control) ---------------------------------------------------------------
+
+void Interpreter::io_interrupt_request(int slot) {
+  if (!io_supported_ || slot < 1 || slot > 30) return;
+  const auto s = static_cast<std::size_t>(slot);
+  if (isr_file_[s] == 0) {
+    // No ISR number in the slot's configuration: nothing to run; the request is answered so the
+    // module is not left waiting (docs/semantics.md).
+    chassis_.interrupt_serviced(slot);
+    return;
+  }
+  if (io_requested_[s]) return;  // a module requests again only once serviced (RM 11-27 step 3)
+  w_ = table_.words();
+  io_requested_[s] = true;
+  ++io_requests_;
+  // RM 11-31, B-43: the pending bit is set when the slot's enable bit is clear at the request.
+  if (!io_enabled(slot)) set_io_pending(slot, true);
+}
+
+void Interpreter::drop_io_request(int slot) {
+  io_requested_[static_cast<std::size_t>(slot)] = false;
+  --io_requests_;
+  chassis_.interrupt_serviced(slot);  // the module may request again
+}
+
+bool Interpreter::run_isr(int slot, Nanoseconds& elapsed) {
+  const auto s = static_cast<std::size_t>(slot);
+  io_requested_[s] = false;
+  --io_requests_;
+  set_io_pending(slot, false);
+  // RM B-46: S:32 holds the slot of the executing ISR and is cleared when it completes.
+  const std::uint16_t outer_slot = w_[s32_];
+  w_[s32_] = static_cast<std::uint16_t>(slot);
+  if (!run_interrupt_routine(isr_file_[s], kPriorityIsr, elapsed)) return false;
+  w_[s32_] = outer_slot;
+  ++isr_runs_;
+  chassis_.interrupt_serviced(slot);  // RM 11-27 step 3: the module may interrupt again
+  return true;
+}
+
+void Interpreter::io_interrupt_control(Op op, const std::uint32_t* o, Nanoseconds now_in_scan) {
+  // Bit n of the slots operand is slot n (RM 11-31: S:25/S:27 bits 1-15 are slots 1-15, S:26/S:28
+  // bits 0-14 slots 16-30).
+  const auto slots = static_cast<std::uint32_t>(rd_int(o[0])) & 0x7FFFFFFEu;
+  const auto lo = static_cast<std::uint16_t>(slots & 0xFFFF);
+  const auto hi = static_cast<std::uint16_t>(slots >> 16);
+  std::uint16_t* pending = w_ + s25_;
+  std::uint16_t* enable = w_ + s27_;
+  switch (op) {
+    case Op::IID:  // RM 11-33's IID/IIE zone example
+      enable[0] = static_cast<std::uint16_t>(enable[0] & ~lo);
+      enable[1] = static_cast<std::uint16_t>(enable[1] & ~hi);
+      break;
+    case Op::IIE:  // RM 11-33: a pending ISR of these slots runs at once (the next rung start)
+      enable[0] = static_cast<std::uint16_t>(enable[0] | lo);
+      enable[1] = static_cast<std::uint16_t>(enable[1] | hi);
+      // B-43: setting the enable bit clears the pending bit; the request itself stays to be served.
+      pending[0] = static_cast<std::uint16_t>(pending[0] & ~lo);
+      pending[1] = static_cast<std::uint16_t>(pending[1] & ~hi);
+      update_limit(now_in_scan);
+      break;
+    case Op::RPI:  // RM B-43 (the RPI page was not reached): the pending bits of these slots reset; their requests are dropped
+      pending[0] = static_cast<std::uint16_t>(pending[0] & ~lo);
+      pending[1] = static_cast<std::uint16_t>(pending[1] & ~hi);
+      for (int slot = 1; slot <= 30; ++slot) {
+        const auto s = static_cast<std::size_t>(slot);
+        if (((slots >> slot) & 1u) && io_requested_[s]) drop_io_request(slot);
+      }
+      break;
+    default: break;
+  }
 }
 
 bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
@@ -195,6 +431,18 @@ void Interpreter::stop_interrupts() {
   sti_.file = 0;
   sti_.next_period = 0;
   w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~(status::kStiPending | status::kStiExecuting));
+  // s7-control: the DII and the I/O interrupts stop too; a module's open request is answered.
+  dii_.file = 0;
+  if (dii_supported_)
+    w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~(status::kDiiPending | status::kDiiExecuting));
+  for (int slot = 1; slot <= 30 && io_requests_ > 0; ++slot)
+    if (io_requested_[static_cast<std::size_t>(slot)]) drop_io_request(slot);
+  // RM B-46: S:32 is cleared on entry to Run; B-43: the pending bits go with the requests.
+  if (io_supported_) {
+    w_[s32_] = 0;
+    w_[s25_] = 0;
+    w_[s25_ + 1] = 0;
+  }
 }
 
 ProgramScanResult Interpreter::service_interrupts_between(VirtualTime scan_start, Nanoseconds elapsed,
@@ -247,6 +495,8 @@ bool Interpreter::user_fault_routine(Nanoseconds& elapsed) {
   fault_ = {};
   fault_located_ = false;
   in_fault_routine_ = true;
+  const int outer_priority = priority_;
+  priority_ = kPriorityFault;
   ++interrupt_level_;
   // The routine gets a watchdog period of its own: after a watchdog fault it could not run a
   // rung otherwise (docs/semantics.md).
@@ -256,6 +506,7 @@ bool Interpreter::user_fault_routine(Nanoseconds& elapsed) {
   const bool ok = run_routine(file, elapsed, std::min(3, max_depth_));
   watchdog_ = watchdog;
   --interrupt_level_;
+  priority_ = outer_priority;
   in_fault_routine_ = false;
   if (!ok) {
     // A fault inside the fault routine (or a SUS there) is the one that stands.

@@ -86,6 +86,14 @@ class ModuleHost {
   // takes effect once every module has seen the change; raised from an event it takes effect at
   // once. The first fault wins. The default ignores the request (hosts without faults).
   virtual void raise_major_fault(std::uint16_t /*code*/, std::string /*message*/) {}
+  // s7-control. A discrete card's field input word changed at now(): the discrete input interrupt
+  // watches the first byte of the card in slot S:47 itself, not the input image (RM 11-20). The
+  // default ignores it.
+  virtual void field_input_changed(int /*slot*/, int /*word*/, std::uint16_t /*before*/, std::uint16_t /*after*/) {}
+  // A specialty module requests service (the I/O event-driven interrupt, RM 11-27): the ISR file its
+  // slot's configuration names runs when S:27/S:28 and the interrupt priorities allow; the module is
+  // told through Module::interrupt_serviced when it may request again. The default ignores it.
+  virtual void request_io_interrupt(int /*slot*/) {}
 };
 
 // ---- Specialty-module instructions ------------------------------------------------------------
@@ -187,6 +195,10 @@ class Module {
   virtual std::string m_refusal(MFile, int /*word*/, bool /*write*/) const { return {}; }
 
   virtual void on_mode_change(Mode /*from*/, Mode /*to*/) {}
+
+  // The ISR for this module's interrupt request has been scanned to completion, or an RPI reset
+  // the request (RM 11-27 step 3): the module may request again.
+  virtual void interrupt_serviced() {}
 
   // M-file words the real module keeps across a power loss ("Certain specialty I/O modules retain
   // the status of M0-M1 data after power is removed. See your specialty I/O module user's

@@ -1,5 +1,7 @@
 #include "vm/runtime.h"
 
+#include "instructions/module_catalog.h"
+
 #include "vm/profile_scan_time_model.h"
 
 #include <algorithm>
@@ -252,6 +254,37 @@ void Runtime::enter_suspend() {
   notify_modes(from, mode_);
 }
 
+// ---- Interrupt sources (s7-control) --------------------------------------------------------------------------
+
+void Runtime::field_input_changed(int slot, int word, std::uint16_t before, std::uint16_t after) {
+  // The DII works in Run only (RM 11-18: it begins operation on entry to Run).
+  if (mode_ == Mode::Run) interp_->dii_input(slot, word, before, after, clock_.now());
+}
+
+void Runtime::request_io_interrupt(int slot) {
+  if (mode_ == Mode::Run) {
+    interp_->io_interrupt_request(slot);
+    return;
+  }
+  // Outside Run nothing services it: answered at once so the module may request again.
+  interrupt_serviced(slot);
+}
+
+bool Runtime::discrete_input_card(int slot) const {
+  if (slot < 0 || slot >= kMaxSlots) return false;
+  const Module* m = modules_[static_cast<std::size_t>(slot)];
+  if (!m || m->input_words() <= 0) return false;
+  // A catalog the module catalog lists as a specialty module is not a discrete card; an unknown
+  // catalog is treated as generic discrete I/O, as the checker's warning says.
+  auto entry = find_module_catalog(m->catalog());
+  return !entry || !entry->specialty;
+}
+
+void Runtime::interrupt_serviced(int slot) {
+  if (slot < 0 || slot >= kMaxSlots) return;
+  if (Module* m = modules_[static_cast<std::size_t>(slot)]) m->interrupt_serviced();
+}
+
 Nanoseconds Runtime::io_refresh() {
   // REF (RM ch. 6): the output scan, then the input scan, in the middle of the program scan.
   return output_scan() + input_scan();
@@ -366,6 +399,9 @@ void Runtime::scan_once(bool single_scan_step) {
       enter_fault(r.fault);
     } else if (mode_ == Mode::Run && !interp_->configure_sti(start + used, false)) {
       // RM 11-12: an S:30/S:31 loaded by the program starts timing at the end of this scan.
+      enter_fault(interp_->last_fault());
+    } else if (mode_ == Mode::Run && !interp_->configure_dii(false)) {
+      // RM 11-24: S:46-S:50 are applied at each end of scan.
       enter_fault(interp_->last_fault());
     }
     used += output_scan();

@@ -119,6 +119,10 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   bool run_until(const std::function<bool(const Runtime&)>& pred, Nanoseconds limit);
   VirtualTime now() const override { return clock_.now(); }
   const ScanStats& stats() const { return stats_; }
+  // s7-control: the discrete input interrupt's applied configuration, runs and last latency, and
+  // the I/O event interrupt routines run (for tests and tools).
+  const DiiState& dii() const { return interp_->dii(); }
+  std::uint64_t isr_runs() const { return interp_->isr_runs(); }
 
   // ---- Data ----
   // Writes a value. An I: address sets the simulated field input of the slot's module (seen
@@ -207,6 +211,11 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void immediate_input(int slot, int first, int count, std::uint16_t mask) override;
   void immediate_output(int slot, int first, int count, std::uint16_t mask) override;
   Nanoseconds io_refresh() override;
+  // s7-control: the DII's and the I/O event interrupt's sources.
+  void field_input_changed(int slot, int word, std::uint16_t before, std::uint16_t after) override;
+  void request_io_interrupt(int slot) override;
+  bool discrete_input_card(int slot) const override;
+  void interrupt_serviced(int slot) override;
   void module_instruction(int slot, ModuleInstructionContext& ctx) override;
 
   std::unique_ptr<CompiledProgram> program_;

@@ -82,6 +82,13 @@ struct Plc {
   std::uint16_t fault_code() const { return rt->fault() ? rt->fault()->code : 0; }
 };
 
+// The load or compile errors of a whole program text; empty when it builds.
+inline std::string build_errors(std::string_view full_text) {
+  std::string errors;
+  auto rt = try_build(full_text, errors);
+  return rt ? std::string() : errors;
+}
+
 // The S:0 arithmetic flags C (1), V (2), Z (4), S (8).
 inline int arith_flags(Plc& plc) { return static_cast<int>(plc.i("S:0") & 0xF); }
 

@@ -483,6 +483,11 @@ class Checker {
         // Only the CPT rule of the grammar makes an expression operand; check_cpt reads it.
         if (op.kind != Operand::Kind::Expression) return expect("a CPT expression");
         return;
+      case OperandKind::String:
+        // 1747-RM001G p. 10-3: string operands are ST elements (42 words, length in word 0).
+        if (!op.is_address() || op.address.type != FileType::String || op.address.has_bit() || op.address.word > 0)
+          return expect("a string element such as ST10:0 (1747-RM001 p. 10-3)");
+        break;
       case OperandKind::ControlBlock3:
       case OperandKind::ControlBlock70:
       case OperandKind::ControlBlock23: {
@@ -550,6 +555,33 @@ class Checker {
     if ((in.opcode == Opcode::RHC || in.opcode == Opcode::TDF) && in.operands.size() == s.operand_count)
       check_clock_operands(in);
     if (in.opcode == Opcode::PID && in.operands.size() == 3) check_pid(in);
+    if (in.operands.size() == s.operand_count) check_ascii_operands(in);
+  }
+
+  // ASCII and string instructions (1747-RM001G ch. 10). AEX's index and number and ASC's index are
+  // 1-82 (RM 10-12); a constant outside that would only set S:5/15 at run time, so check says so now.
+  // ACI, AIC and ASC's result are 16-bit words: the MicroLogix long-word forms (an L operand) are not
+  // simulated.
+  void check_ascii_operands(const Instruction& in) {
+    auto in_1_82 = [&](std::size_t i, std::string_view what) {
+      const Operand& op = in.operands[i];
+      if (op.kind == Operand::Kind::Integer && (op.integer < 1 || op.integer > 82))
+        error(op.pos, mnemonic_of(in) + " " + std::string(what) + " " + op.spelling +
+                          " is out of range 1-82 (1747-RM001 p. 10-12)");
+    };
+    auto not_long = [&](std::size_t i) {
+      const Operand& op = in.operands[i];
+      if (op.is_address() && op.address.type == FileType::Long)
+        error(op.pos, mnemonic_of(in) + " with an L word is the MicroLogix long-word form, which softslc does not "
+                                        "simulate yet; use an N word");
+    };
+    switch (in.opcode) {
+      case Opcode::AEX: in_1_82(1, "index"); in_1_82(2, "number"); break;
+      case Opcode::ASC: in_1_82(1, "index"); not_long(3); break;
+      case Opcode::ACI: not_long(1); break;
+      case Opcode::AIC: not_long(0); break;
+      default: break;
+    }
   }
 
   // RHC, TDF (1747-RM001G p. 7-17): "an integer address (Nx:x) or Float address (Fx:x)", and TDF's

@@ -45,6 +45,7 @@ std::string_view to_string(OperandKind k) {
     case OperandKind::WordSource: return "integer word address or constant (no F)";
     case OperandKind::WordDest: return "integer word address (no F)";
     case OperandKind::Expression: return "CPT expression";
+    case OperandKind::String: return "string element (STf:e)";
   }
   return "?";
 }

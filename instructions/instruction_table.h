@@ -41,6 +41,7 @@ enum class OperandKind : std::uint8_t {
   WordSource,      // an integer word address or an integer constant
   WordDest,        // an integer word address written by the instruction
   Expression,      // a CPT expression (parser/expression.h)
+  String,          // an ST element (42 words; the ASCII instructions, 1747-RM001G ch. 10)
 };
 
 // Whether an operand kind is written as a destination word (never a constant).

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "modules/process/plant.h"
+#include "modules/serial/serial_device.h"
 #include "parser/loader.h"
 #include "vm/compiler.h"
 
@@ -22,6 +23,7 @@ std::map<int, const BenchNode*> bind_bench_nodes(const Program& program, const B
   std::map<int, const BenchNode*> out;
   for (const auto& n : bench.nodes) {
     if (n.kind == "process") continue;  // a simulated plant wired to data-table words, not to a slot
+    if (n.kind == "serial") continue;   // channel 0 and its device, not a slot
     const BenchAttribute* a = n.find("slot");
     if (!a) {
       diags.error(n.pos.line, n.pos.column,
@@ -114,6 +116,33 @@ void add_processes(const Program& program, const BenchFile& bench, ModuleSetup& 
   s.bench_diagnostics.sort_by_position();
 }
 
+// The `serial` node (modules/serial/serial_device.h): channel 0 in User mode with its device.
+// There is one channel 0, and only the processors with the ASCII instructions have a User mode
+// for it in softslc.
+void add_serial_channel(const Program& program, const BenchFile& bench, ModuleSetup& s) {
+  const BenchNode* first = nullptr;
+  for (const auto& n : bench.nodes) {
+    if (n.kind != "serial") continue;
+    if (first) {
+      s.bench_diagnostics.error(n.pos.line, n.pos.column,
+                                n.label() + ": channel 0 is already wired to " + first->label() + " at line " +
+                                    std::to_string(first->pos.line));
+      continue;
+    }
+    first = &n;
+    if (!program.processor.supports(Requirement::Os302)) {
+      s.bench_diagnostics.error(n.pos.line, n.pos.column,
+                                n.label() + ": channel 0 in User (ASCII) mode needs " +
+                                    std::string(requirement_processors(Requirement::Os302)) +
+                                    "; this program's processor is " + program.processor.display_name);
+      continue;
+    }
+    if (auto config = read_serial_node(n, s.bench_diagnostics))
+      s.options.ascii_channel = [c = *config] { return make_serial_channel(c); };
+  }
+  s.bench_diagnostics.sort_by_position();
+}
+
 }  // namespace
 
 ModuleSetup setup_modules(const Program& program, const BenchFile* bench, const ModuleRegistry& registry) {
@@ -168,6 +197,7 @@ ModuleSetup setup_modules(const Program& program, const BenchFile* bench, const 
     return std::nullopt;
   };
   if (bench) add_processes(program, *bench, s);
+  if (bench) add_serial_channel(program, *bench, s);
   return s;
 }
 

@@ -508,6 +508,11 @@ class Checker {
         // Only the CPT rule of the grammar makes an expression operand; check_cpt reads it.
         if (op.kind != Operand::Kind::Expression) return expect("a CPT expression");
         return;
+      case OperandKind::String:
+        // 1747-RM001G p. 10-3: string operands are ST elements (42 words, length in word 0).
+        if (!op.is_address() || op.address.type != FileType::String || op.address.has_bit() || op.address.word > 0)
+          return expect("a string element such as ST10:0 (1747-RM001 p. 10-3)");
+        break;
       case OperandKind::ControlBlock3:
       case OperandKind::ControlBlock70:
       case OperandKind::ControlBlock23: {
@@ -581,6 +586,7 @@ class Checker {
                                 "mask is slot n, 1-30 (1747-RM001G p. 11-31)");
     if ((in.opcode == Opcode::FBC || in.opcode == Opcode::DDT) && in.operands.size() == s.operand_count)
       check_bit_compare(in);
+    if (in.operands.size() == s.operand_count) check_ascii_operands(in);
   }
 
   // s7-control. FBC, DDT (1747-RM001G p. 7-18 .. 7-22): the result file records bit numbers, so it is
@@ -597,6 +603,32 @@ class Checker {
         cmp.address.file == res.address.file && cmp.address.element == res.address.element)
       error(res.pos, mnemonic_of(in) + " needs two control elements: the compare and the result control are both " +
                          to_string(cmp.address));
+  }
+
+  // ASCII and string instructions (1747-RM001G ch. 10). AEX's index and number and ASC's index are
+  // 1-82 (RM 10-12); a constant outside that would only set S:5/15 at run time, so check says so now.
+  // ACI, AIC and ASC's result are 16-bit words: the MicroLogix long-word forms (an L operand) are not
+  // simulated.
+  void check_ascii_operands(const Instruction& in) {
+    auto in_1_82 = [&](std::size_t i, std::string_view what) {
+      const Operand& op = in.operands[i];
+      if (op.kind == Operand::Kind::Integer && (op.integer < 1 || op.integer > 82))
+        error(op.pos, mnemonic_of(in) + " " + std::string(what) + " " + op.spelling +
+                          " is out of range 1-82 (1747-RM001 p. 10-12)");
+    };
+    auto not_long = [&](std::size_t i) {
+      const Operand& op = in.operands[i];
+      if (op.is_address() && op.address.type == FileType::Long)
+        error(op.pos, mnemonic_of(in) + " with an L word is the MicroLogix long-word form, which softslc does not "
+                                        "simulate yet; use an N word");
+    };
+    switch (in.opcode) {
+      case Opcode::AEX: in_1_82(1, "index"); in_1_82(2, "number"); break;
+      case Opcode::ASC: in_1_82(1, "index"); not_long(3); break;
+      case Opcode::ACI: not_long(1); break;
+      case Opcode::AIC: not_long(0); break;
+      default: break;
+    }
   }
 
   // RHC, TDF (1747-RM001G p. 7-17): "an integer address (Nx:x) or Float address (Fx:x)", and TDF's
@@ -987,8 +1019,8 @@ std::span<const std::string_view> real_mnemonics_without_rows() {
   // the table: a name that gets a row must leave it (the table wins anyway: a name found there never
   // reaches unknown_instruction_message).
   static constexpr std::string_view kReal[] = {
-      // SLC 5/03-5/05 ASCII (1747-RM001G ch. 10) and communications (ch. 8 MSG, SVC).
-      "ABL", "ACB", "ACI", "ACL", "ACN", "AEX", "AHL", "AIC", "ARD", "ARL", "ASC", "ASR", "AWA", "AWT", "MSG", "SVC",
+      // SLC 5/03-5/05 communications (ch. 8 MSG, SVC).
+      "MSG", "SVC",
       // MicroLogix only: high-speed counter and outputs, real-time clock adjust, data logging, LCD.
       "DLG", "GCD", "HSC", "HSD", "HSE", "HSL", "LCD", "PTO", "PWM", "RAC", "RPC"};
   return kReal;

@@ -823,6 +823,12 @@ class Compiler {
           break;
         case OperandKind::SlotWord: w = slot_word_operand(in, op, pos); break;
         case OperandKind::Expression: w = expression_operand(op, any_float, flags, pos); break;
+        case OperandKind::String: {
+          // An ST element: the handler reads and writes its 42 words through file_span.
+          bool f = false;
+          w = value_operand(op, false, true, f, pos);
+          break;
+        }
         case OperandKind::Buffer:
         case OperandKind::ControlBlock3:
         case OperandKind::ControlBlock70:
@@ -911,6 +917,18 @@ class Compiler {
         init_literal(ops[6], 1, literal(in, 7));
         init_literal(ops[6], 2, literal(in, 8));
         break;
+      // ASCII channel instructions: the box's length and display fields are the control element's
+      // words 1 (LEN) and 2 (POS), as exported (docs/semantics.md "ASCII and strings").
+      case Opcode::ARD:
+      case Opcode::ARL:
+      case Opcode::AWA:
+      case Opcode::AWT:
+        init_literal(ops[2], 1, literal(in, 3));
+        init_literal(ops[2], 2, literal(in, 4));
+        break;
+      case Opcode::ABL:
+      case Opcode::ACB: init_literal(ops[1], 2, literal(in, 2)); break;
+      case Opcode::AHL: init_literal(ops[3], 2, literal(in, 4)); break;
       case Opcode::BTR:
       case Opcode::BTW:
         // "A BTR or BTW instruction writes information into its control structure address ... when

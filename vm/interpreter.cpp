@@ -4,6 +4,7 @@
 #include "vm/fused.h"
 
 #include "vm/compiler.h"
+#include "vm/ascii_channel.h"
 #include "vm/pid.h"
 
 #include <algorithm>
@@ -714,6 +715,156 @@ bool Interpreter::pid(const std::uint32_t* o, bool rung, Nanoseconds now_in_scan
   }
   if (r.write_cv) st_bits(o[2], r.cv);
   return !faulted_;
+}
+
+// ---- ASCII and strings (1747-RM001G ch. 10) -----------------------------------------------------------------
+
+// S:5/15, the ASCII error bit (RM 10-3). The MicroLogix also writes 1F39h to S:6 (1763-RM001,
+// 1766-RM001: "Invalid String Length Error (1F39H) is written to the Major Error Fault Code word");
+// neither halts the processor.
+void Interpreter::ascii_error() {
+  w_[s5_] |= ascii::kAsciiErrorBit;
+  if (prog_.processor.family == ProcessorFamily::MicroLogix) w_[s6_] = ascii::kMicroLogixStringLengthError;
+}
+
+bool Interpreter::string_words(std::uint32_t o, std::uint16_t*& words, const char* what) {
+  Span s;
+  if (!file_span(o, 1, s, what)) return false;
+  if (s.mfile || s.count != ascii::kElementWords) {
+    raise(fault::kIndexOutOfRange, std::string(what) + " is not a string element");
+    return false;
+  }
+  words = w_ + s.base;
+  return true;
+}
+
+bool Interpreter::read_string(std::uint32_t o, ascii::Text& out, const char* what) {
+  std::uint16_t* e = nullptr;
+  if (!string_words(o, e, what)) return false;
+  if (!ascii::read(ascii::ConstElement(e, ascii::kElementWords), out)) {
+    ascii_error();
+    return false;
+  }
+  return true;
+}
+
+// ACI AIC ACN AEX ASC: each reads its operands, computes through vm/ascii.h and writes its
+// destination; a bad length or range sets S:5/15 and leaves the destination as it was.
+void Interpreter::string_instruction(Op op, const std::uint32_t* o) {
+  ascii::Text a, b, out;
+  std::uint16_t* dest = nullptr;
+  switch (op) {
+    case Op::ACI: {
+      if (!read_string(o[0], a, "ACI source")) return;
+      charge_words(op, static_cast<std::uint32_t>(a.length));  // per character (the profile's per_word_us)
+      const ascii::IntegerResult r = ascii::to_integer(a);
+      if (!r.converted) return;  // RM 10-8: "Action is taken only if numeric characters are found"
+      st_bits(o[1], r.value);
+      set_flags(false, r.overflow, r.value == 0, r.value < 0);
+      return;
+    }
+    case Op::AIC:
+      if (!string_words(o[1], dest, "AIC dest")) return;
+      out = ascii::from_integer(static_cast<std::int16_t>(rd_int(o[0])));
+      ascii::write(ascii::Element(dest, ascii::kElementWords), out);
+      charge_words(op, static_cast<std::uint32_t>(out.length));
+      return;
+    case Op::ACN:
+      if (!read_string(o[0], a, "ACN source A") || !read_string(o[1], b, "ACN source B")) return;
+      if (!string_words(o[2], dest, "ACN dest")) return;
+      out = ascii::concatenate(a, b);
+      ascii::write(ascii::Element(dest, ascii::kElementWords), out);
+      charge_words(op, static_cast<std::uint32_t>(out.length));
+      return;
+    case Op::AEX: {
+      if (!read_string(o[0], a, "AEX source")) return;
+      const std::int64_t index = rd_int(o[1]), number = rd_int(o[2]);
+      if (!string_words(o[3], dest, "AEX dest")) return;
+      if (!ascii::extract(a, index, number, out)) return ascii_error();
+      ascii::write(ascii::Element(dest, ascii::kElementWords), out);
+      charge_words(op, static_cast<std::uint32_t>(out.length));
+      return;
+    }
+    case Op::ASC: {
+      if (!read_string(o[0], a, "ASC source") || !read_string(o[2], b, "ASC string search")) return;
+      std::int64_t position = 0;
+      if (!ascii::search(a, rd_int(o[1]), b, position)) return ascii_error();
+      charge_words(op, static_cast<std::uint32_t>(b.length));
+      st_bits(o[3], position);
+      return;
+    }
+    default: return;
+  }
+}
+
+// ASR (RM 10-19): true when the strings match in length and every character (case counts); "An
+// invalid string length causes the processor to set ASCII Error bit S:5/15, and the rung goes false".
+bool Interpreter::string_compare(const std::uint32_t* o) {
+  ascii::Text a, b;
+  if (!read_string(o[0], a, "ASR source A") || !read_string(o[1], b, "ASR source B")) return false;
+  // Timed per matching character (1763-RM001C p. 334).
+  const auto common = std::mismatch(a.view().begin(), a.view().end(), b.view().begin(), b.view().end());
+  charge_words(Op::ASR, static_cast<std::uint32_t>(common.first - a.view().begin()));
+  return a.view() == b.view();
+}
+
+void Interpreter::channel_instruction(Op op, const std::uint32_t* o, bool rung, Nanoseconds now_in_scan) {
+  // Operands: ABL/ACB channel, control; AHL channel, AND, OR, control; ARD/ARL/AWA/AWT channel,
+  // string, control.
+  const std::uint32_t control = op == Op::ABL || op == Op::ACB ? o[1] : op == Op::AHL ? o[3] : o[2];
+  std::uint16_t* r = element(control);
+  if (faulted_) return;
+  // RM 10-6: "When the program scans the instruction and finds the Done bit (DN) set, the
+  // processor then sets the Synchronous Done bit (EM)"; softslc does the same for ER.
+  if (r[0] & (bits::kDN | bits::kER)) r[0] |= bits::kEM;
+  if (!rung) {
+    r[0] &= static_cast<std::uint16_t>(~bits::kEN);
+    return;
+  }
+  const bool enabled = (r[0] & bits::kEN) != 0;
+  // Enabled but neither queued, running nor done: the queue was full; try again (RM 10-5: "This
+  // action is delayed if the queue is already filled").
+  const bool waiting = enabled && !(r[0] & (bits::kEU | bits::kIN | bits::kDN | bits::kER));
+  if (enabled && !waiting) return;
+  if (!enabled) {
+    // The previous operation is still queued or running: it is not queued twice (decision).
+    if (r[0] & (bits::kEU | bits::kIN)) {
+      r[0] |= bits::kEN;
+      return;
+    }
+    // A new operation: the previous one's result bits, error code and count go.
+    r[0] = static_cast<std::uint16_t>((r[0] & ~(bits::kDN | bits::kEM | bits::kER | bits::kFD | 0x00FF)) | bits::kEN);
+    r[2] = 0;
+  }
+  const std::uint32_t control_word = static_cast<std::uint32_t>(r - w_);
+  if (!ascii_port_) {
+    // RM 10-7: "the instruction is aborted - serial port not in User mode".
+    r[0] = static_cast<std::uint16_t>((r[0] & ~0x00FF) | bits::kER | ascii_error::kSystemMode);
+    return;
+  }
+  AsciiPort::Request req;
+  req.op = to_opcode(op);
+  req.control = control_word;
+  req.at = scan_start_ + now_in_scan;
+  if (op == Op::AHL) {
+    req.and_mask = rd_word(o[1]);
+    req.or_mask = rd_word(o[2]);
+  } else if (op == Op::ARD || op == Op::ARL || op == Op::AWA || op == Op::AWT) {
+    std::uint16_t* e = nullptr;
+    if (!string_words(o[1], e, std::string(mnemonic(op)).c_str())) return;
+    req.string = static_cast<std::uint32_t>(e - w_);
+    // A write is timed per character it hands the port (1763-RM001C p. 317: AWA per character).
+    if (op == Op::AWA || op == Op::AWT) {
+      const auto len = static_cast<std::int16_t>(r[1]);
+      const auto have = static_cast<std::int16_t>(e[0]);
+      charge_words(op, static_cast<std::uint32_t>(std::clamp<int>(len > 0 ? std::min<int>(len, have) : have, 0, ascii::kMaxLength)));
+    }
+  }
+  ascii_port_->submit(req);
+}
+
+void Interpreter::ascii_clear(const std::uint32_t* o, Nanoseconds now_in_scan) {
+  if (ascii_port_) ascii_port_->clear(bc::imm_of(o[1]) != 0, bc::imm_of(o[2]) != 0, scan_start_ + now_in_scan);
 }
 
 // ---- Timers, counters, reset ----------------------------------------------------------------------------------
@@ -2041,6 +2192,35 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       case Op::RHC:
       case Op::TDF:
         if (rung) free_running_clock(op, o, elapsed);
+        break;
+      // ---- ASCII and strings ----
+      case Op::ACI:
+      case Op::AIC:
+      case Op::ACN:
+      case Op::AEX:
+      case Op::ASC:
+        if (rung) string_instruction(op, o);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
+      case Op::ASR:
+        if (rung) rung = string_compare(o);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
+      case Op::ABL:
+      case Op::ACB:
+      case Op::AHL:
+      case Op::ARD:
+      case Op::ARL:
+      case Op::AWA:
+      case Op::AWT:
+        channel_instruction(op, o, rung, elapsed);
+        if (faulted_) goto fault;
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
+      case Op::ACL:
+        if (rung) ascii_clear(o, elapsed);
         break;
       case Op::SWP:
         if (rung) swap_bytes(o);

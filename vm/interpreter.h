@@ -44,6 +44,7 @@
 #include <memory>
 #include <vector>
 
+#include "vm/ascii.h"
 #include "vm/bytecode.h"
 #include "vm/data_table.h"
 #include "vm/faults.h"
@@ -124,6 +125,7 @@ inline constexpr int kMaxCallDepth = 16;
 
 class ModuleCall;
 class CoverageRecorder;
+class AsciiPort;
 class FusedProgram;
 
 class Interpreter {
@@ -139,6 +141,10 @@ class Interpreter {
   // its bit-logic fast path and reports every instruction (vm/coverage.h); without one nothing
   // is recorded and the fast path is unchanged.
   void set_coverage(CoverageRecorder* recorder) { coverage_ = recorder; }
+
+  // Channel 0 in User mode (vm/ascii_channel.h), or nullptr: the channel instructions (ABL ACB AHL
+  // ARD ARL AWA AWT) then end with ER and error code 04h (not in User mode).
+  void set_ascii_port(AsciiPort* port) { ascii_port_ = port; }
 
   // Fused rungs (vm/fused.h) are on by default; off, every rung takes the general path. The
   // result is the same either way; tests compare the two.
@@ -270,6 +276,18 @@ class Interpreter {
   // PID (1747-RM001G ch. 9): the control block's 23 words go to pid::execute (vm/pid.h); an invalid
   // parameter is major fault 0036h. Returns false when it faulted.
   SOFTSLC_HANDLER bool pid(const std::uint32_t* o, bool rung, Nanoseconds now_in_scan);
+  // ASCII and strings (1747-RM001G ch. 10; vm/ascii.h, vm/ascii_channel.h). The string instructions
+  // run on every true scan; a length outside 0-82 sets S:5/15. ASR returns the rung.
+  SOFTSLC_HANDLER void string_instruction(Op op, const std::uint32_t* o);
+  SOFTSLC_HANDLER bool string_compare(const std::uint32_t* o);
+  // The channel instructions: EN follows the rung, a false-to-true rung queues the instruction on
+  // the ASCII port, EM is set when the instruction is scanned with DN or ER set.
+  SOFTSLC_HANDLER void channel_instruction(Op op, const std::uint32_t* o, bool rung, Nanoseconds now_in_scan);
+  SOFTSLC_HANDLER void ascii_clear(const std::uint32_t* o, Nanoseconds now_in_scan);
+  // Reads (or writes) the ST element operand `o`; false (S:5/15 set for a bad length) when unusable.
+  bool read_string(std::uint32_t o, ascii::Text& out, const char* what);
+  bool string_words(std::uint32_t o, std::uint16_t*& words, const char* what);
+  void ascii_error();
   // STS: S:31/S:30 (or the STI function file) := file/time, enable, restart the timer from now.
   SOFTSLC_HANDLER void sti_start(const std::uint32_t* o, Nanoseconds now_in_scan);
   // s7-control. IID, IIE, RPI (RM 11-33, B-43) on S:25-S:28; FBC, DDT (RM 7-18 .. 7-22).
@@ -342,6 +360,7 @@ class Interpreter {
   std::uint32_t s1_, s6_, s7_, s8_, s29_, s30_, s31_;
   std::int64_t s36_ = -1;
   CoverageRecorder* coverage_ = nullptr;
+  AsciiPort* ascii_port_ = nullptr;
   // Whole rungs of direct-bit logic, built once from the program and the cost table.
   std::shared_ptr<const FusedProgram> fused_;
   bool fusion_ = true;

@@ -75,9 +75,17 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   }
   auto compiled = std::make_unique<CompiledProgram>(std::move(*cr.program));
   std::vector<FieldProcessFactory> processes = std::move(options.field_processes);
+  auto make_channel = std::move(options.ascii_channel);
   r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
   Runtime& rt = *r.runtime;
   rt.process_host_ = std::make_unique<ProcessHost>(rt);
+  if (make_channel) {
+    rt.ascii_channel_ = make_channel();
+    if (rt.ascii_channel_) {
+      rt.ascii_channel_->attach(*rt.process_host_);
+      rt.interp_->set_ascii_port(rt.ascii_channel_.get());
+    }
+  }
   for (const auto& make : processes) {
     std::unique_ptr<FieldProcess> p = make ? make() : nullptr;
     if (!p) continue;
@@ -178,6 +186,7 @@ void Runtime::notify_modes(Mode from, Mode to) {
   notifying_ = true;
   for (Module* m : modules_)
     if (m) m->on_mode_change(from, to);
+  if (ascii_channel_) ascii_channel_->on_mode_change(from, to);
   if (!outer) return;
   notifying_ = false;
   // A module that refused the change (a scanner without a valid G file) faults the processor
@@ -757,6 +766,12 @@ RuntimeStatus Runtime::inject(std::string_view device, std::string_view fault, s
     if (st.kind == DeviceStatus::Kind::Refused)
       return RuntimeStatus::failure("device " + f.device + ": " + st.message);
   }
+  if (ascii_channel_ && ascii_channel_->device().name() == f.device) {
+    DeviceStatus st = ascii_channel_->device().inject(f);
+    if (st.kind == DeviceStatus::Kind::Done) return {};
+    if (st.kind == DeviceStatus::Kind::Refused)
+      return RuntimeStatus::failure("device " + f.device + ": " + st.message);
+  }
   return RuntimeStatus::failure("no simulated field device is named '" + f.device + "'");
 }
 
@@ -766,6 +781,12 @@ std::optional<std::vector<std::int64_t>> Runtime::observe(std::string_view devic
       if (auto v = m->observe(device, what)) return v;
   for (const auto& p : processes_)
     if (auto v = p->observe(device, what)) return v;
+  if (ascii_channel_ && ascii_channel_->device().name() == device) {
+    // The channel's own counts, then what the device offers.
+    if (what == "buffered") return std::vector<std::int64_t>{static_cast<std::int64_t>(ascii_channel_->buffered())};
+    if (what == "dropped") return std::vector<std::int64_t>{static_cast<std::int64_t>(ascii_channel_->dropped())};
+    return ascii_channel_->device().observe(what);
+  }
   return std::nullopt;
 }
 
@@ -775,6 +796,7 @@ std::vector<std::string> Runtime::devices() const {
     if (m)
       for (auto& n : m->device_names()) out.push_back(std::move(n));
   for (const auto& p : processes_) out.push_back(p->name());
+  if (ascii_channel_) out.push_back(ascii_channel_->device().name());
   return out;
 }
 

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "parser/program.h"
+#include "vm/ascii_channel.h"
 #include "vm/bytecode.h"
 #include "vm/compiler.h"
 #include "vm/coverage.h"
@@ -60,6 +61,9 @@ struct RuntimeOptions {
   // Simulated plants wired to data-table words (vm/field_process.h), attached in this order once
   // the runtime exists; one that cannot resolve its words fails create() with its message.
   std::vector<FieldProcessFactory> field_processes;
+  // Channel 0 in User (ASCII) mode with the device wired to it (vm/ascii_channel.h); empty: the
+  // channel stays in System mode and the ASCII channel instructions end with ER.
+  std::function<std::unique_ptr<AsciiChannel>()> ascii_channel;
 };
 
 // Success, or a message saying why a request was refused.
@@ -174,6 +178,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // ---- Access for tools and tests ----
   Module* module(int slot) const;
   EventQueue& events() { return events_; }
+  // Channel 0 in User mode, or nullptr.
+  AsciiChannel* ascii_channel() const { return ascii_channel_.get(); }
   const CompiledProgram& compiled() const { return *program_; }
   DataTable& data() { return data_; }
   const DataTable& data() const { return data_; }
@@ -228,6 +234,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   class ProcessHost;
   std::unique_ptr<ProcessHost> process_host_;
   std::vector<std::unique_ptr<FieldProcess>> processes_;
+  std::unique_ptr<AsciiChannel> ascii_channel_;
   std::array<Module*, kMaxSlots> modules_{};
   // The modules in slot order with their image-transfer costs, for the input and output scans.
   struct ScannedModule {

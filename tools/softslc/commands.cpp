@@ -411,6 +411,7 @@ int run_run(const RunOptions& o) {
   options.module_factory = modules.options.module_factory;
   options.module_instruction = modules.options.module_instruction;
   options.field_processes = modules.options.field_processes;
+  options.ascii_channel = modules.options.ascii_channel;
 
   auto created = Runtime::create(program, std::move(options));
   if (!created.ok()) {

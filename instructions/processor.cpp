@@ -95,6 +95,11 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::TimedInterrupt:
     case Requirement::SlcInterruptControl: return slc_has_sti(family);
     case Requirement::MicroLogixStiFile: return false;
+    // MSG and SVC (RM 12-5: the 5/02, 5/03, 5/04 and 5/05 columns; the fixed controllers and the
+    // 5/01 answer messages but do not send them). The 5/02 has its own MSG form.
+    case Requirement::SlcMessage502: return family == ProcessorFamily::Slc502;
+    case Requirement::SlcMessage: return is_modular_503_or_later(family);
+    case Requirement::SlcCommService: return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
   }
   return false;
 }
@@ -140,6 +145,23 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
                "(1762/1763/1764/1766-RM001) is not supported by softslc yet; this program's processor is " + have;
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
+    case Requirement::SlcMessage502:
+    case Requirement::SlcMessage:
+    case Requirement::SlcCommService:
+      if (is_micrologix())
+        return "is not available on the " + have + " in softslc: the MicroLogix MSG and SVC work on an MG message "
+               "file element and the channel configuration (1763-RM001, 1766-RM001, 1762-RM001 \"Communications "
+               "Instructions\"), which softslc does not simulate; the SLC 5/02-5/05 MSG with an N-file control block "
+               "is supported (1747-RM001G ch. 12)";
+      if (r == Requirement::SlcMessage502 && is_modular_503_or_later(family))
+        return "with 8 operands is the SLC 5/02 form (7-word control block, RM 12-5); the " + display_name +
+               " MSG takes 11: READ|WRITE device LOCAL|REMOTE block 14 channel data size node target timeout; "
+               "this program's processor is " + have;
+      if (r == Requirement::SlcMessage && family == ProcessorFamily::Slc502)
+        return "with this operand list is the SLC 5/03-5/05 form; on the SLC 5/02 MSG takes 8 operands (READ|WRITE "
+               "device block 7 data size node target, RM 12-5) and SVC none; this program's processor is " + have;
+      return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
+             " (1747-RM001G p. 12-5)";
   }
   return {};
 }
@@ -158,6 +180,9 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::TimedInterrupt: return "SLC 5/02, 5/03, 5/04, 5/05 (the MicroLogix STI function file is not simulated yet)";
     case Requirement::SlcInterruptControl: return "SLC 5/02, 5/03, 5/04, 5/05";
     case Requirement::MicroLogixStiFile: return "none yet (MicroLogix 1100-1500 once the STI function file is simulated)";
+    case Requirement::SlcMessage502: return "SLC 5/02 (the 5/03-5/05 form has 11 operands)";
+    case Requirement::SlcMessage: return "SLC 5/03, 5/04, 5/05";
+    case Requirement::SlcCommService: return "SLC 5/02, 5/03, 5/04, 5/05";
   }
   return {};
 }

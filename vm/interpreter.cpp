@@ -1,5 +1,7 @@
 #include "vm/interpreter.h"
 
+#include "vm/message_network.h"
+
 #include "vm/coverage.h"
 #include "vm/fused.h"
 
@@ -1420,6 +1422,33 @@ void Interpreter::free_running_clock(Op op, const std::uint32_t* o, Nanoseconds 
   }
 }
 
+// MSG (RM 12-5 .. 12-30; docs/semantics.md "MSG"). The control block is the instruction's state: this
+// handler does the rung logic on word 0 and hands the message layer only a start (the rung is true and
+// EN is 0: a false-to-true transition, or EN cleared by the program after DN or ER) and an abort (TO
+// set while the message is in progress, RM 12-30). EN "remains set until message transmission is
+// completed and the rung goes false" (RM 12-29).
+void Interpreter::message(Op op, const std::uint32_t* o, bool rung, Nanoseconds now_in_scan) {
+  const bool slc502 = op == Op::MSG_502;
+  const std::uint32_t block = bc::payload_of(o[slc502 ? 2 : 3]);
+  const std::uint16_t w0 = w_[block];
+  const bool done = (w0 & (msg::kDN | msg::kER)) != 0;
+  if (rung && !(w0 & msg::kEN)) {
+    MessageInstruction m;
+    m.slc502 = slc502;
+    m.write = bc::imm_of(o[0]) == 1;
+    m.device = bc::imm_of(o[1]);
+    m.channel = slc502 ? 0 : bc::imm_of(o[5]);
+    m.block = block;
+    m.data = bc::payload_of(o[slc502 ? 4 : 6]);
+    m.at = scan_start_ + now_in_scan;
+    chassis_.message_start(m);
+  } else if ((w0 & msg::kTO) && (w0 & msg::kEN) && !done) {
+    chassis_.message_abort(block);
+  } else if (!rung && (w0 & msg::kEN) && done) {
+    w_[block] = static_cast<std::uint16_t>(w0 & ~msg::kEN);
+  }
+}
+
 void Interpreter::fill_file(const std::uint32_t* o, std::uint32_t h) {
   const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
   Span dst;
@@ -2078,6 +2107,15 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
           if (op == Op::IIM) chassis_.immediate_input(sw / 256, sw % 256, bc::imm_of(o[2]), mask);
           else chassis_.immediate_output(sw / 256, sw % 256, bc::imm_of(o[2]), mask);
         }
+        break;
+
+      // ---- Communication (docs/semantics.md "MSG") ----
+      case Op::MSG:
+      case Op::MSG_502: message(op, o, rung, elapsed); break;
+      case Op::SVC:
+      case Op::SVC_CH:
+        if (rung) chassis_.service_communications(op == Op::SVC ? 0x3 : static_cast<std::uint16_t>(bc::imm_of(o[0])),
+                                                  scan_start_ + elapsed);
         break;
 
       // ---- Process control ----

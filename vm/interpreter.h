@@ -55,6 +55,8 @@ namespace softslc {
 // What the interpreter needs from the chassis mid-scan: M0/M1 immediate access and the
 // immediate I/O instructions. The runtime implements it; it is only reached from M-file
 // operands and IIM/IOM, never from the bit-logic path.
+struct MessageInstruction;
+
 class ChassisAccess {
  public:
   virtual ~ChassisAccess() = default;
@@ -72,6 +74,12 @@ class ChassisAccess {
   // A specialty-module instruction (BTR, BTW, DEM) addressed to the module in `slot`. The default
   // faults: there is no module to execute it.
   virtual void module_instruction(int slot, ModuleInstructionContext& ctx);
+  // MSG and SVC (vm/message_network.h): a MSG rung starts a message (its EN was 0), a MSG's TO bit
+  // aborts the one in progress, SVC services the channels in `channels` (bit 0 channel 0, bit 1
+  // channel 1) at virtual time `at`. The defaults do nothing: no network.
+  virtual void message_start(const MessageInstruction& /*m*/) {}
+  virtual void message_abort(std::uint32_t /*block*/) {}
+  virtual void service_communications(std::uint16_t /*channels*/, VirtualTime /*at*/) {}
 };
 
 struct ProgramScanResult {
@@ -228,6 +236,7 @@ class Interpreter {
   SOFTSLC_HANDLER void copy_words(const std::uint32_t* o);
   SOFTSLC_HANDLER void swap_bytes(const std::uint32_t* o);
   SOFTSLC_HANDLER void free_running_clock(Op op, const std::uint32_t* o, Nanoseconds now_in_scan);
+  SOFTSLC_HANDLER void message(Op op, const std::uint32_t* o, bool rung, Nanoseconds now_in_scan);
   SOFTSLC_HANDLER void fill_file(const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void bit_shift(Op op, const std::uint32_t* o, bool rung);
   SOFTSLC_HANDLER void sequencer(Op op, const std::uint32_t* o, bool rung);

@@ -43,6 +43,7 @@
 #include "vm/faults.h"
 #include "vm/field_process.h"
 #include "vm/interpreter.h"
+#include "vm/message_network.h"
 #include "vm/module.h"
 #include "vm/scan_time_model.h"
 #include "vm/virtual_time.h"
@@ -52,6 +53,8 @@ namespace softslc {
 // Creates the module for a slot; returning nullptr means "generic discrete I/O".
 using ModuleFactory = std::function<std::unique_ptr<Module>(const SlotConfig&)>;
 
+struct PeerController;
+
 struct RuntimeOptions {
   std::optional<ProcessorModel> processor;         // overrides the program's START line
   std::shared_ptr<const ScanTimeModel> time_model;  // default: DefaultScanTimeModel
@@ -60,6 +63,20 @@ struct RuntimeOptions {
   // Simulated plants wired to data-table words (vm/field_process.h), attached in this order once
   // the runtime exists; one that cannot resolve its words fails create() with its message.
   std::vector<FieldProcessFactory> field_processes;
+  // MSG (docs/semantics.md "MSG"): this controller's node on its network, and the other controllers
+  // on it. With peers, the runtime created is the network's leader: it owns the peers, drives them in
+  // lockstep with its own scans, and passes its mode changes on to them.
+  int node = 1;
+  std::vector<PeerController> peers;
+};
+
+// Another controller on the leader's MSG network: its program, its options (modules, processor;
+// their own peers are ignored), its name (how tests address it) and its node.
+struct PeerController {
+  std::string name;
+  int node = 2;
+  std::shared_ptr<const Program> program;
+  std::shared_ptr<const RuntimeOptions> options;
 };
 
 // Success, or a message saying why a request was refused.
@@ -167,6 +184,13 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   using ScanObserver = std::function<void(const Runtime&)>;
   void set_scan_observer(ScanObserver observer) { scan_observer_ = std::move(observer); }
 
+  // ---- MSG network (vm/message_network.h) ----
+  // This controller's node, and the peer named `name` on its network (nullptr when there is none).
+  // A peer's data may be read and written at any time; its scans are driven by the leader.
+  int node() const { return node_; }
+  Runtime* peer(std::string_view name) const;
+  std::vector<std::string> peer_names() const;
+
   // ---- Access for tools and tests ----
   Module* module(int slot) const;
   EventQueue& events() { return events_; }
@@ -208,6 +232,11 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void immediate_output(int slot, int first, int count, std::uint16_t mask) override;
   Nanoseconds io_refresh() override;
   void module_instruction(int slot, ModuleInstructionContext& ctx) override;
+  void message_start(const MessageInstruction& m) override;
+  void message_abort(std::uint32_t block) override;
+  void service_communications(std::uint16_t channels, VirtualTime at) override;
+  MessageNetwork& network();
+  std::string join_peers(const std::vector<PeerController>& peers);
 
   std::unique_ptr<CompiledProgram> program_;
   std::shared_ptr<const ScanTimeModel> model_;
@@ -230,6 +259,11 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::unique_ptr<Interpreter> interp_;
   std::unique_ptr<CoverageRecorder> coverage_;
   ScanObserver scan_observer_;
+  // MSG: the network this controller is on (its own when it is the leader or alone), its station.
+  std::unique_ptr<MessageNetwork> own_network_;
+  MessageNetwork* network_ = nullptr;
+  std::size_t station_ = 0;
+  int node_ = 1;
 
   Mode mode_ = Mode::Program;
   bool first_pass_ = false;

@@ -386,6 +386,12 @@ class Checker {
     if (!keyword_words(os.kind).empty()) return check_keyword(in, op, os);
     resolve(op);
     const std::string where = mnemonic_of(in) + " " + std::string(os.label);
+    if (op.kind == Operand::Kind::Symbol && !op.resolved && op.symbol.starts_with("MG") &&
+        op.symbol.find(':') != std::string::npos) {
+      error(op.pos, where + ": " + op.symbol + " is a MicroLogix message file element (1763-RM001, 1766-RM001); "
+                                               "softslc has no MG files (docs/semantics.md \"MSG and SVC\")");
+      return;
+    }
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
       error(op.pos, "unknown symbol '" + op.symbol + "' (" + where + ")");
       return;

@@ -149,7 +149,7 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
   set_word(station, in.block, static_cast<std::uint16_t>(w0 | msg::kEN));
   if (ch.buffers.size() < buffers) {
     ch.buffers.push_back(std::move(m));
-    enter_buffer(station, ch.buffers.back(), in.at);
+    enter_buffer(station, ch.buffers.back());
   } else if (ch.queue.size() < static_cast<std::size_t>(msg::kQueuePositions)) {
     // RM 12-7: queued messages "will only have control block status bit EN set"; the 5/02's waiting
     // messages have EN and EW (RM 12-5).
@@ -164,7 +164,7 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
   }
 }
 
-bool MessageNetwork::enter_buffer(std::size_t station, Message& m, VirtualTime) {
+void MessageNetwork::enter_buffer(std::size_t station, Message& m) {
   // EW: "the message is in the buffer ... and waiting to be sent"; a write's source data is buffered
   // now (RM 12-29, table 12.10).
   set_word(station, m.in.block, static_cast<std::uint16_t>(word(station, m.in.block) | msg::kEN | msg::kEW));
@@ -173,7 +173,6 @@ bool MessageNetwork::enter_buffer(std::size_t station, Message& m, VirtualTime) 
     for (int i = 0; i < m.words; ++i) m.data[static_cast<std::size_t>(i)] = word(station, m.in.data + static_cast<std::uint32_t>(i));
   }
   m.sent = false;
-  return true;
 }
 
 void MessageNetwork::abort(std::size_t station, std::uint32_t block) {
@@ -199,7 +198,7 @@ void MessageNetwork::finish(std::size_t station, Message& m, std::uint8_t error,
   if (!error && !m.in.slc502 && (w0 & msg::kCO)) {
     m.sent = false;
     m.data.clear();
-    if (m.in.write) enter_buffer(station, m, 0);
+    if (m.in.write) enter_buffer(station, m);
     return;
   }
   remove(station, m.serial);
@@ -323,7 +322,7 @@ void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t 
   while (!ch.queue.empty() && ch.buffers.size() < buffers) {
     ch.buffers.push_back(std::move(ch.queue.front()));
     ch.queue.erase(ch.queue.begin());
-    enter_buffer(station, ch.buffers.back(), at);
+    enter_buffer(station, ch.buffers.back());
   }
   // 4. What the buffers hold goes out.
   for (Message& m : ch.buffers)

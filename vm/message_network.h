@@ -89,7 +89,10 @@ Nanoseconds message_frame_time(MessageLink link, int data_bytes);
 struct MessageInstruction {
   bool slc502 = false;       // the 7-word form: one buffer, no WQ, no timer
   bool write = false;
-  int device = 0;            // 0 500CPU, 1 485CIF, 2 PLC5 (keyword_code of MessageDevice)
+  // 0 500CPU, 1 485CIF, 2 PLC5 (keyword_code of MessageDevice). The targets on a simulated network are
+  // SLCs, which answer a PLC5 typed command as a 500CPU one; 485CIF's target is in the control block
+  // (N9, the offset): so the network needs no more than the block (docs/semantics.md "MSG and SVC").
+  int device = 0;
   int channel = 0;
   std::uint32_t block = 0;   // data-table word index of control block word 0
   std::uint32_t data = 0;    // data-table word index of this controller's data address
@@ -172,7 +175,7 @@ class MessageNetwork {
   void finish(std::size_t station, Message& m, std::uint8_t error, std::uint16_t extra_bits = 0);
   void send(std::size_t station, VirtualTime at, Message& m);
   void post(std::size_t to, VirtualTime arrival, Frame f);
-  bool enter_buffer(std::size_t station, Message& m, VirtualTime at);
+  void enter_buffer(std::size_t station, Message& m);
   Message* find(std::size_t station, std::uint64_t serial, int* channel = nullptr, bool* queued = nullptr);
   void remove(std::size_t station, std::uint64_t serial);
   std::uint16_t word(std::size_t station, std::uint32_t index) const;

@@ -227,6 +227,11 @@ TEST(Message, WordOneRetargetsTheMessage) {
   EXPECT_EQ(line.bi("N7:0"), 0);
 }
 
+std::string check_errors_of(std::string_view body, std::string_view header) {
+  LoadResult lr = load_program(program_text(body, header), "t.slc");
+  return lr.render_diagnostics();
+}
+
 // A target whose scans take 3 s (its housekeeping): it answers only at its end of scan. (The watchdog
 // faults it after its first scan; a faulted processor still answers messages.)
 RuntimeOptions slow_target() {
@@ -401,6 +406,53 @@ TEST(Message, SvcServicesTheChannelAtItsPlaceInTheScan) {
   EXPECT_EQ(copies(false), (Seen{{0, 0}, {0, 0}, {77, 77}}));
 }
 
+TEST(Message, Cif485WritesIntoTheTargetsN9AtTheOffset) {
+  // 485CIF: "a word offset into the target's Common Interface File" (1763-RM001 "Data Table
+  // Address/Offset"; SLC processors use a word offset); an SLC's CIF is N9 (docs/semantics.md).
+  Line line("SOR XIC B3:0/0 MSG WRITE 485CIF LOCAL N9:0 14 1 N10:0 2 2 3 5 EOR",
+            "SOR XIC B3:0/15 CLR N9:9 EOR");
+  EXPECT_EQ(line.ai("N9:3"), 9) << "word 3: the CIF, N9";
+  EXPECT_EQ(line.ai("N9:5"), 3) << "word 5: the offset";
+  ASSERT_TRUE(line.a->set("N10:0", Value::of_int(-1)));
+  ASSERT_TRUE(line.a->set("N10:1", Value::of_int(2)));
+  line.run();
+  ASSERT_TRUE(line.a->set("B3:0/0", Value::bit(true)));
+  ASSERT_TRUE(line.until("N9:0/13"));
+  EXPECT_EQ(line.bi("N9:2"), 0);
+  EXPECT_EQ(line.bi("N9:3"), -1);
+  EXPECT_EQ(line.bi("N9:4"), 2);
+}
+
+TEST(Message, Plc5TypedOnDhPlusBetweenTwoSlc504s) {
+  // The SLC 5/04's channel 1 is DH+ (RM 12-14), 57,600 baud (1747-SG001 p. 64), 8 bits a byte: a
+  // one-word PLC5 read is a (16 + 0)-byte request and a (16 + 2)-byte reply, 2.22 ms and 2.5 ms.
+  constexpr std::string_view k504 = "START 1747-L542\n";
+  PeerController b;
+  b.name = "B";
+  b.node = 9;  // 11 octal; DH+ has nodes 0-63
+  b.program = load("SOR XIC B3:0/15 CLR N7:9 EOR", k504);
+  RuntimeOptions opts;
+  opts.node = 1;
+  opts.peers.push_back(b);
+  std::string errors;
+  auto a = try_build(program_text("SOR XIC B3:0/0 MSG READ PLC5 LOCAL N9:0 14 1 N10:0 1 9 N7:4 5 EOR", k504), errors, opts);
+  ASSERT_TRUE(a) << errors;
+  ASSERT_TRUE(a->peer("B")->set("N7:4", Value::of_int(4242)));
+  ASSERT_TRUE(a->set_mode(Mode::Run));
+  ASSERT_TRUE(a->set("B3:0/0", Value::bit(true)));
+  a->scan(1);
+  const VirtualTime sent = a->now();
+  ASSERT_TRUE(a->run_until([](const Runtime& r) { return r.value("N9:0/13").as_bool(); }, kNsPerS));
+  EXPECT_EQ(a->value("N10:0").as_int(), 4242);
+  constexpr Nanoseconds request = (16 * 8 * kNsPerS + 57599) / 57600, reply = (18 * 8 * kNsPerS + 57599) / 57600;
+  EXPECT_GE(a->now() - sent, request + reply);
+  EXPECT_LT(a->now() - sent, request + reply + 4 * a->stats().max) << "DH+ is three times DH-485's rate";
+  // DH+ nodes go to 63, DH-485's to 31.
+  EXPECT_EQ(check_errors_of("SOR MSG READ PLC5 LOCAL N9:0 14 1 N10:0 1 63 N7:4 5 EOR", k504), "");
+  EXPECT_NE(check_errors_of("SOR MSG READ PLC5 LOCAL N9:0 14 1 N10:0 1 64 N7:4 5 EOR", k504).find("out of range 0-63"),
+            std::string::npos);
+}
+
 TEST(Message, TwoRunsAreByteIdentical) {
   // Determinism: the same network and inputs give the same data tables and times, word for word.
   auto run = [] {
@@ -461,8 +513,7 @@ TEST(Message, ScantimePricesMsgAndSvcAsEstimates) {
 // ---- check ----------------------------------------------------------------------------------------------
 
 std::string check_errors(std::string_view body, std::string_view header = kHeader) {
-  LoadResult lr = load_program(program_text(body, header), "t.slc");
-  return lr.render_diagnostics();
+  return check_errors_of(body, header);
 }
 
 TEST(MessageCheck, RefusesBadOperandsWithAPosition) {

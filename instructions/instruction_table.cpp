@@ -46,8 +46,36 @@ std::string_view to_string(OperandKind k) {
     case OperandKind::WordDest: return "integer word address (no F)";
     case OperandKind::Expression: return "CPT expression";
     case OperandKind::String: return "string element (STf:e)";
+    case OperandKind::MessageCommand: return "READ or WRITE";
+    case OperandKind::MessageDevice: return "target device (500CPU, 485CIF or PLC5)";
+    case OperandKind::MessageRoute: return "LOCAL or REMOTE";
+    case OperandKind::MessageBlock: return "integer control block (the control block length)";
+    case OperandKind::MessageData: return "data table element address";
+    case OperandKind::RemoteAddress: return "the target's data table address (485CIF: word offset)";
   }
   return "?";
+}
+
+namespace {
+constexpr std::string_view kCommandWords[] = {"READ", "WRITE"};
+constexpr std::string_view kDeviceWords[] = {"500CPU", "485CIF", "PLC5"};
+constexpr std::string_view kRouteWords[] = {"LOCAL", "REMOTE"};
+}  // namespace
+
+std::span<const std::string_view> keyword_words(OperandKind k) {
+  switch (k) {
+    case OperandKind::MessageCommand: return kCommandWords;
+    case OperandKind::MessageDevice: return kDeviceWords;
+    case OperandKind::MessageRoute: return kRouteWords;
+    default: return {};
+  }
+}
+
+std::optional<int> keyword_code(OperandKind k, std::string_view word) {
+  const auto words = keyword_words(k);
+  for (std::size_t i = 0; i < words.size(); ++i)
+    if (words[i] == word) return static_cast<int>(i);
+  return std::nullopt;
 }
 
 std::string_view to_string(MFileAccess a) {

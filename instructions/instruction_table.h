@@ -42,6 +42,14 @@ enum class OperandKind : std::uint8_t {
   WordDest,        // an integer word address written by the instruction
   Expression,      // a CPT expression (parser/expression.h)
   String,          // an ST element (42 words; the ASCII instructions, 1747-RM001G ch. 10)
+  // MSG (issue 15; docs/semantics.md "MSG"): the words of the instruction box and setup screen.
+  MessageCommand,  // READ or WRITE
+  MessageDevice,   // the target device: 500CPU, 485CIF or PLC5
+  MessageRoute,    // LOCAL or REMOTE
+  MessageBlock,    // the control block: an N-file element, as many words as the "control block length"
+  MessageData,     // this controller's data table address: a direct word-level element address
+  RemoteAddress,   // the target's data table address (500CPU, PLC5) or CIF word offset (485CIF),
+                   // never looked up in this program: it names the other controller's data table
 };
 
 // Whether an operand kind is written as a destination word (never a constant).
@@ -95,7 +103,7 @@ enum class Requirement : std::uint8_t {
   // Instructions that drive the MicroLogix STI function file (the one-operand STS): no processor
   // has them in softslc until that function file is simulated.
   MicroLogixStiFile,
-  // ---- s7-control (issue 15) ----
+  // ---- I/O interrupts and diagnostics (issue 15) ----
   // The I/O event-driven interrupt's instructions IID, IIE, RPI: the SLC 5/02-5/05 (RM 11-27).
   IoInterrupt,
   // FBC, DDT: the SLC 5/03 OS302, 5/04 OS401 and 5/05 (RM 7-18, firmware history A-9); the
@@ -104,6 +112,12 @@ enum class Requirement : std::uint8_t {
   // UID, UIE, UIF: the MicroLogix 1100-1500 user interrupt disable/enable/flush, which act on the
   // STI, EII and HSC function files softslc does not simulate yet; the SLC has none of them.
   MicroLogixUserInterrupt,
+  // MSG and SVC (RM 12-5): the SLC 5/02's form (7-word control block, one channel) and the
+  // SLC 5/03-5/05 form (14 words, channel 0 or 1). The MicroLogix MSG takes an MG message file
+  // element instead (1763/1766-RM001), which softslc does not have: refused there by name.
+  SlcMessage502,
+  SlcMessage,
+  SlcCommService,  // SVC: SLC 5/02-5/05
 };
 
 struct OperandSpec {
@@ -115,9 +129,9 @@ struct OperandSpec {
   std::int32_t max;
 };
 
-// FBC and DDT have nine operands (1747-RM001G p. 7-18: three files, two control elements with
-// their lengths and positions).
-inline constexpr std::size_t kMaxOperands = 9;
+// MSG (SLC 5/03-5/05 form) has 11 operands; FBC and DDT nine (1747-RM001G p. 7-18: three files,
+// two control elements with their lengths and positions).
+inline constexpr std::size_t kMaxOperands = 11;
 
 enum class Opcode : std::uint8_t {
 #define OPERAND(...) 0
@@ -177,6 +191,12 @@ const InstructionSpec* find_instruction(std::string_view mnemonic);
 const InstructionSpec* find_instruction_form(std::string_view mnemonic, std::size_t operand_count);
 
 std::string_view to_string(OperandKind k);
+
+// The words a keyword operand kind takes (MessageCommand, MessageDevice, MessageRoute), in code
+// order: the compiler encodes the word's position. Empty for every other kind.
+std::span<const std::string_view> keyword_words(OperandKind k);
+// The code of `word` for kind `k` (its position in keyword_words), or nullopt.
+std::optional<int> keyword_code(OperandKind k, std::string_view word);
 std::string_view to_string(MFileAccess a);
 
 }  // namespace softslc

@@ -95,11 +95,16 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::TimedInterrupt:
     case Requirement::SlcInterruptControl: return slc_has_sti(family);
     case Requirement::MicroLogixStiFile: return false;
-    // s7-control: RM 11-27's availability row marks the 5/02, 5/03, 5/04 and 5/05 for the I/O
+    // RM 11-27's availability row marks the 5/02, 5/03, 5/04 and 5/05 for the I/O
     // interrupt; FBC/DDT came with a Series C operating system (RM A-9), the same condition as SCP.
     case Requirement::IoInterrupt: return slc_has_sti(family);
     case Requirement::FileBitCompare: return is_modular_503_or_later(family) && series >= 'C';
     case Requirement::MicroLogixUserInterrupt: return false;
+    // MSG and SVC (RM 12-5: the 5/02, 5/03, 5/04 and 5/05 columns; the fixed controllers and the
+    // 5/01 answer messages but do not send them). The 5/02 has its own MSG form.
+    case Requirement::SlcMessage502: return family == ProcessorFamily::Slc502;
+    case Requirement::SlcMessage: return is_modular_503_or_later(family);
+    case Requirement::SlcCommService: return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
   }
   return false;
 }
@@ -139,7 +144,6 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::SlcInterruptControl:
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
-    // s7-control.
     case Requirement::IoInterrupt:
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001G p. 11-27)" +
@@ -164,6 +168,23 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
                "(1762/1763/1764/1766-RM001) is not supported by softslc yet; this program's processor is " + have;
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
+    case Requirement::SlcMessage502:
+    case Requirement::SlcMessage:
+    case Requirement::SlcCommService:
+      if (is_micrologix())
+        return "is not available on the " + have + " in softslc: the MicroLogix MSG and SVC work on an MG message "
+               "file element and the channel configuration (1763-RM001, 1766-RM001, 1762-RM001 \"Communications "
+               "Instructions\"), which softslc does not simulate; the SLC 5/02-5/05 MSG with an N-file control block "
+               "is supported (1747-RM001G ch. 12)";
+      if (r == Requirement::SlcMessage502 && is_modular_503_or_later(family))
+        return "with 8 operands is the SLC 5/02 form (7-word control block, RM 12-5); the " + display_name +
+               " MSG takes 11: READ|WRITE device LOCAL|REMOTE block 14 channel data size node target timeout; "
+               "this program's processor is " + have;
+      if (r == Requirement::SlcMessage && family == ProcessorFamily::Slc502)
+        return "with this operand list is the SLC 5/03-5/05 form; on the SLC 5/02 MSG takes 8 operands (READ|WRITE "
+               "device block 7 data size node target, RM 12-5) and SVC none; this program's processor is " + have;
+      return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
+             " (1747-RM001G p. 12-5)";
   }
   return {};
 }
@@ -186,6 +207,9 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::FileBitCompare: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05";
     case Requirement::MicroLogixUserInterrupt:
       return "none yet (MicroLogix 1100-1500 once their STI/EII/HSC function files are simulated)";
+    case Requirement::SlcMessage502: return "SLC 5/02 (the 5/03-5/05 form has 11 operands)";
+    case Requirement::SlcMessage: return "SLC 5/03, 5/04, 5/05";
+    case Requirement::SlcCommService: return "SLC 5/02, 5/03, 5/04, 5/05";
   }
   return {};
 }

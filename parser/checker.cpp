@@ -5,6 +5,7 @@
 #include <optional>
 #include <set>
 
+#include "instructions/message_link.h"
 #include "instructions/module_catalog.h"
 #include "parser/rss/rss_reader.h"
 #include "parser/expression.h"
@@ -52,6 +53,13 @@ class Checker {
   DiagnosticList& diags_;
   std::set<int> files_missing_rungs_;  // a copy: the Checker may outlive a default argument
   std::map<std::string, const Symbol*> symbols_;
+  struct MessageBlockUse {
+    int file;
+    int first;
+    int last;
+    SourcePos pos;
+  };
+  std::vector<MessageBlockUse> message_blocks_;  // the MSG control blocks seen so far
   // File number → first use (type and position), to catch one number used as two types.
   struct FileUse {
     FileType type;
@@ -61,7 +69,7 @@ class Checker {
   std::vector<std::pair<Address, SourcePos>> osr_bits_;
   std::vector<std::pair<int, SourcePos>> jsr_targets_;
   std::vector<std::pair<int, SourcePos>> sts_targets_;
-  // s7-control: the ISR files SLOT lines name with OPTION ISR=n (RM 11-27, 11-31).
+  // the ISR files SLOT lines name with OPTION ISR=n (RM 11-27, 11-31).
   std::vector<std::pair<int, SourcePos>> isr_targets_;
   bool unknown_in_rung_ = false;  // the rung being checked names an unknown instruction
 
@@ -108,7 +116,7 @@ class Checker {
     }
   }
 
-  // s7-control. OPTION ISR=n: the slot's I/O interrupt subroutine file, "part of the I/O
+  // OPTION ISR=n: the slot's I/O interrupt subroutine file, "part of the I/O
   // configuration for each slot" (1747-RM001G p. 11-31), range 3-255 (p. 11-27).
   void check_isr_option(const SlotConfig& slot) {
     auto it = slot.options.find("ISR");
@@ -400,8 +408,15 @@ class Checker {
   // ---- Operands -----------------------------------------------------------------------------------------
 
   void check_operand(const Instruction& in, Operand& op, const OperandSpec& os) {
+    if (!keyword_words(os.kind).empty()) return check_keyword(in, op, os);
     resolve(op);
     const std::string where = mnemonic_of(in) + " " + std::string(os.label);
+    if (op.kind == Operand::Kind::Symbol && !op.resolved && op.symbol.starts_with("MG") &&
+        op.symbol.find(':') != std::string::npos) {
+      error(op.pos, where + ": " + op.symbol + " is a MicroLogix message file element (1763-RM001, 1766-RM001); "
+                                               "softslc has no MG files (docs/semantics.md \"MSG and SVC\")");
+      return;
+    }
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
       error(op.pos, "unknown symbol '" + op.symbol + "' (" + where + ")");
       return;
@@ -527,6 +542,29 @@ class Checker {
                                    op.spelling + " runs past the end of the file (element 255)");
         break;
       }
+      // MSG (docs/semantics.md "MSG"): the keywords are checked by check_keyword, the lengths and the
+      // target by check_message once every operand is known.
+      case OperandKind::MessageCommand:
+      case OperandKind::MessageDevice:
+      case OperandKind::MessageRoute: return;
+      case OperandKind::MessageBlock:
+        if (!op.is_address() || op.address.type != FileType::Integer || op.address.has_bit() || op.address.word > 0 ||
+            op.address.is_indirect() || op.address.indexed)
+          return expect("an integer file element such as N9:0 (the MSG control block, 1747-RM001G p. 12-31)");
+        break;
+      case OperandKind::MessageData: {
+        static constexpr FileType kTypes[] = {FileType::Output, FileType::Input, FileType::Status, FileType::Bit,
+                                              FileType::Timer,  FileType::Counter, FileType::Control, FileType::Integer,
+                                              FileType::Float,  FileType::String, FileType::Ascii};
+        if (!op.is_address() || op.address.has_bit() || op.address.is_indirect() || op.address.indexed ||
+            std::find(std::begin(kTypes), std::end(kTypes), op.address.type) == std::end(kTypes) ||
+            (is_structured(op.address.type) && op.address.word >= 0) ||
+            (op.address.type == FileType::String && op.address.word > 0))
+          return expect("a direct element address of an O, I, S, B, T, C, R, N, F, ST or A file such as N7:0 "
+                        "(1747-RM001G p. 12-31, word 4)");
+        break;
+      }
+      case OperandKind::RemoteAddress: return;  // the target's data table, not this program's
     }
     if (op.is_address()) check_address(op.address, op.pos, os.kind, os.mfile);
   }
@@ -587,9 +625,12 @@ class Checker {
     if ((in.opcode == Opcode::FBC || in.opcode == Opcode::DDT) && in.operands.size() == s.operand_count)
       check_bit_compare(in);
     if (in.operands.size() == s.operand_count) check_ascii_operands(in);
+    if ((in.opcode == Opcode::MSG || in.opcode == Opcode::MSG_502) && in.operands.size() == s.operand_count &&
+        proc.supports(s.requires_))
+      check_message(in);
   }
 
-  // s7-control. FBC, DDT (1747-RM001G p. 7-18 .. 7-22): the result file records bit numbers, so it is
+  // FBC, DDT (1747-RM001G p. 7-18 .. 7-22): the result file records bit numbers, so it is
   // an integer file; the compare and result control elements must differ (each keeps its own LEN and
   // POS, table 7.8).
   void check_bit_compare(const Instruction& in) {
@@ -629,6 +670,110 @@ class Checker {
       case Opcode::AIC: not_long(0); break;
       default: break;
     }
+  }
+
+  // READ/WRITE, 500CPU/485CIF/PLC5, LOCAL/REMOTE: words of the MSG box (RM 12-5), never symbols.
+  void check_keyword(const Instruction& in, const Operand& op, const OperandSpec& os) {
+    std::string choices;
+    for (auto w : keyword_words(os.kind)) choices += (choices.empty() ? "" : ", ") + std::string(w);
+    if (op.kind != Operand::Kind::Symbol || !keyword_code(os.kind, op.symbol))
+      error(op.pos, mnemonic_of(in) + " " + std::string(os.label) + ": expected " + choices + ", found '" +
+                        op.spelling + "'");
+  }
+
+  // MSG (1747-RM001G ch. 12, ch. 13; docs/semantics.md "MSG"): what the processor's channel can send,
+  // the target node's range on its link, a control block and a data table range inside their files,
+  // the target address, and one control block per MSG.
+  void check_message(const Instruction& in) {
+    const bool slc502 = in.opcode == Opcode::MSG_502;
+    const auto& ops = in.operands;
+    const Operand& command = ops[0];
+    const Operand& device = ops[1];
+    const Operand& block = ops[slc502 ? 2 : 3];
+    const Operand& block_length = ops[slc502 ? 3 : 4];
+    const Operand& data = ops[slc502 ? 4 : 6];
+    const Operand& size = ops[slc502 ? 5 : 7];
+    const Operand& node = ops[slc502 ? 6 : 8];
+    const Operand& target = ops[slc502 ? 7 : 9];
+    (void)command;
+    if (!slc502 && ops[2].kind == Operand::Kind::Symbol && ops[2].symbol == "REMOTE")
+      return error(ops[2].pos, "MSG REMOTE (a message through a bridge to another link, 1747-RM001G p. 15-2) is not "
+                               "simulated by softslc; the simulated network is one link: use LOCAL");
+    const auto& proc = program_.processor;
+    const int channel = slc502 ? 0 : static_cast<int>(ops[5].integer);
+    const MessageLink link = message_link(proc.family, channel);
+    if (link == MessageLink::None)
+      return error(ops[5].pos, "MSG on channel 0 (the RS-232 port: DF1, DH-485 through an isolator, Modbus RTU or "
+                               "ASCII, 1747-RM001G p. 12-14) is not simulated by softslc; channel 1 is the " +
+                                   std::string(proc.display_name) + "'s network port");
+    if (link == MessageLink::Ethernet)
+      return error(ops[5].pos, "MSG on the SLC 5/05's channel 1 (Ethernet: a 51-word control block with the target's IP "
+                               "address, 1747-RM001G p. 12-34) is not simulated by softslc yet; DH-485 (SLC 5/02, "
+                               "5/03) and DH+ (SLC 5/04) are");
+    const std::string dev = device.kind == Operand::Kind::Symbol ? device.symbol : "";
+    if (dev == "PLC5" && link == MessageLink::Dh485)
+      return error(device.pos, "MSG PLC5 on DH-485: a PLC-5 is on DH+ or Ethernet; the " + proc.display_name +
+                                   "'s DH-485 channel sends 500CPU and 485CIF messages (docs/semantics.md \"MSG\")");
+    if (node.kind == Operand::Kind::Integer) {
+      const auto [lo, hi] = message_node_range(link);
+      if (node.integer < lo || node.integer > hi)
+        error(node.pos, "MSG target node " + node.spelling + " is out of range " + std::to_string(lo) + "-" +
+                            std::to_string(hi) + " for " + std::string(to_string(link)) +
+                            (link == MessageLink::Dh485 ? " (1747-RM001G p. 13-4: responders 1-31; node 0 is a "
+                                                          "programming device)"
+                                                        : " (DH+ node addresses 0-77 octal)"));
+    }
+    // The control block: 7 or 14 words of one N file.
+    const int blen = static_cast<int>(block_length.integer);
+    if (block.is_address() && block.address.element + blen > 256)
+      error(block.pos, "the " + std::to_string(blen) + "-word MSG control block starting at " + block.spelling +
+                           " does not fit its file (it would end past element 255; 1747-RM001G p. 12-31)");
+    if (block.is_address()) {
+      const int first = block.address.element, last = block.address.element + blen - 1;
+      for (const auto& [file, other_first, other_last, pos] : message_blocks_)
+        if (file == block.address.file && first <= other_last && other_first <= last) {
+          error(block.pos, "MSG control block " + block.spelling + " overlaps the one of the MSG at line " +
+                               std::to_string(pos.line) + "; every MSG needs its own control block (1747-RM001G "
+                               "p. 12-30)");
+          break;
+        }
+      message_blocks_.push_back({block.address.file, first, last, block.pos});
+    }
+    // The data: `size` elements of the local file, inside the file and one message.
+    if (data.is_address() && size.kind == Operand::Kind::Integer) {
+      const int wpe = words_per_element(data.address.type);
+      if (data.address.element + size.integer > 256)
+        error(size.pos, "MSG of " + size.spelling + " element(s) from " + data.spelling +
+                            " runs past the end of the file (element 255)");
+      else if (size.integer * wpe > kMessageMaxWords)
+        error(size.pos, "MSG of " + size.spelling + " " + std::string(file_letter(data.address.type)) +
+                            " element(s) is " + std::to_string(size.integer * wpe) + " words; one message carries at "
+                            "most " + std::to_string(kMessageMaxWords) + " (docs/semantics.md \"MSG\")");
+    }
+    // The target: a data table address of the other controller (500CPU, PLC5) of the local file's type,
+    // or a word offset into its common interface file (485CIF).
+    if (dev == "485CIF") {
+      if (target.kind != Operand::Kind::Integer || target.integer < 0 || target.integer > 255)
+        error(target.pos, "MSG 485CIF target: expected a word offset 0-255 into the target's common interface file "
+                          "(1763-RM001 \"Data Table Address/Offset\"), found '" + target.spelling + "'");
+      return;
+    }
+    if (target.kind != Operand::Kind::Address)
+      return error(target.pos, "MSG target address: expected the target controller's data table address such as "
+                               "N7:0 (written as an address: a SYMBOL names this program's data), found '" +
+                                   target.spelling + "'");
+    const Address& t = target.address;
+    if (t.has_bit() || t.is_indirect() || t.indexed || is_mfile(t.type) || is_function_file(t.type) ||
+        (is_structured(t.type) && t.word >= 0) || (t.type == FileType::String && t.word > 0))
+      return error(target.pos, "MSG target address: expected a direct element address such as N7:0, found '" +
+                                   target.spelling + "'");
+    if (data.is_address() && t.type != data.address.type)
+      error(target.pos, "MSG target " + target.spelling + " is not of the local data's file type (" +
+                            std::string(file_letter(data.address.type)) + "); the control block carries one file type "
+                            "for both (1747-RM001G p. 12-31, word 4)");
+    if (size.kind == Operand::Kind::Integer && t.element + size.integer > 256)
+      error(size.pos, "MSG of " + size.spelling + " element(s) to " + target.spelling +
+                          " runs past the end of any file (element 255)");
   }
 
   // RHC, TDF (1747-RM001G p. 7-17): "an integer address (Nx:x) or Float address (Fx:x)", and TDF's
@@ -1019,8 +1164,6 @@ std::span<const std::string_view> real_mnemonics_without_rows() {
   // the table: a name that gets a row must leave it (the table wins anyway: a name found there never
   // reaches unknown_instruction_message).
   static constexpr std::string_view kReal[] = {
-      // SLC 5/03-5/05 communications (ch. 8 MSG, SVC).
-      "MSG", "SVC",
       // MicroLogix only: high-speed counter and outputs, real-time clock adjust, data logging, LCD.
       "DLG", "GCD", "HSC", "HSD", "HSE", "HSL", "LCD", "PTO", "PWM", "RAC", "RPC"};
   return kReal;

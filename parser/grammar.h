@@ -179,8 +179,13 @@ struct known_mnemonic {
   }
 };
 
-// Operands: an address, a number, or a symbol name. Symbols may not spell a mnemonic.
-struct symbol_name : seq<identifier, token_end> {};
+// Operands: an address, a number, or a symbol name. Symbols may not spell a mnemonic. The MSG
+// target devices 500CPU and 485CIF (RM 12-5) start with digits; they are words of the same kind.
+struct message_device_word : sor<TAO_PEGTL_STRING("500CPU"), TAO_PEGTL_STRING("485CIF")> {};
+// A MicroLogix message file element (MG11:0, 1763/1766-RM001): read so that `check` can refuse it
+// by name; softslc has no MG files.
+struct message_file_element : seq<TAO_PEGTL_STRING("MG"), digits, one<':'>, digits> {};
+struct symbol_name : seq<sor<message_device_word, message_file_element, identifier>, token_end> {};
 struct operand : sor<address, number, symbol_name> {};
 struct operand_token : seq<not_at<eof>, not_at<structure_keyword>, not_at<known_mnemonic>, must<operand>> {};
 struct mnemonic : seq<identifier, token_end> {};

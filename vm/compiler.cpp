@@ -1,5 +1,7 @@
 #include "vm/compiler.h"
 
+#include "vm/message_network.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -241,6 +243,9 @@ class Compiler {
         if (i <= 1) return (len(4) + 15) / 16;
         if (i == 2) return len(7);
         return 1;
+      // MSG: the control block (its length operand) and `size` elements of the local data.
+      case Opcode::MSG: return i == 3 ? len(4) : i == 6 ? std::max<std::uint32_t>(len(7), 1) : 1;
+      case Opcode::MSG_502: return i == 2 ? len(3) : i == 4 ? std::max<std::uint32_t>(len(5), 1) : 1;
       default: return 1;
     }
   }
@@ -252,8 +257,11 @@ class Compiler {
         continue;
       }
       const auto& in = e.instruction;
+      const InstructionSpec& sp = spec(in.opcode);
       for (std::size_t i = 0; i < in.operands.size(); ++i) {
         const auto& op = in.operands[i];
+        // A MSG target names the other controller's data table, never a file of this program.
+        if (i < sp.operand_count && sp.operands[i].kind == OperandKind::RemoteAddress) continue;
         if (op.is_address()) note_address(op.address, extent(in, i), op.pos);
         if (op.kind == Operand::Kind::Expression) note_expression(op);
       }
@@ -460,7 +468,7 @@ class Compiler {
     // STI enable: S:2/1 "The default value is 1 (set)" (RM 11-12) when no DATA block gives S:2.
     const std::uint32_t s2 = layout_.status_word(status::kControl);
     if (!initialised_[s2]) init_[s2] = static_cast<std::uint16_t>(init_[s2] | status::kStiEnabled);
-    // s7-control (docs/semantics.md "I/O and discrete input interrupts"): the DII enable S:2/12 on
+    // (docs/semantics.md "I/O and discrete input interrupts"): the DII enable S:2/12 on
     // the 5/03-5/05 and the I/O interrupt enables S:27/S:28 (slots 1-30) on the 5/02 and later start
     // set unless DATA gives them, as the STI enable does; the manual pages that would say were not
     // reached.
@@ -476,6 +484,28 @@ class Compiler {
   }
 
   // A literal operand initialises an element word unless DATA (or an earlier instruction) did.
+  // MSG: "Most of the MSG instruction parameters are stored in its associated control block" (RM 12-31,
+  // table 12.11): like RSLogix when the instruction is entered, the setup goes into the block so that the
+  // processor reads it from there (and a program that rewrites word 1 sends to another node). Word 1 the
+  // target node, 2 the number of elements, 3 the target file, 4 the file type (the PCCC typed-read code of
+  // the local file's type, docs/semantics.md), 5 the target element; 8 the timeout (5/03-5/05). 485CIF
+  // targets the common interface file, N9, at the offset given.
+  void init_message_block(const Instruction& in, const std::vector<std::uint32_t>& ops) {
+    const bool slc502 = in.opcode == Opcode::MSG_502;
+    const std::size_t block = slc502 ? 2 : 3, data = slc502 ? 4 : 6, size = slc502 ? 5 : 7, node = slc502 ? 6 : 8,
+                      target = slc502 ? 7 : 9;
+    if (in.operands.size() <= target || !in.operands[data].is_address()) return;
+    const Operand& t = in.operands[target];
+    const bool cif = in.operands[1].kind == Operand::Kind::Symbol && in.operands[1].symbol == "485CIF";
+    init_literal(ops[block], 1, literal(in, node));
+    init_literal(ops[block], 2, literal(in, size));
+    init_literal(ops[block], 3, cif ? kCommonInterfaceFile : (t.is_address() ? t.address.file : 0));
+    init_literal(ops[block], 4, message_file_type_code(in.operands[data].address.type));
+    init_literal(ops[block], 5, cif ? (t.kind == Operand::Kind::Integer ? t.integer : 0)
+                                    : (t.is_address() ? t.address.element : 0));
+    if (!slc502) init_literal(ops[block], 8, literal(in, 10));
+  }
+
   void init_literal(std::uint32_t op_word, std::uint32_t sub, std::int64_t value) {
     if (bc::mode_of(op_word) != bc::kWord) return;  // indexed/indirect elements are not known here
     const std::uint32_t w = bc::payload_of(op_word) + sub;
@@ -842,6 +872,26 @@ class Compiler {
             w = dyn_operand(op.address, false, pos);
           }
           break;
+        // MSG (docs/semantics.md "MSG"): the keywords as their codes; the control block and the data
+        // as direct word indexes (check refuses anything else); the target goes into the control block.
+        case OperandKind::MessageCommand:
+        case OperandKind::MessageDevice:
+        case OperandKind::MessageRoute:
+          if (auto code = op.kind == Operand::Kind::Symbol ? keyword_code(os.kind, op.symbol) : std::nullopt)
+            w = bc::imm(*code);
+          else
+            error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + ": '" + op.spelling + "' is not one of its words");
+          break;
+        case OperandKind::MessageBlock:
+        case OperandKind::MessageData:
+          if (op.is_address() && !is_mfile(op.address.type) && !needs_dyn(op.address, false)) {
+            bool f = false;
+            w = value_operand(op, false, true, f, pos);
+          } else {
+            error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + " must be a direct data table address");
+          }
+          break;
+        case OperandKind::RemoteAddress: w = bc::imm(0); break;
       }
       if (bc::mode_of(w) == bc::kDyn) flags |= bc::kFlagDyn;
       ops.push_back(w);
@@ -939,6 +989,8 @@ class Compiler {
                          ((literal(in, 4) & 7) << 1) | (literal(in, 5) & 1));
         init_literal(ops[0], 1, literal(in, 6));
         break;
+      case Opcode::MSG:
+      case Opcode::MSG_502: init_message_block(in, ops); break;
       default: break;
     }
 

@@ -96,7 +96,7 @@ inline constexpr std::uint16_t kStiExecuting = 1u << 2;   // S:2/2
 inline constexpr std::uint16_t kStiResolution = 1u << 10; // S:2/10: S:30 in 1 ms units (5/03+)
 inline constexpr std::uint16_t kStiOverflow = 1u << 10;   // S:5/10
 inline constexpr std::uint16_t kStiLost = 1u << 9;        // S:36/9
-// s7-control: the discrete input interrupt (RM 11-18 .. 11-26, B-24, B-56) and the I/O event
+// the discrete input interrupt (RM 11-18 .. 11-26, B-24, B-56) and the I/O event
 // interrupt (RM 11-27 .. 11-35, B-43, B-46). Bit numbers marked [U] are from RSLogix 500's status
 // file layout, their RM pages (B-9 .. B-12, B-48, B-50) not reached (docs/semantics.md).
 inline constexpr int kIoPendingLow = 25;   // S:25/S:26: I/O interrupt pending, bit n = slot n (B-43)

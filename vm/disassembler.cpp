@@ -68,6 +68,9 @@ std::string meaning(const CompiledProgram& p, Op op, const OperandSpec& os, std:
       if (os.kind == OperandKind::TimeBase) return v == 100 ? "1.0" : v == 0 ? "0.001" : "0.01";
       if (os.kind == OperandKind::SlotWord)
         return std::string(op == Op::IIM ? "I:" : "O:") + std::to_string(v / 256) + "." + std::to_string(v % 256);
+      if (const auto words = keyword_words(os.kind); v >= 0 && static_cast<std::size_t>(v) < words.size())
+        return std::string(words[static_cast<std::size_t>(v)]);
+      if (os.kind == OperandKind::RemoteAddress) return "(in the control block)";
       return std::to_string(v);
     }
     case bc::kTarget: return rung_at(p, bc::payload_of(o));

@@ -34,7 +34,7 @@ inline constexpr std::uint16_t kNegativeTimerValue = 0x0034;
 // A PID instruction found an invalid parameter; the table 9.36 code is in the high byte of the
 // control block's word 1 [C 1747-RM001G p. 9-21].
 inline constexpr std::uint16_t kPidError = 0x0036;
-// s7-control. The discrete input interrupt's configuration is refused at the end of a scan, at a DII
+// The discrete input interrupt's configuration is refused at the end of a scan, at a DII
 // routine's exit or on entry to Run: S:46 names no subroutine file 3-255 of the program, or S:47 no
 // slot 1-30 holding a discrete input card, or S:50 a preset below 0. RM 11-18 .. 11-26 require valid
 // values but the fault table (RM 16-8/16-9) was not reached: both codes are softslc's choice [U].

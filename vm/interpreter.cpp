@@ -1,5 +1,7 @@
 #include "vm/interpreter.h"
 
+#include "vm/message_network.h"
+
 #include "vm/coverage.h"
 #include "vm/fused.h"
 
@@ -82,7 +84,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
   s31_ = L.status_word(status::kStiFile);
   if (L.files[2].elements > static_cast<std::uint32_t>(status::kMinorExtended))
     s36_ = L.status_word(status::kMinorExtended);
-  // s7-control: the DII's words S:46-S:52 exist on the 5/03-5/05 (RM 11-18); the I/O event
+  // the DII's words S:46-S:52 exist on the 5/03-5/05 (RM 11-18); the I/O event
   // interrupt's S:25-S:28 and S:32 on the 5/02 and later (RM 11-27, B-43, B-46).
   dii_supported_ = !program.processor.is_micrologix() &&
                    program.processor.supports(Requirement::IoInterrupt) &&
@@ -1593,6 +1595,33 @@ void Interpreter::free_running_clock(Op op, const std::uint32_t* o, Nanoseconds 
   }
 }
 
+// MSG (RM 12-5 .. 12-30; docs/semantics.md "MSG"). The control block is the instruction's state: this
+// handler does the rung logic on word 0 and hands the message layer only a start (the rung is true and
+// EN is 0: a false-to-true transition, or EN cleared by the program after DN or ER) and an abort (TO
+// set while the message is in progress, RM 12-30). EN "remains set until message transmission is
+// completed and the rung goes false" (RM 12-29).
+void Interpreter::message(Op op, const std::uint32_t* o, bool rung, Nanoseconds now_in_scan) {
+  const bool slc502 = op == Op::MSG_502;
+  const std::uint32_t block = bc::payload_of(o[slc502 ? 2 : 3]);
+  const std::uint16_t w0 = w_[block];
+  const bool done = (w0 & (msg::kDN | msg::kER)) != 0;
+  if (rung && !(w0 & msg::kEN)) {
+    MessageInstruction m;
+    m.slc502 = slc502;
+    m.write = bc::imm_of(o[0]) == 1;
+    m.device = bc::imm_of(o[1]);
+    m.channel = slc502 ? 0 : bc::imm_of(o[5]);
+    m.block = block;
+    m.data = bc::payload_of(o[slc502 ? 4 : 6]);
+    m.at = scan_start_ + now_in_scan;
+    chassis_.message_start(m);
+  } else if ((w0 & msg::kTO) && (w0 & msg::kEN) && !done) {
+    chassis_.message_abort(block);
+  } else if (!rung && (w0 & msg::kEN) && done) {
+    w_[block] = static_cast<std::uint16_t>(w0 & ~msg::kEN);
+  }
+}
+
 void Interpreter::fill_file(const std::uint32_t* o, std::uint32_t h) {
   const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
   Span dst;
@@ -1756,7 +1785,7 @@ void Interpreter::stack(Op op, const std::uint32_t* o, bool rung) {
   w_[s24_] = static_cast<std::uint16_t>(load ? entry_pos : pos);
 }
 
-// ---- FBC and DDT (issue 15, s7-control) ---------------------------------------------------------------------
+// ---- FBC and DDT (issue 15) ---------------------------------------------------------------------
 // 1747-RM001G p. 7-18 .. 7-22 (7-19 and 7-20 not reached: docs/semantics.md "FBC and DDT" marks what
 // rests on them). Operands: source, reference, result files; compare control (LEN bits, POS the next
 // bit); its box length/position; result control (LEN words, POS the next word); its length/position.
@@ -1845,7 +1874,7 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
   bool ok = true;
   // Entering Run: the STI starts timing now (RM 11-12); an invalid S:30/S:31 faults at once.
   if (first_pass && !configure_sti(scan_start + elapsed, true)) ok = false;
-  // s7-control: the DII's S:46-S:50 too (RM 11-24).
+  // the DII's S:46-S:50 too (RM 11-24).
   if (ok && first_pass && !configure_dii(true)) ok = false;
   if (first_pass) scan_toggle(prog_, w_, true);
   update_limit(elapsed);
@@ -2354,7 +2383,7 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
         raise(fault::kUnsupportedInstruction, "STS on the MicroLogix STI function file is not simulated");
         goto fault;
 
-      // ---- I/O interrupts and diagnostics (issue 15, s7-control) ----
+      // ---- I/O interrupts and diagnostics (issue 15) ----
       case Op::IID:
       case Op::IIE:
       case Op::RPI:
@@ -2383,6 +2412,15 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
           if (op == Op::IIM) chassis_.immediate_input(sw / 256, sw % 256, bc::imm_of(o[2]), mask);
           else chassis_.immediate_output(sw / 256, sw % 256, bc::imm_of(o[2]), mask);
         }
+        break;
+
+      // ---- Communication (docs/semantics.md "MSG") ----
+      case Op::MSG:
+      case Op::MSG_502: message(op, o, rung, elapsed); break;
+      case Op::SVC:
+      case Op::SVC_CH:
+        if (rung) chassis_.service_communications(op == Op::SVC ? 0x3 : static_cast<std::uint16_t>(bc::imm_of(o[0])),
+                                                  scan_start_ + elapsed);
         break;
 
       // ---- Process control ----

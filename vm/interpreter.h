@@ -56,6 +56,8 @@ namespace softslc {
 // What the interpreter needs from the chassis mid-scan: M0/M1 immediate access and the
 // immediate I/O instructions. The runtime implements it; it is only reached from M-file
 // operands and IIM/IOM, never from the bit-logic path.
+struct MessageInstruction;
+
 class ChassisAccess {
  public:
   virtual ~ChassisAccess() = default;
@@ -73,11 +75,17 @@ class ChassisAccess {
   // A specialty-module instruction (BTR, BTW, DEM) addressed to the module in `slot`. The default
   // faults: there is no module to execute it.
   virtual void module_instruction(int slot, ModuleInstructionContext& ctx);
-  // s7-control. Whether `slot` holds a discrete input card (the DII's S:47, RM 11-18); the default
+  // Whether `slot` holds a discrete input card (the DII's S:47, RM 11-18); the default
   // has no chassis.
   virtual bool discrete_input_card(int /*slot*/) const { return false; }
   // The ISR for the module in `slot` completed, or an RPI reset its request (RM 11-27 step 3).
   virtual void interrupt_serviced(int /*slot*/) {}
+  // MSG and SVC (vm/message_network.h): a MSG rung starts a message (its EN was 0), a MSG's TO bit
+  // aborts the one in progress, SVC services the channels in `channels` (bit 0 channel 0, bit 1
+  // channel 1) at virtual time `at`. The defaults do nothing: no network.
+  virtual void message_start(const MessageInstruction& /*m*/) {}
+  virtual void message_abort(std::uint32_t /*block*/) {}
+  virtual void service_communications(std::uint16_t /*channels*/, VirtualTime /*at*/) {}
 };
 
 struct ProgramScanResult {
@@ -105,7 +113,7 @@ struct StiTimer {
   std::uint64_t runs = 0;        // STI routine executions since the runtime was created
 };
 
-// s7-control. The discrete input interrupt as the interpreter keeps it (RM 11-18 .. 11-26): the
+// The discrete input interrupt as the interpreter keeps it (RM 11-18 .. 11-26): the
 // configuration last applied from S:46-S:50 (at the end of a scan, a DII routine's exit, entry to
 // Run) and what the last interrupt did. S:2/11-13, S:51 and S:52 are the program's view.
 struct DiiState {
@@ -162,7 +170,7 @@ class Interpreter {
   // Leaving Run/Test: the STI timer stops and S:2/0, S:2/2 are cleared (RM 11-12, 11-13); so do the
   // DII (S:2/11, S:2/13) and the I/O interrupt requests.
   void stop_interrupts();
-  // s7-control. At the end of a program scan (and with `entering_run` before the first one): applies
+  // At the end of a program scan (and with `entering_run` before the first one): applies
   // S:46-S:50 (RM 11-24). Returns false with last_fault() set (0042h, 0043h) when they are invalid.
   bool configure_dii(bool entering_run);
   // A field input word of the card in `slot` changed at `at` (between scans, in Run): counts towards
@@ -265,6 +273,7 @@ class Interpreter {
   SOFTSLC_HANDLER void copy_words(const std::uint32_t* o);
   SOFTSLC_HANDLER void swap_bytes(const std::uint32_t* o);
   SOFTSLC_HANDLER void free_running_clock(Op op, const std::uint32_t* o, Nanoseconds now_in_scan);
+  SOFTSLC_HANDLER void message(Op op, const std::uint32_t* o, bool rung, Nanoseconds now_in_scan);
   SOFTSLC_HANDLER void fill_file(const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void bit_shift(Op op, const std::uint32_t* o, bool rung);
   SOFTSLC_HANDLER void sequencer(Op op, const std::uint32_t* o, bool rung);
@@ -290,7 +299,7 @@ class Interpreter {
   void ascii_error();
   // STS: S:31/S:30 (or the STI function file) := file/time, enable, restart the timer from now.
   SOFTSLC_HANDLER void sti_start(const std::uint32_t* o, Nanoseconds now_in_scan);
-  // s7-control. IID, IIE, RPI (RM 11-33, B-43) on S:25-S:28; FBC, DDT (RM 7-18 .. 7-22).
+  // IID, IIE, RPI (RM 11-33, B-43) on S:25-S:28; FBC, DDT (RM 7-18 .. 7-22).
   SOFTSLC_HANDLER void io_interrupt_control(Op op, const std::uint32_t* o, Nanoseconds now_in_scan);
   SOFTSLC_HANDLER void bit_compare(Op op, const std::uint32_t* o, bool rung);
 
@@ -306,7 +315,7 @@ class Interpreter {
   [[gnu::noinline, gnu::cold]] bool at_limit(Nanoseconds& elapsed);
   bool service_interrupts(Nanoseconds& elapsed);
   bool run_sti(Nanoseconds& elapsed);
-  // s7-control: the DII and the I/O event interrupt, and the priorities of RM 11-30 (an interrupt
+  // the DII and the I/O event interrupt, and the priorities of RM 11-30 (an interrupt
   // runs only inside a routine of lower priority: fault routine > DII > STI > ISR > main program).
   bool sti_runnable() const;
   bool dii_runnable() const;
@@ -384,7 +393,7 @@ class Interpreter {
   bool in_fault_routine_ = false;
   bool sti_ms_units_ = false;      // S:2/10 latched on entry to Run (RM 11-13)
   StiTimer sti_;
-  // s7-control. The priority of the routine running now (kPriority* in vm/interrupts.cpp).
+  // The priority of the routine running now (kPriority* in vm/interrupts.cpp).
   int priority_ = 0;
   DiiState dii_;
   bool dii_supported_ = false;     // the status file has S:46-S:52 (SLC 5/03-5/05)

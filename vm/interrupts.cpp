@@ -19,7 +19,7 @@
 // S:2/1 is read when the timer expires and when STE runs, which is the "takes effect upon the STI
 // timer expiration or next end of scan" of RM 11-13.
 //
-// s7-control: the discrete input interrupt (DII, RM 11-18 .. 11-26) and the I/O event-driven
+// the discrete input interrupt (DII, RM 11-18 .. 11-26) and the I/O event-driven
 // interrupt (ISR, RM 11-27 .. 11-35) reuse the same machinery: a request makes its routine runnable,
 // update_limit brings limit_ down to "now", and the next rung start runs it through
 // run_interrupt_routine. Priorities (RM 11-30 and the 5/03+ order): the fault routine, then the DII,
@@ -203,7 +203,7 @@ bool Interpreter::run_sti(Nanoseconds& elapsed) {
   return true;
 }
 
-// ---- The discrete input interrupt (s7-control) -------------------------------------------------------------------
+// ---- The discrete input interrupt -------------------------------------------------------------------
 
 bool Interpreter::run_dii(Nanoseconds& elapsed) {
   // RM B-56: the return mask is written just before the routine is entered. The pending bit gives
@@ -306,7 +306,7 @@ void Interpreter::dii_input(int slot, int word, std::uint16_t before, std::uint1
   dii_.requested_at = at;
 }
 
-// ---- The I/O event-driven interrupt (s7-control) ---------------------------------------------------------------
+// ---- The I/O event-driven interrupt ---------------------------------------------------------------
 
 void Interpreter::io_interrupt_request(int slot) {
   if (!io_supported_ || slot < 1 || slot > 30) return;
@@ -431,7 +431,7 @@ void Interpreter::stop_interrupts() {
   sti_.file = 0;
   sti_.next_period = 0;
   w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~(status::kStiPending | status::kStiExecuting));
-  // s7-control: the DII and the I/O interrupts stop too; a module's open request is answered.
+  // the DII and the I/O interrupts stop too; a module's open request is answered.
   dii_.file = 0;
   if (dii_supported_)
     w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~(status::kDiiPending | status::kDiiExecuting));

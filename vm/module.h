@@ -86,7 +86,7 @@ class ModuleHost {
   // takes effect once every module has seen the change; raised from an event it takes effect at
   // once. The first fault wins. The default ignores the request (hosts without faults).
   virtual void raise_major_fault(std::uint16_t /*code*/, std::string /*message*/) {}
-  // s7-control. A discrete card's field input word changed at now(): the discrete input interrupt
+  // A discrete card's field input word changed at now(): the discrete input interrupt
   // watches the first byte of the card in slot S:47 itself, not the input image (RM 11-20). The
   // default ignores it.
   virtual void field_input_changed(int /*slot*/, int /*word*/, std::uint16_t /*before*/, std::uint16_t /*after*/) {}

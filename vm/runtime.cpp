@@ -76,6 +76,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   auto compiled = std::make_unique<CompiledProgram>(std::move(*cr.program));
   std::vector<FieldProcessFactory> processes = std::move(options.field_processes);
   auto make_channel = std::move(options.ascii_channel);
+  const std::vector<PeerController> peers = std::move(options.peers);
   r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
   Runtime& rt = *r.runtime;
   rt.process_host_ = std::make_unique<ProcessHost>(rt);
@@ -98,13 +99,97 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
     }
     rt.processes_.push_back(std::move(p));
   }
+  if (!peers.empty()) {
+    if (std::string why = rt.join_peers(peers); !why.empty()) {
+      CompileError e;
+      e.message = why;
+      r.errors.push_back(std::move(e));
+      r.runtime.reset();
+    }
+  }
   return r;
+}
+
+// The MSG network of a leader and its peers (docs/semantics.md "MSG"): one link, every node unique
+// and in the link's range, every peer a processor on that link.
+std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
+  const MessageLink link = network_link(program_->processor.family);
+  if (link != MessageLink::Dh485 && link != MessageLink::DhPlus)
+    return "a MSG network needs SLC 5/02-5/04 processors (DH-485 or DH+); " + program_->processor.display_name +
+           " is on " + std::string(to_string(link)) + ", which softslc does not simulate for MSG";
+  const auto [lo, hi] = message_node_range(link);
+  auto node_error = [&](const std::string& who, int node) -> std::string {
+    if (node < lo || node > hi)
+      return who + ": node " + std::to_string(node) + " is out of range " + std::to_string(lo) + "-" +
+             std::to_string(hi) + " on " + std::string(to_string(link));
+    return {};
+  };
+  if (auto e = node_error("this controller", node_); !e.empty()) return e;
+  auto net = std::make_unique<MessageNetwork>(link);
+  net->attach(*this, node_, "");
+  for (const PeerController& p : peers) {
+    if (!p.program) return "peer " + p.name + ": no program";
+    RuntimeOptions po = p.options ? *p.options : RuntimeOptions{};
+    po.peers.clear();
+    po.node = p.node;
+    RuntimeResult pr = Runtime::create(*p.program, std::move(po));
+    if (!pr.ok()) return "peer " + p.name + ": " + pr.render_errors();
+    const MessageLink plink = network_link(pr.runtime->program_->processor.family);
+    if (plink != link)
+      return "peer " + p.name + ": its " + pr.runtime->program_->processor.display_name + " is on " +
+             std::string(to_string(plink)) + ", this network is " + std::string(to_string(link));
+    if (auto e = node_error("peer " + p.name, p.node); !e.empty()) return e;
+    for (std::size_t i = 0; i < net->size(); ++i)
+      if (net->node(i) == p.node)
+        return "peer " + p.name + ": node " + std::to_string(p.node) + " is already " +
+               (i == 0 ? std::string("this controller's") : "peer " + net->name(i) + "'s");
+    Runtime& peer = *pr.runtime;
+    const std::size_t station = net->attach(peer, p.node, p.name, std::move(pr.runtime));
+    peer.network_ = net.get();
+    peer.station_ = station;
+  }
+  own_network_ = std::move(net);
+  network_ = own_network_.get();
+  station_ = 0;
+  return {};
+}
+
+Runtime* Runtime::peer(std::string_view name) const {
+  if (!own_network_) return nullptr;
+  for (std::size_t i = 1; i < own_network_->size(); ++i)
+    if (own_network_->name(i) == name) return &own_network_->runtime(i);
+  return nullptr;
+}
+
+std::vector<std::string> Runtime::peer_names() const {
+  std::vector<std::string> names;
+  if (own_network_)
+    for (std::size_t i = 1; i < own_network_->size(); ++i) names.push_back(own_network_->name(i));
+  return names;
+}
+
+MessageNetwork& Runtime::network() {
+  // A controller alone gets a network of its own on its first message: its MSGs to other nodes find
+  // nobody (07h), as on a link with no other station.
+  if (!network_) {
+    own_network_ = std::make_unique<MessageNetwork>(network_link(program_->processor.family));
+    station_ = own_network_->attach(*this, node_, "");
+    network_ = own_network_.get();
+  }
+  return *network_;
+}
+
+void Runtime::message_start(const MessageInstruction& m) { network().start(station_, m); }
+void Runtime::message_abort(std::uint32_t block) { network().abort(station_, block); }
+void Runtime::service_communications(std::uint16_t channels, VirtualTime at) {
+  network().service_now(station_, at, channels);
 }
 
 Runtime::Runtime(std::unique_ptr<CompiledProgram> program, RuntimeOptions options)
     : program_(std::move(program)),
       model_(options.time_model ? options.time_model : make_scan_time_model(program_->processor)),
-      data_(program_->layout, program_->initial_words) {
+      data_(program_->layout, program_->initial_words),
+      node_(options.node) {
   const DataTableLayout& L = *program_->layout;
   // Modules: a specialty module from the factory, else generic discrete I/O, for every slot.
   for (const auto& s : program_->slots) {
@@ -228,6 +313,9 @@ RuntimeStatus Runtime::set_mode(Mode m) {
   }
   write_mode_bits();
   notify_modes(from, m);
+  // A network's leader switches its peers with it: a line of SLCs tested together runs together.
+  if (own_network_ && network_ == own_network_.get())
+    for (std::size_t i = 1; i < own_network_->size(); ++i) (void)own_network_->runtime(i).set_mode(m);
   return {};
 }
 
@@ -263,7 +351,7 @@ void Runtime::enter_suspend() {
   notify_modes(from, mode_);
 }
 
-// ---- Interrupt sources (s7-control) --------------------------------------------------------------------------
+// ---- Interrupt sources --------------------------------------------------------------------------
 
 void Runtime::field_input_changed(int slot, int word, std::uint16_t before, std::uint16_t after) {
   // The DII works in Run only (RM 11-18: it begins operation on entry to Run).
@@ -444,6 +532,9 @@ void Runtime::scan_once(bool single_scan_step) {
   }
   // Every scan takes some time, so run_for and run_until always make progress.
   used = std::max<Nanoseconds>(used, kNsPerUs);
+  // End-of-scan communication servicing (RM 12-41); the leader of a network also runs its peers up
+  // to this time (vm/message_network.h).
+  if (network_) [[unlikely]] network_->scanned(station_, start + used);
   events_.run_until(start + used);
   if (scan_observer_) [[unlikely]] scan_observer_(*this);
 }

@@ -44,6 +44,7 @@
 #include "vm/faults.h"
 #include "vm/field_process.h"
 #include "vm/interpreter.h"
+#include "vm/message_network.h"
 #include "vm/module.h"
 #include "vm/scan_time_model.h"
 #include "vm/virtual_time.h"
@@ -52,6 +53,8 @@ namespace softslc {
 
 // Creates the module for a slot; returning nullptr means "generic discrete I/O".
 using ModuleFactory = std::function<std::unique_ptr<Module>(const SlotConfig&)>;
+
+struct PeerController;
 
 struct RuntimeOptions {
   std::optional<ProcessorModel> processor;         // overrides the program's START line
@@ -64,6 +67,20 @@ struct RuntimeOptions {
   // Channel 0 in User (ASCII) mode with the device wired to it (vm/ascii_channel.h); empty: the
   // channel stays in System mode and the ASCII channel instructions end with ER.
   std::function<std::unique_ptr<AsciiChannel>()> ascii_channel;
+  // MSG (docs/semantics.md "MSG"): this controller's node on its network, and the other controllers
+  // on it. With peers, the runtime created is the network's leader: it owns the peers, drives them in
+  // lockstep with its own scans, and passes its mode changes on to them.
+  int node = 1;
+  std::vector<PeerController> peers;
+};
+
+// Another controller on the leader's MSG network: its program, its options (modules, processor;
+// their own peers are ignored), its name (how tests address it) and its node.
+struct PeerController {
+  std::string name;
+  int node = 2;
+  std::shared_ptr<const Program> program;
+  std::shared_ptr<const RuntimeOptions> options;
 };
 
 // Success, or a message saying why a request was refused.
@@ -123,7 +140,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   bool run_until(const std::function<bool(const Runtime&)>& pred, Nanoseconds limit);
   VirtualTime now() const override { return clock_.now(); }
   const ScanStats& stats() const { return stats_; }
-  // s7-control: the discrete input interrupt's applied configuration, runs and last latency, and
+  // the discrete input interrupt's applied configuration, runs and last latency, and
   // the I/O event interrupt routines run (for tests and tools).
   const DiiState& dii() const { return interp_->dii(); }
   std::uint64_t isr_runs() const { return interp_->isr_runs(); }
@@ -175,6 +192,13 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   using ScanObserver = std::function<void(const Runtime&)>;
   void set_scan_observer(ScanObserver observer) { scan_observer_ = std::move(observer); }
 
+  // ---- MSG network (vm/message_network.h) ----
+  // This controller's node, and the peer named `name` on its network (nullptr when there is none).
+  // A peer's data may be read and written at any time; its scans are driven by the leader.
+  int node() const { return node_; }
+  Runtime* peer(std::string_view name) const;
+  std::vector<std::string> peer_names() const;
+
   // ---- Access for tools and tests ----
   Module* module(int slot) const;
   EventQueue& events() { return events_; }
@@ -217,12 +241,17 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void immediate_input(int slot, int first, int count, std::uint16_t mask) override;
   void immediate_output(int slot, int first, int count, std::uint16_t mask) override;
   Nanoseconds io_refresh() override;
-  // s7-control: the DII's and the I/O event interrupt's sources.
+  // the DII's and the I/O event interrupt's sources.
   void field_input_changed(int slot, int word, std::uint16_t before, std::uint16_t after) override;
   void request_io_interrupt(int slot) override;
   bool discrete_input_card(int slot) const override;
   void interrupt_serviced(int slot) override;
   void module_instruction(int slot, ModuleInstructionContext& ctx) override;
+  void message_start(const MessageInstruction& m) override;
+  void message_abort(std::uint32_t block) override;
+  void service_communications(std::uint16_t channels, VirtualTime at) override;
+  MessageNetwork& network();
+  std::string join_peers(const std::vector<PeerController>& peers);
 
   std::unique_ptr<CompiledProgram> program_;
   std::shared_ptr<const ScanTimeModel> model_;
@@ -246,6 +275,11 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::unique_ptr<Interpreter> interp_;
   std::unique_ptr<CoverageRecorder> coverage_;
   ScanObserver scan_observer_;
+  // MSG: the network this controller is on (its own when it is the leader or alone), its station.
+  std::unique_ptr<MessageNetwork> own_network_;
+  MessageNetwork* network_ = nullptr;
+  std::size_t station_ = 0;
+  int node_ = 1;
 
   Mode mode_ = Mode::Program;
   bool first_pass_ = false;

@@ -343,7 +343,8 @@ class Session {
       Value v = width == 1   ? Value::bit(l.integer != 0)
                 : width == 0 ? Value::of_float(l.kind == Literal::Kind::Float ? l.real : static_cast<double>(l.integer))
                              : Value::of_int(integer_for_width(l, width, nullptr).value_or(0));
-      if (auto st = rt_->set(element_of(s.target, static_cast<int>(i)), v); !st) return refused(s, context, st.message);
+      if (auto st = runtime_of(s.target).set(element_of(s.target, static_cast<int>(i)), v); !st)
+        return refused(s, context, st.message);
     }
     return std::nullopt;
   }
@@ -393,7 +394,7 @@ class Session {
     for (std::size_t i = 0; i < s.values.size(); ++i) {
       const Address a = element_of(s.target, static_cast<int>(i));
       std::string error;
-      auto v = rt_->get(a, &error);
+      auto v = runtime_of(s.target).get(a, &error);
       if (!v) return refused(s, context, error);
       const Literal& l = s.values[i];
       const bool same = l.kind == Literal::Kind::Pattern
@@ -433,6 +434,10 @@ class Session {
   // forces (kept in processor memory), in the mode the processor was in. Entering Run sets the
   // first pass bit and zeroes S:4, as on power-up in Run.
   std::optional<Failure> power_cycle(const Step& s, const std::string& context) {
+    if (!rt_->peer_names().empty())
+      return refused(s, context,
+                     "power cycle in a test with peers is not supported yet: it would restart one controller of the "
+                     "network");
     if (rt_->fault() || rt_->mode() == Mode::Faulted)
       return refused(s, context,
                      "power cycle while faulted is not supported yet: the SLC keeps a major fault through a power "
@@ -480,8 +485,15 @@ class Session {
 
   // ---- Conditions ----
 
+  // The runtime that holds a data operand: the test's, or the peer its prefix names (B.N7:0; the
+  // loader checked the name).
+  Runtime& runtime_of(const DataRef& r) const {
+    Runtime* peer = r.controller.empty() ? nullptr : rt_->peer(r.controller);
+    return peer ? *peer : *rt_;
+  }
+
   std::optional<Value> read(const DataRef& r, std::string& error) {
-    auto v = rt_->get(r.address, &error);
+    auto v = runtime_of(r).get(r.address, &error);
     if (!v) error = r.describe() + ": " + error;
     return v;
   }
@@ -615,9 +627,9 @@ class Session {
     for (const Operand* o : {&k.lhs, &k.rhs}) {
       if (o->kind != Operand::Kind::Data) continue;
       std::string error;
-      auto v = rt_->get(o->data.address, &error);
+      auto v = runtime_of(o->data).get(o->data.address, &error);
       const int width = width_of(o->data.address);
-      add_part(parts, seen, to_string(o->data.address),
+      add_part(parts, seen, (o->data.controller.empty() ? "" : o->data.controller + ".") + to_string(o->data.address),
                o->data.describe() + " = " + (v ? format_as(*v, hint, width) : "unreadable (" + error + ")"));
     }
   }

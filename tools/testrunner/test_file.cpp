@@ -4,7 +4,8 @@ namespace softslc::testing {
 
 std::string DataRef::describe() const {
   if (symbol.empty()) return spelling;
-  return symbol + " (" + to_string(address) + ")";
+  const std::string prefix = controller.empty() ? "" : controller + ".";
+  return prefix + symbol + " (" + prefix + to_string(address) + ")";
 }
 
 std::string_view mode_word(Mode m) {

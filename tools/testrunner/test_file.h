@@ -34,6 +34,7 @@ namespace softslc::testing {
 struct DataRef {
   std::string spelling;  // as written
   std::string symbol;    // the symbol name when written as one; empty for addresses
+  std::string controller;  // the peer it belongs to (B.N7:0); empty for the program's own data
   Address address;       // resolved (symbols: by the loader)
   int range_last = -1;   // last element of a range; -1 for a single address
   Location loc;
@@ -155,6 +156,15 @@ struct Snapshot {
   std::vector<Step> steps;
 };
 
+// A peer controller on the test's MSG network: `peer NAME PATH node N` (docs/testing.md).
+struct PeerSpec {
+  std::string name;
+  std::string path;  // as written, relative to the test file
+  int node = 2;
+  Location loc;      // of the name
+  Location path_loc;
+};
+
 struct TestCase {
   std::string name;
   Location loc;
@@ -164,6 +174,10 @@ struct TestCase {
   Location program_processor_loc;
   std::string bench_path;    // likewise; empty without a bench
   Location bench_loc;
+  // The program's node and the other controllers of its MSG network (file-level `node`, `peer`).
+  int node = 1;
+  Location node_loc;
+  std::vector<PeerSpec> peers;
   std::shared_ptr<const LoadedProgram> program;  // set by the loader
   // Tests start in Run; a `mode` step written first sets the starting mode instead.
   Mode initial_mode = Mode::Run;

@@ -48,6 +48,8 @@ struct token_end : at<sor<blank, eof, one<'#', ')', '=', '!', '<', '>'>, two_dot
 struct kw_program : TAO_PEGTL_KEYWORD("program") {};
 struct kw_bench : TAO_PEGTL_KEYWORD("bench") {};
 struct kw_processor : TAO_PEGTL_KEYWORD("processor") {};
+struct kw_node : TAO_PEGTL_KEYWORD("node") {};
+struct kw_peer : TAO_PEGTL_KEYWORD("peer") {};
 struct kw_test : TAO_PEGTL_KEYWORD("test") {};
 struct kw_with : TAO_PEGTL_KEYWORD("with") {};
 struct kw_row : TAO_PEGTL_KEYWORD("row") {};
@@ -106,13 +108,15 @@ struct count : seq<digits, token_end> {};
 
 // A single address, spelled as in programs (the rules and their messages are the program
 // grammar's).
-struct address : seq<opt<pg::index_mark>, pg::address_body, token_end> {};
+// A controller of the test's MSG network other than the program's (`peer NAME ...`): B.N7:0.
+struct controller_prefix : seq<pg::identifier, one<'.'>, at<sor<upper, one<'#'>>>> {};
+struct address : seq<opt<controller_prefix>, opt<pg::index_mark>, pg::address_body, token_end> {};
 // A range of whole elements of one file: N11:0..13.
 struct range_first : seq<pg::file_type, opt<pg::file_number>, one<':'>, pg::element_number> {};
 struct range_last : seq<digits, token_end> {};
-struct address_range : seq<range_first, two_dots, must<range_last>> {};
+struct address_range : seq<opt<controller_prefix>, range_first, two_dots, must<range_last>> {};
 // A program SYMBOL.
-struct symbol : seq<not_at<reserved_word>, pg::identifier, token_end> {};
+struct symbol : seq<not_at<reserved_word>, opt<controller_prefix>, pg::identifier, token_end> {};
 struct data_operand : sor<address_range, address, symbol> {};
 // The name of a bench device: letters, digits, '_', '-' and '.' (docs/bench-format.md).
 struct device_name : seq<plus<sor<alnum, one<'_', '-', '.'>>>, token_end> {};
@@ -205,6 +209,14 @@ struct bench_path : path {};
 struct program_processor_spec : plus<not_one<' ', '\t', '#', '"'>> {};
 struct program_processor : seq<ws, kw_processor, ws, must<program_processor_spec>> {};
 struct program_line : seq<kw_program, ws, must<program_path>, opt<program_processor>> {};
+// MSG networks (docs/testing.md "Several controllers"): `node N` gives the program's node (1 by
+// default); `peer NAME PATH node N` adds another controller, its program and node.
+struct node_number : digits {};
+struct node_line : seq<kw_node, ws, must<node_number>> {};
+struct peer_name : seq<pg::identifier, token_end> {};
+struct peer_path : path {};
+struct peer_node : seq<kw_node, ws, must<node_number>> {};
+struct peer_line : seq<kw_peer, ws, must<peer_name>, ws, must<peer_path>, ws, must<peer_node>> {};
 struct bench_line : seq<kw_bench, ws, must<bench_path>> {};
 
 // test "name" [with COLUMN...]
@@ -277,7 +289,7 @@ struct device_line : seq<kw_device, ws, must<device_line_name>, ws, must<device_
 // Anything else that starts a line: reported by its action as an unknown statement.
 struct unknown_statement : plus<not_one<' ', '\t', '#'>> {};
 
-struct statement : sor<program_line, bench_line, test_line, row_line, set_line, force_line, unforce_line, scan_line,
+struct statement : sor<program_line, bench_line, node_line, peer_line, test_line, row_line, set_line, force_line, unforce_line, scan_line,
                        run_line, expect_line, mode_line, power_line, clear_line, snapshot_line, restore_line,
                        device_line, unknown_statement> {};
 struct line_end : eof {};

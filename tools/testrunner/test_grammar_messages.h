@@ -49,6 +49,11 @@ template <> inline constexpr auto error_message<program_path> = "expected the pa
 template <> inline constexpr auto error_message<program_processor_spec> =
     "expected the processor of the pasted rungs after 'processor' (CATALOG or CATALOG:SERIES, for example Bul.1763)";
 template <> inline constexpr auto error_message<bench_path> = "expected the path of the bench file after 'bench'";
+template <> inline constexpr auto error_message<node_number> = "expected a node number after 'node' (node 2)";
+template <> inline constexpr auto error_message<peer_name> =
+    "expected the peer's name after 'peer' (peer B line_b.slc node 2)";
+template <> inline constexpr auto error_message<peer_path> = "expected the path of the peer's program after its name";
+template <> inline constexpr auto error_message<peer_node> = "expected 'node N' after the peer's program";
 template <> inline constexpr auto error_message<test_name> = "expected the test name in double quotes (test \"name\")";
 template <> inline constexpr auto error_message<column_list> =
     "expected the table's column names after 'with' (test \"name\" with A B)";

@@ -78,11 +78,23 @@ class Checker {
         return nullptr;
       }
     }
-    auto& entry = cache_.load(actual, display, bench, bench_display, processor ? &*processor : nullptr);
+    std::vector<ProgramCache::Peer> peers;
+    for (const auto& p : tc.peers) {
+      const auto [peer_actual, peer_display] = locate(p.path);
+      peers.push_back({p.name, peer_actual, peer_display, p.node});
+    }
+    auto& entry = cache_.load(actual, display, bench, bench_display, processor ? &*processor : nullptr, peers, tc.node);
     if (!entry.program) {
       if (!entry.errors.empty() && reported_.insert(display + "\n" + bench_display).second)
         out_.program_diagnostics += entry.errors;
-      if (entry.bench_failed)
+      if (!entry.failed_peer.empty()) {
+        for (const auto& p : tc.peers)
+          if (p.name == entry.failed_peer)
+            error(p.loc, "peer '" + p.name + "' did not load (its errors are listed above)");
+        if (entry.failed_peer == "*")
+          error(tc.peers.empty() ? tc.program_loc : tc.peers.front().loc,
+                "the MSG network did not build (its errors are listed above)");
+      } else if (entry.bench_failed)
         error(tc.bench_loc, "bench '" + tc.bench_path + "' did not load (its errors are listed above)");
       else
         error(tc.program_loc, "program '" + tc.program_path + "' did not load" +
@@ -152,17 +164,39 @@ class Checker {
 
   // ---- Operands ----
 
+  // The program a data operand belongs to: the test's, or the peer its prefix names (B.N7:0).
+  const Program* program_of(const DataRef& r, const LoadedProgram& p) {
+    if (r.controller.empty()) return &p.program;
+    std::string names;
+    for (const auto& peer : p.modules.peers) {
+      if (peer.name == r.controller) return peer.program.get();
+      names += (names.empty() ? "" : ", ") + peer.name;
+    }
+    error(r.loc, "no peer '" + r.controller + "' on this test's network" +
+                     (names.empty() ? std::string(" (the file has no 'peer' lines)") : " (its peers: " + names + ")"));
+    return nullptr;
+  }
+
+  // The runtime that holds a data operand: the probe, or its peer.
+  static Runtime& runtime_of(const DataRef& r, Runtime& probe) {
+    Runtime* peer = r.controller.empty() ? nullptr : probe.peer(r.controller);
+    return peer ? *peer : probe;
+  }
+
   bool resolve(DataRef& r, const LoadedProgram& p) {
+    const Program* program = program_of(r, p);
+    if (!program) return false;
     if (!r.symbol.empty()) {
-      const Symbol* s = p.program.find_symbol(r.symbol);
+      const Symbol* s = program->find_symbol(r.symbol);
       if (!s || s->name.empty()) {
-        error(r.loc, "unknown symbol '" + r.symbol + "': not a SYMBOL of " + p.path);
+        error(r.loc, "unknown symbol '" + r.symbol + "': not a SYMBOL of " +
+                         (r.controller.empty() ? p.path : "peer " + r.controller));
         return false;
       }
       r.address = s->address;
     }
     // The checker's address rules, as for `run --set` and the Controller API.
-    if (auto e = check_tool_address(p.program, r.address); !e.empty()) {
+    if (auto e = check_tool_address(*program, r.address); !e.empty()) {
       error(r.loc, e);
       return false;
     }
@@ -172,7 +206,7 @@ class Checker {
   bool probe_read(const DataRef& r, const Address& a, Runtime& probe) {
     if (a.is_indirect() || a.indexed) return true;  // depends on run-time values
     std::string err;
-    if (probe.get(a, &err)) return true;
+    if (runtime_of(r, probe).get(a, &err)) return true;
     error(r.loc, err);
     return false;
   }
@@ -291,10 +325,15 @@ class Checker {
     if (!ok || t.is_range() || t.address.is_indirect() || t.address.indexed) return;
     // Writing on the probe applies the runtime's own rules: an I: address needs a module with
     // that input in its slot, an M0/M1 address a module that accepts the access.
-    if (auto st = probe.set(t.address, value_for(s.values[0], width)); !st) error(t.loc, st.message);
+    if (auto st = runtime_of(t, probe).set(t.address, value_for(s.values[0], width)); !st) error(t.loc, st.message);
   }
 
   void check_force(Step& s, const LoadedProgram& p, Runtime& probe) {
+    if (!s.target.controller.empty()) {
+      error(s.target.loc, "forces apply to the program's own I/O; a peer's (" + s.target.spelling +
+                              ") cannot be forced from a test yet");
+      return;
+    }
     if (!resolve(s.target, p)) return;
     const Address& a = s.target.address;
     if (s.target.is_range() || !is_io(a.type) || a.bit < 0 || a.indexed || a.is_indirect()) {
@@ -396,9 +435,14 @@ int width_of(const Address& a) {
 
 ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const std::string& display,
                                         const std::filesystem::path& bench, const std::string& bench_display,
-                                        const ProcessorModel* pasted_processor) {
-  const std::string key = cache_key(path) + "\n" + (bench.empty() ? std::string() : cache_key(bench)) + "\n" +
-                          (pasted_processor ? pasted_processor->catalog + ":" + pasted_processor->series : std::string());
+                                        const ProcessorModel* pasted_processor, const std::vector<Peer>& peers,
+                                        int node) {
+  std::string key = cache_key(path) + "\n" + (bench.empty() ? std::string() : cache_key(bench)) + "\n" +
+                    (pasted_processor ? pasted_processor->catalog + ":" + pasted_processor->series : std::string());
+  if (!peers.empty()) {
+    key += "\nnode " + std::to_string(node);
+    for (const auto& p : peers) key += "\npeer " + p.name + " " + std::to_string(p.node) + " " + cache_key(p.path);
+  }
   if (auto it = entries_.find(key); it != entries_.end()) return it->second;
   Entry& e = entries_[key];
   std::string error;
@@ -446,9 +490,38 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
     e.bench_failed = setup.bench_diagnostics.has_errors();
     return e;
   }
+  // The MSG network's other controllers: each program with its own SLOT lines (no bench).
+  for (const auto& p : peers) {
+    auto peer_text = read_file(p.path, error);
+    if (!peer_text) {
+      e.errors = p.display + ": error: " + error + "\n";
+      e.failed_peer = p.name;
+      return e;
+    }
+    softslc::LoadResult plr = load_program_bytes(std::move(*peer_text), p.display);
+    if (!plr.ok()) {
+      e.errors = plr.render_diagnostics();
+      e.failed_peer = p.name;
+      return e;
+    }
+    ModuleSetup peer_setup = load_module_setup(*plr.program, std::nullopt);
+    if (!peer_setup.ok()) {
+      e.errors = peer_setup.render(p.display, plr.source);
+      e.failed_peer = p.name;
+      return e;
+    }
+    PeerController peer;
+    peer.name = p.name;
+    peer.node = p.node;
+    peer.program = std::make_shared<const Program>(std::move(*plr.program));
+    peer.options = std::make_shared<const RuntimeOptions>(std::move(peer_setup.options));
+    setup.options.peers.push_back(std::move(peer));
+  }
+  setup.options.node = node;
   RuntimeResult rr = Runtime::create(*lr.program, setup.options);
   if (!rr.ok()) {
     for (const auto& err : rr.errors) e.errors += display + ": error: " + err.to_string() + "\n";
+    if (!peers.empty()) e.failed_peer = "*";
     return e;
   }
   auto loaded = std::make_shared<LoadedProgram>();

@@ -39,6 +39,14 @@ class ProgramCache {
     std::unique_ptr<Runtime> probe;                // for checking operands at load time
     std::string errors;                            // rendered diagnostics of the program and bench
     bool bench_failed = false;                     // the bench (not the program) has the errors
+    std::string failed_peer;                       // or this peer's program (or the network) has them
+  };
+  // A peer controller on the program's MSG network (`peer NAME PATH node N`).
+  struct Peer {
+    std::string name;
+    std::filesystem::path path;
+    std::string display;
+    int node = 2;
   };
   // Loads the program at `path` (shown as `display`) with the bench at `bench` (shown as
   // `bench_display`; an empty path means no bench) once per pair: the program is parsed and
@@ -49,8 +57,11 @@ class ProgramCache {
   // (the test file's `program PATH processor SPEC`), else of the run's default (`softslc test
   // --processor`); with neither it does not load, and the error says how to name one. A whole
   // program names its own processor: a processor given for it is an error.
+  // With `peers`, the program is node `node` of a MSG network with them (vm/message_network.h):
+  // each peer's program is loaded with its SLOT lines, and the probe is the network's leader.
   Entry& load(const std::filesystem::path& path, const std::string& display, const std::filesystem::path& bench = {},
-              const std::string& bench_display = {}, const ProcessorModel* pasted_processor = nullptr);
+              const std::string& bench_display = {}, const ProcessorModel* pasted_processor = nullptr,
+              const std::vector<Peer>& peers = {}, int node = 1);
   // The processor of pasted-rung programs whose test file names none (`softslc test --processor`).
   void set_default_pasted_processor(std::optional<ProcessorModel> p) { default_pasted_processor_ = std::move(p); }
   // The probe runtime of a loaded program.

@@ -30,13 +30,17 @@ using namespace grammar;
 // ---- Parsed lines ------------------------------------------------------------------------------------
 
 struct ParsedLine {
-  enum class Kind : std::uint8_t { Empty, Program, Bench, Test, Row, Step };
+  enum class Kind : std::uint8_t { Empty, Program, Bench, Node, Peer, Test, Row, Step };
   Kind kind = Kind::Empty;
   Location loc;  // the statement's first token
   std::string path;
   Location path_loc;
   std::string processor;  // program PATH processor SPEC
   Location processor_loc;
+  std::string peer_name;  // peer NAME PATH node N
+  Location peer_loc;
+  std::int64_t node = 0;  // node N, peer ... node N
+  Location node_loc;
   std::string test_name;
   Location name_loc;  // the opening quote of the test name
   std::vector<std::pair<std::string, Location>> columns;
@@ -149,11 +153,36 @@ Operand data_operand_of(Location loc, std::string spelling) {
   return o;
 }
 
+// The length of a `NAME.` controller prefix at the start of a data operand (B.N7:0), 0 without one.
+std::size_t controller_prefix_length(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) || text[i] == '_')) ++i;
+  return i > 0 && i < text.size() && text[i] == '.' && !std::isdigit(static_cast<unsigned char>(text[0])) ? i + 1 : 0;
+}
+
+// A data operand as written, its controller prefix taken off into data.controller.
+template <typename Input>
+Operand prefixed_operand(const Input& in, std::size_t& prefix) {
+  Operand o = data_operand_of(loc_of(in), in.string());
+  prefix = controller_prefix_length(in.string_view());
+  if (prefix) o.data.controller = std::string(in.string_view().substr(0, prefix - 1));
+  return o;
+}
+
+template <typename Input>
+Address address_or_fail_at(const Input& in, std::string_view text, std::size_t offset) {
+  std::string error;
+  if (auto a = parse_address(text, &error)) return *a;
+  if (offset == 0) return address_or_fail(in, text);
+  fail_at(in, offset, error);
+}
+
 template <> struct action<address> {
   template <typename Input, typename State>
   static void apply(const Input& in, State& s) {
-    Operand o = data_operand_of(loc_of(in), in.string());
-    o.data.address = address_or_fail(in, in.string_view());
+    std::size_t prefix = 0;
+    Operand o = prefixed_operand(in, prefix);
+    o.data.address = address_or_fail_at(in, in.string_view().substr(prefix), prefix);
     s.add_operand(std::move(o));
   }
 };
@@ -161,15 +190,16 @@ template <> struct action<address> {
 template <> struct action<address_range> {
   template <typename Input, typename State>
   static void apply(const Input& in, State& s) {
-    const std::string_view text = in.string_view();
+    std::size_t prefix = 0;
+    Operand o = prefixed_operand(in, prefix);
+    const std::string_view text = in.string_view().substr(prefix);
     const auto dots = text.find("..");
-    Operand o = data_operand_of(loc_of(in), in.string());
-    o.data.address = address_or_fail(in, text.substr(0, dots));
+    o.data.address = address_or_fail_at(in, text.substr(0, dots), prefix);
     const std::string_view last = text.substr(dots + 2);
-    if (last.size() > 5) fail_at(in, dots + 2, "element number out of range");
+    if (last.size() > 5) fail_at(in, prefix + dots + 2, "element number out of range");
     o.data.range_last = std::stoi(std::string(last));
     if (o.data.range_last < o.data.address.element)
-      fail_at(in, dots + 2, "the range ends before it starts (write FIRST..LAST, for example N11:0..13)");
+      fail_at(in, prefix + dots + 2, "the range ends before it starts (write FIRST..LAST, for example N11:0..13)");
     s.add_operand(std::move(o));
   }
 };
@@ -177,8 +207,9 @@ template <> struct action<address_range> {
 template <> struct action<symbol> {
   template <typename Input, typename State>
   static void apply(const Input& in, State& s) {
-    Operand o = data_operand_of(loc_of(in), in.string());
-    o.data.symbol = in.string();
+    std::size_t prefix = 0;
+    Operand o = prefixed_operand(in, prefix);
+    o.data.symbol = std::string(in.string_view().substr(prefix));
     s.add_operand(std::move(o));
   }
 };
@@ -413,6 +444,24 @@ struct line_kind_action {
   }
 };
 template <> struct action<program_line> : line_kind_action<ParsedLine::Kind::Program> {};
+template <> struct action<node_line> : line_kind_action<ParsedLine::Kind::Node> {};
+template <> struct action<peer_line> : line_kind_action<ParsedLine::Kind::Peer> {};
+template <> struct action<peer_path> : path_action {};
+template <> struct action<peer_name> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    s.out.peer_name = in.string();
+    s.out.peer_loc = loc_of(in);
+  }
+};
+template <> struct action<node_number> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    if (in.size() > 3 || std::stoi(in.string()) > 255) fail_at(in, 0, "node number out of range 0-255");
+    s.out.node = std::stoi(in.string());
+    s.out.node_loc = loc_of(in);
+  }
+};
 template <> struct action<bench_line> : line_kind_action<ParsedLine::Kind::Bench> {};
 template <> struct action<test_line> : line_kind_action<ParsedLine::Kind::Test> {};
 template <> struct action<row_line> : line_kind_action<ParsedLine::Kind::Row> {};
@@ -576,6 +625,8 @@ template <> struct action<device_line> {
 constexpr std::pair<std::string_view, std::string_view> kUsage[] = {
     {"program", "program FILE.slc [processor CATALOG]"},
     {"bench", "bench FILE.bench"},
+    {"node", "node N"},
+    {"peer", "peer NAME FILE.slc node N"},
     {"test", "test \"name\"  or  test \"name\" with COLUMN..."},
     {"set", "set ADDRESS = VALUE"},
     {"force", "force I:1/0 = 1"},
@@ -908,6 +959,36 @@ class Driver {
         }
         return;
       }
+      case ParsedLine::Kind::Node:
+      case ParsedLine::Kind::Peer: {
+        // The MSG network is the file's: every test of the file runs on it.
+        if (pending_) {
+          error(pl.loc, "'node' and 'peer' lines belong at the top of the file, before the first test");
+          return;
+        }
+        if (pl.kind == ParsedLine::Kind::Node) {
+          if (file_node_loc_.line) {
+            error(pl.loc, "a second 'node' line (the first is at line " + std::to_string(file_node_loc_.line) + ")");
+            return;
+          }
+          file_node_ = static_cast<int>(pl.node);
+          file_node_loc_ = pl.node_loc;
+          return;
+        }
+        for (const auto& p : file_peers_)
+          if (p.name == pl.peer_name) {
+            error(pl.peer_loc, "peer '" + p.name + "' is already defined at line " + std::to_string(p.loc.line));
+            return;
+          }
+        PeerSpec peer;
+        peer.name = pl.peer_name;
+        peer.loc = pl.peer_loc;
+        peer.path = pl.path;
+        peer.path_loc = pl.path_loc;
+        peer.node = static_cast<int>(pl.node);
+        file_peers_.push_back(std::move(peer));
+        return;
+      }
       case ParsedLine::Kind::Step:
         if (!pending_) {
           error(pl.loc, "a step must belong to a test: start one with test \"name\"");
@@ -1055,6 +1136,9 @@ class Driver {
     tc.program_processor_loc = file_program_processor_loc_;
     tc.bench_path = file_bench_;
     tc.bench_loc = file_bench_loc_;
+    tc.node = file_node_;
+    tc.node_loc = file_node_loc_;
+    tc.peers = file_peers_;
     bool steps_seen = false, ok = true;
     std::optional<Location> own_program, own_bench;
     for (auto& pl : lines) {
@@ -1126,6 +1210,9 @@ class Driver {
   Location file_program_processor_loc_;
   std::string file_bench_;
   Location file_bench_loc_;
+  int file_node_ = 1;
+  Location file_node_loc_;
+  std::vector<PeerSpec> file_peers_;
   std::optional<PendingTest> pending_;
   std::size_t steps_ = 0;         // test lines so far, table rows expanded (kMaxStepsPerTestFile)
   bool too_many_steps_ = false;   // the limit was passed: the rest of the file is not read

@@ -204,7 +204,9 @@ class Layouter {
           continue;
         }
         ib.rows.emplace_back(label, o.spelling);
-        if (o.is_address()) {
+        // A MSG target is the other controller's address: no value of this one's under it.
+        const bool remote = i < specs.size() && specs[i].kind == OperandKind::RemoteAddress;
+        if (o.is_address() && !remote) {
           if (o.kind == Operand::Kind::Symbol) ib.rows.emplace_back("", to_string(o.address));
           else if (std::string sym = symbol_of(o); !sym.empty()) ib.rows.emplace_back("", sym);
           // A value under each data operand, RSLogix style ("25<"); not for a whole T/C/R element.

@@ -69,6 +69,8 @@ void collect(const Program& program, const std::vector<RungElement>& elements, b
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
       const Operand& o = e.instruction.operands[i];
       if (!o.is_address() || !traceable(o.address)) continue;
+      // A MSG target names the other controller's data table, not a signal of this one.
+      if (i < specs.size() && specs[i].kind == OperandKind::RemoteAddress) continue;
       if (outputs_only && i < specs.size() && specs[i].access == OperandAccess::Read) continue;
       add_address(program, o.address, out, seen);
     }

@@ -1,0 +1,74 @@
+// The links an SLC processor's MSG instruction can use, and their facts: which channel of which
+// processor is on which link, the node addresses a link has, its data rate, and the largest message.
+//
+// softslc simulates one link per network (vm/message_network.h): DH-485 (the SLC 5/02's only
+// channel, the SLC 5/03's channel 1) and DH+ (the SLC 5/04's channel 1). The SLC 5/05's channel 1
+// is Ethernet and every 5/03-5/05 channel 0 is the RS-232 port; MSG on those is refused by `check`
+// until they are simulated, so every MSG that loads runs on a link described here. Sources:
+// 1747-RM001G p. 12-14 (channels), p. 13-4 (DH-485 nodes), 1747-SG001 p. 64 (DH+ rates).
+#pragma once
+
+#include <string_view>
+#include <utility>
+
+#include "instructions/processor.h"
+
+namespace softslc {
+
+enum class MessageLink : unsigned char { None, Dh485, DhPlus, Ethernet };
+
+// The link `channel` of a processor of `family` is on (None: a channel softslc does not simulate
+// for MSG, or one the processor does not have).
+constexpr MessageLink message_link(ProcessorFamily family, int channel) {
+  switch (family) {
+    case ProcessorFamily::Slc502: return channel == 0 ? MessageLink::Dh485 : MessageLink::None;
+    case ProcessorFamily::Slc503: return channel == 1 ? MessageLink::Dh485 : MessageLink::None;
+    case ProcessorFamily::Slc504: return channel == 1 ? MessageLink::DhPlus : MessageLink::None;
+    case ProcessorFamily::Slc505: return channel == 1 ? MessageLink::Ethernet : MessageLink::None;
+    default: return MessageLink::None;
+  }
+}
+
+// The link a processor's network channel is on: DH-485 for the fixed controllers, the 5/01, 5/02 and
+// 5/03 (they all answer messages on it), DH+ for the 5/04, Ethernet for the 5/05; None for the
+// MicroLogix, whose messaging softslc does not simulate.
+constexpr MessageLink network_link(ProcessorFamily family) {
+  switch (family) {
+    case ProcessorFamily::Fixed:
+    case ProcessorFamily::Slc501:
+    case ProcessorFamily::Slc502:
+    case ProcessorFamily::Slc503: return MessageLink::Dh485;
+    case ProcessorFamily::Slc504: return MessageLink::DhPlus;
+    case ProcessorFamily::Slc505: return MessageLink::Ethernet;
+    default: return MessageLink::None;
+  }
+}
+
+// The node addresses a MSG may name on a link. DH-485: "The node address range for all responders
+// is 1 to 31" and an SLC processor never has node 0 (RM 13-4). DH+: 0-77 octal (64 stations).
+constexpr std::pair<int, int> message_node_range(MessageLink link) {
+  return link == MessageLink::Dh485 ? std::pair{1, 31} : std::pair{0, 63};
+}
+
+// The link's data rate in bits per second and bits sent per byte: DH-485 19,200 baud with 11-bit
+// characters (start, 8 data, parity, stop); DH+ 57,600 baud, 8 bits a byte (1747-SG001 p. 64: 57.6K
+// the default). The default rates, not the channel configuration (not simulated).
+constexpr int message_link_baud(MessageLink link) { return link == MessageLink::Dh485 ? 19200 : 57600; }
+constexpr int message_link_bits_per_byte(MessageLink link) { return link == MessageLink::Dh485 ? 11 : 8; }
+
+// The most data words one MSG carries on DH-485 and DH+: 103 one-word elements, 51 two-word, 34
+// three-word (1762-RM001C p. 21-12, the MicroLogix table of the same message types; the SLC table,
+// 1747-RM001G appendix D, was not reachable: docs/semantics.md "MSG").
+inline constexpr int kMessageMaxWords = 103;
+
+constexpr std::string_view to_string(MessageLink link) {
+  switch (link) {
+    case MessageLink::Dh485: return "DH-485";
+    case MessageLink::DhPlus: return "DH+";
+    case MessageLink::Ethernet: return "Ethernet";
+    case MessageLink::None: break;
+  }
+  return "none";
+}
+
+}  // namespace softslc

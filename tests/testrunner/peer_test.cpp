@@ -1,0 +1,79 @@
+// Test files with several controllers (docs/testing.md "Several controllers"): `node`, `peer NAME
+// PATH node N`, a peer's data as NAME.ADDRESS and NAME.SYMBOL, and their load-time errors.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "testrunner_test_util.h"
+
+namespace softslc::testing {
+namespace {
+
+using ::testing::HasSubstr;
+using test::Sandbox;
+
+// A reads B's N7:0 into N10:0 whenever its read is not enabled (a polling read), and mirrors
+// N10:0 to O:2.0.
+constexpr const char* kA =
+    "START 1747-L532\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nSLOT 2 1746-OB16 SCAN_IN 0 SCAN_OUT 1\n"
+    "LADDER 2 MAIN\n"
+    "SOR XIO N9:0/15 MSG READ 500CPU LOCAL N9:0 14 1 N10:0 1 2 N7:0 5 EOR\n"
+    "SOR MOV N10:0 O:2.0 EOR\n";
+constexpr const char* kB =
+    "START 1747-L532\nLADDER 2 MAIN\nSOR XIC B3:0/15 CLR N7:9 EOR\nSYMBOL N7:0 SPEED % the value A reads %\n";
+
+std::string run_line(const std::string& head, const std::string& body) {
+  Sandbox box;
+  box.write("a.slc", kA);
+  box.write("b.slc", kB);
+  box.write("b504.slc", "START 1747-L542\nLADDER 2 MAIN\nSOR XIC B3:0/15 CLR N7:9 EOR\n");
+  return box.run(head + body);
+}
+
+TEST(PeerTests, APeersDataIsNamedWithItsName) {
+  // A one-word read on DH-485 is 9.17 ms + 10.31 ms of frames (docs/semantics.md "MSG and SVC") plus
+  // the scans of the two controllers: with 1 ms scans it is back in under 25 ms.
+  const std::string out = run_line("program a.slc\nnode 1\npeer B b.slc node 2\n",
+                                   "test \"t\"\n"
+                                   "  set    B.SPEED = 1234\n"
+                                   "  expect B.N7:0 == 1234\n"
+                                   "  run until N10:0 == 1234 within 25ms\n"
+                                   "  expect O:2.0 == 0\n"
+                                   "  scan   1\n"
+                                   "  expect O:2.0 == 1234\n"
+                                   "  expect B.N7:0..1 == 1234 0\n");
+  EXPECT_EQ(out, "PASS t.test: t\n");
+}
+
+TEST(PeerTests, AFailureShowsThePeersValue) {
+  const std::string out = run_line("program a.slc\npeer B b.slc node 2\n",
+                                   "test \"t\"\n"
+                                   "  expect B.SPEED == 5\n");
+  EXPECT_THAT(out, HasSubstr("B.SPEED (B.N7:0) = 0"));
+}
+
+TEST(PeerTests, LoadErrorsNameTheLine) {
+  EXPECT_THAT(run_line("program a.slc\npeer B b.slc node 2\n", "test \"t\"\n  expect C.N7:0 == 0\n"),
+              HasSubstr("t.test:4:10: error: no peer 'C' on this test's network (its peers: B)"));
+  EXPECT_THAT(run_line("program a.slc\npeer B b.slc node 1\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("node 1 is already this controller's"));
+  EXPECT_THAT(run_line("program a.slc\npeer B b504.slc node 2\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("is on DH+, this network is DH-485"));
+  EXPECT_THAT(run_line("program a.slc\npeer B b.slc node 2\npeer B b.slc node 3\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("t.test:3:6: error: peer 'B' is already defined at line 2"));
+  EXPECT_THAT(run_line("program a.slc\n", "test \"t\"\n  peer B b.slc node 2\n  scan 1\n"),
+              HasSubstr("'node' and 'peer' lines belong at the top of the file"));
+  EXPECT_THAT(run_line("program a.slc\npeer B b.slc\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("incomplete 'peer' line: write peer NAME FILE.slc node N"));
+  EXPECT_THAT(run_line("program a.slc\npeer B b.slc node 2\n", "test \"t\"\n  force B.I:1/0 = 1\n"),
+              HasSubstr("cannot be forced from a test yet"));
+  EXPECT_THAT(run_line("program a.slc\npeer B nothing.slc node 2\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("peer 'B' did not load"));
+}
+
+TEST(PeerTests, APowerCycleWithPeersIsRefused) {
+  const std::string out = run_line("program a.slc\npeer B b.slc node 2\n", "test \"t\"\n  power cycle\n");
+  EXPECT_THAT(out, HasSubstr("power cycle in a test with peers is not supported yet"));
+}
+
+}  // namespace
+}  // namespace softslc::testing

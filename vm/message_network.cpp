@@ -1,0 +1,373 @@
+#include "vm/message_network.h"
+
+#include <algorithm>
+
+#include "vm/runtime.h"
+
+namespace softslc {
+
+namespace {
+
+constexpr std::uint16_t kTypeCodes[][2] = {
+    {static_cast<std::uint16_t>(FileType::Status), 0x84},  {static_cast<std::uint16_t>(FileType::Bit), 0x85},
+    {static_cast<std::uint16_t>(FileType::Timer), 0x86},   {static_cast<std::uint16_t>(FileType::Counter), 0x87},
+    {static_cast<std::uint16_t>(FileType::Control), 0x88}, {static_cast<std::uint16_t>(FileType::Integer), 0x89},
+    {static_cast<std::uint16_t>(FileType::Float), 0x8A},   {static_cast<std::uint16_t>(FileType::Output), 0x8B},
+    {static_cast<std::uint16_t>(FileType::Input), 0x8C},   {static_cast<std::uint16_t>(FileType::String), 0x8D},
+    {static_cast<std::uint16_t>(FileType::Ascii), 0x8E},
+};
+
+// The network channel of a station's processor: channel 0 on the 5/02 (its only one), 1 on the others.
+int network_channel(const Runtime& rt) { return rt.compiled().processor.family == ProcessorFamily::Slc502 ? 0 : 1; }
+
+std::int16_t as_signed(std::uint16_t w) { return static_cast<std::int16_t>(w); }
+
+}  // namespace
+
+std::uint16_t message_file_type_code(FileType t) {
+  for (const auto& row : kTypeCodes)
+    if (row[0] == static_cast<std::uint16_t>(t)) return row[1];
+  return 0;
+}
+
+std::optional<FileType> message_file_type(std::uint16_t code) {
+  for (const auto& row : kTypeCodes)
+    if (row[1] == code) return static_cast<FileType>(row[0]);
+  return std::nullopt;
+}
+
+Nanoseconds message_frame_time(MessageLink link, int data_bytes) {
+  const std::int64_t bits = static_cast<std::int64_t>(msg::kFrameOverheadBytes + data_bytes) * message_link_bits_per_byte(link);
+  const std::int64_t baud = message_link_baud(link);
+  return (bits * kNsPerS + baud - 1) / baud;  // rounded up: a frame never takes zero time
+}
+
+MessageNetwork::~MessageNetwork() = default;
+
+std::size_t MessageNetwork::attach(Runtime& rt, int node, std::string name, std::unique_ptr<Runtime> owned) {
+  Station s;
+  s.rt = &rt;
+  s.owned = std::move(owned);
+  s.node = node;
+  s.name = std::move(name);
+  stations_.push_back(std::move(s));
+  return stations_.size() - 1;
+}
+
+std::uint16_t MessageNetwork::word(std::size_t station, std::uint32_t index) const {
+  const DataTable& d = stations_[station].rt->data();
+  return index < d.size() ? d.word(index) : 0;
+}
+
+void MessageNetwork::set_word(std::size_t station, std::uint32_t index, std::uint16_t value) {
+  DataTable& d = stations_[station].rt->data();
+  if (index < d.size()) d.set_word(index, value);
+}
+
+std::optional<std::size_t> MessageNetwork::station_at(int node) const {
+  for (std::size_t i = 0; i < stations_.size(); ++i)
+    if (stations_[i].node == node) return i;
+  return std::nullopt;
+}
+
+MessageNetwork::Message* MessageNetwork::find(std::size_t station, std::uint64_t serial, int* channel, bool* queued) {
+  for (int c = 0; c < 2; ++c) {
+    Channel& ch = stations_[station].channels[static_cast<std::size_t>(c)];
+    for (auto* list : {&ch.buffers, &ch.queue})
+      for (Message& m : *list)
+        if (m.serial == serial) {
+          if (channel) *channel = c;
+          if (queued) *queued = list == &ch.queue;
+          return &m;
+        }
+  }
+  return nullptr;
+}
+
+void MessageNetwork::remove(std::size_t station, std::uint64_t serial) {
+  for (Channel& ch : stations_[station].channels)
+    for (auto* list : {&ch.buffers, &ch.queue})
+      std::erase_if(*list, [&](const Message& m) { return m.serial == serial; });
+}
+
+// ---- The instruction ---------------------------------------------------------------------------------------
+
+void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
+  const Runtime& rt = *stations_[station].rt;
+  const DataTableLayout& layout = *rt.compiled().layout;
+  // A message of this control block still in a buffer or the queue is replaced: the program cleared
+  // EN before DN or ER, which the manual forbids (RM 12-30); the new one wins.
+  for (Channel& ch : stations_[station].channels)
+    for (auto* list : {&ch.buffers, &ch.queue})
+      std::erase_if(*list, [&](const Message& m) { return m.in.block == in.block; });
+
+  // The false-to-true transition resets DN, ER, ST, NR, TO and the error code (RM 12-28, 12-29).
+  std::uint16_t w0 = word(station, in.block);
+  w0 = static_cast<std::uint16_t>(w0 & ~(msg::kEN | msg::kST | msg::kDN | msg::kER | msg::kEW | msg::kNR | msg::kTO |
+                                         msg::kErrorCode));
+  if (!in.slc502) set_word(station, in.block + 7, static_cast<std::uint16_t>(word(station, in.block + 7) & ~msg::kWQ));
+
+  Message m;
+  m.serial = next_serial_++;
+  m.in = in;
+  m.target_node = word(station, in.block + 1) & 0xFF;
+  m.elements = as_signed(word(station, in.block + 2));
+  m.target_file = as_signed(word(station, in.block + 3));
+  m.type_code = word(station, in.block + 4);
+  m.target_element = as_signed(word(station, in.block + 5));
+  m.started = in.at;
+  if (!in.slc502) {
+    // "a value of 1 second gets bumped to 2 seconds upon instruction execution" (RM 12-53, of the
+    // standard MSG's timeout).
+    int seconds = word(station, in.block + 8) & 0xFF;
+    if (seconds == 1) seconds = 2;
+    m.timeout = static_cast<Nanoseconds>(seconds) * kNsPerS;
+  }
+
+  // The control block as the processor reads it: a file type of the local file, a count that fits the
+  // local file and one message, a node the link has (RM 12-41: 04h, 16h).
+  const int file = layout.file_containing(in.data);
+  std::uint8_t error = 0;
+  if (file < 0) {
+    error = msg::kBadParameters;
+  } else {
+    const FileLayout& f = layout.files[static_cast<std::size_t>(file)];
+    m.words = m.elements * f.words_per_element;
+    if (m.type_code != message_file_type_code(f.type) || m.elements < 1 || m.words > kMessageMaxWords ||
+        in.data + static_cast<std::uint32_t>(m.words) > f.end())
+      error = msg::kBadParameters;
+    else if (m.target_node > message_node_range(link_).second)
+      error = msg::kNodeTooHigh;
+  }
+  if (error) {
+    set_word(station, in.block, static_cast<std::uint16_t>(w0 | msg::kEN | msg::kER | error));
+    return;
+  }
+
+  Channel& ch = stations_[station].channels[static_cast<std::size_t>(in.channel & 1)];
+  const std::size_t buffers = in.slc502 ? 1 : msg::kBuffersPerChannel;
+  set_word(station, in.block, static_cast<std::uint16_t>(w0 | msg::kEN));
+  if (ch.buffers.size() < buffers) {
+    ch.buffers.push_back(std::move(m));
+    enter_buffer(station, ch.buffers.back());
+  } else if (ch.queue.size() < static_cast<std::size_t>(msg::kQueuePositions)) {
+    // RM 12-7: queued messages "will only have control block status bit EN set"; the 5/02's waiting
+    // messages have EN and EW (RM 12-5).
+    if (in.slc502) set_word(station, in.block, static_cast<std::uint16_t>(word(station, in.block) | msg::kEW));
+    ch.queue.push_back(std::move(m));
+  } else {
+    // RM 12-7: more than 14 on one channel: "only control block status bit WQ is set"; the rung must
+    // be scanned true again until there is room. The 5/02 has no WQ (its block has no word 7).
+    set_word(station, in.block, w0);
+    if (!in.slc502)
+      set_word(station, in.block + 7, static_cast<std::uint16_t>(word(station, in.block + 7) | msg::kWQ));
+  }
+}
+
+void MessageNetwork::enter_buffer(std::size_t station, Message& m) {
+  // EW: "the message is in the buffer ... and waiting to be sent"; a write's source data is buffered
+  // now (RM 12-29, table 12.10).
+  set_word(station, m.in.block, static_cast<std::uint16_t>(word(station, m.in.block) | msg::kEN | msg::kEW));
+  if (m.in.write) {
+    m.data.resize(static_cast<std::size_t>(m.words));
+    for (int i = 0; i < m.words; ++i) m.data[static_cast<std::size_t>(i)] = word(station, m.in.data + static_cast<std::uint32_t>(i));
+  }
+  m.sent = false;
+}
+
+void MessageNetwork::abort(std::size_t station, std::uint32_t block) {
+  for (Channel& ch : stations_[station].channels)
+    for (auto* list : {&ch.buffers, &ch.queue})
+      for (Message& m : *list)
+        if (m.in.block == block) {
+          // RM 12-30: "The next time the processor scans the MSG instruction with the TO bit set, it will
+          // error the MSG (ER = 1)"; the code is the timeout's (decision, docs/semantics.md "MSG").
+          finish(station, m, msg::kTimedOut, msg::kTO);
+          return;
+        }
+}
+
+void MessageNetwork::finish(std::size_t station, Message& m, std::uint8_t error, std::uint16_t extra_bits) {
+  std::uint16_t w0 = word(station, m.in.block);
+  w0 = static_cast<std::uint16_t>(w0 & ~(msg::kST | msg::kEW | msg::kErrorCode));
+  if (error) w0 = static_cast<std::uint16_t>(w0 | msg::kER | error | extra_bits);
+  else w0 = static_cast<std::uint16_t>(w0 | msg::kDN);
+  set_word(station, m.in.block, w0);
+  // CO: "continually resend" (RM 12-61 of the same bit): a message that completed stays in its buffer
+  // and goes out again at this servicing point, its timer restarted (SLC 5/03-5/05).
+  if (!error && !m.in.slc502 && (w0 & msg::kCO)) {
+    m.sent = false;
+    m.data.clear();
+    if (m.in.write) enter_buffer(station, m);
+    return;
+  }
+  remove(station, m.serial);
+}
+
+// ---- Servicing ---------------------------------------------------------------------------------------------
+
+void MessageNetwork::post(std::size_t to, VirtualTime arrival, Frame f) {
+  stations_[to].inbox.emplace(std::pair{arrival, next_frame_++}, std::move(f));
+}
+
+void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
+  m.sent = true;
+  const Nanoseconds d = message_frame_time(link_, m.in.write ? 2 * m.words : 0);
+  const std::optional<std::size_t> target = station_at(m.target_node);
+  if (!target) {
+    // No station acknowledges: the link gives up after the frame's time (EST: retries not modelled).
+    Frame f;
+    f.kind = FrameKind::NoAck;
+    f.serial = m.serial;
+    post(station, at + d, std::move(f));
+    return;
+  }
+  Frame req;
+  req.kind = FrameKind::Request;
+  req.from = station;
+  req.serial = m.serial;
+  req.write = m.in.write;
+  req.file = m.target_file;
+  req.type_code = m.type_code;
+  req.element = m.target_element;
+  req.words = m.words;
+  req.data = m.data;
+  post(*target, at + d, std::move(req));
+  // The link-level acknowledgement: ST "is set when the processor receives acknowledgment (ACK) from
+  // the target device" (RM 12-29), here when the frame arrives.
+  Frame ack;
+  ack.kind = FrameKind::Ack;
+  ack.serial = m.serial;
+  post(station, at + d, std::move(ack));
+}
+
+void MessageNetwork::answer(std::size_t station, VirtualTime at, const Frame& req) {
+  Runtime& rt = *stations_[station].rt;
+  const DataTableLayout& layout = *rt.compiled().layout;
+  Frame reply;
+  reply.kind = FrameKind::Reply;
+  reply.serial = req.serial;
+  const FileLayout* f = nullptr;
+  if (req.file >= 0 && req.file <= 255 && layout.files[static_cast<std::size_t>(req.file)].present)
+    f = &layout.files[static_cast<std::size_t>(req.file)];
+  const std::optional<FileType> type = message_file_type(req.type_code);
+  if (!f) {
+    reply.error = msg::kNoSuchFile;
+  } else if (!type || *type != f->type) {
+    reply.error = msg::kIllegalFileType;
+  } else if (req.element < 0 || static_cast<std::uint32_t>(req.element) >= f->elements) {
+    reply.error = msg::kAddressUnusable;
+  } else if (static_cast<std::uint32_t>(req.element) * f->words_per_element + static_cast<std::uint32_t>(req.words) >
+             f->words()) {
+    reply.error = msg::kPastEnd;
+  } else {
+    const std::uint32_t first = f->base + static_cast<std::uint32_t>(req.element) * f->words_per_element;
+    if (req.write) {
+      for (int i = 0; i < req.words; ++i)
+        set_word(station, first + static_cast<std::uint32_t>(i), req.data[static_cast<std::size_t>(i)]);
+    } else {
+      reply.data.resize(static_cast<std::size_t>(req.words));
+      for (int i = 0; i < req.words; ++i) reply.data[static_cast<std::size_t>(i)] = word(station, first + static_cast<std::uint32_t>(i));
+    }
+  }
+  const Nanoseconds d = message_frame_time(link_, static_cast<int>(2 * reply.data.size()));
+  post(req.from, at + d, std::move(reply));
+}
+
+void MessageNetwork::receive(std::size_t station, VirtualTime at, Frame& f) {
+  if (f.kind == FrameKind::Request) return answer(station, at, f);
+  Message* m = find(station, f.serial);
+  if (!m) return;  // the message was aborted or timed out meanwhile: a late frame changes nothing
+  switch (f.kind) {
+    case FrameKind::Ack:
+      set_word(station, m->in.block,
+               static_cast<std::uint16_t>((word(station, m->in.block) | msg::kST) & ~msg::kEW));
+      break;
+    case FrameKind::NoAck: finish(station, *m, msg::kNoResponse); break;
+    case FrameKind::Reply:
+      if (f.error == 0 && !m->in.write)
+        for (std::size_t i = 0; i < f.data.size(); ++i)
+          set_word(station, m->in.data + static_cast<std::uint32_t>(i), f.data[i]);
+      finish(station, *m, f.error);
+      break;
+    case FrameKind::Request: break;
+  }
+}
+
+void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t channel_mask) {
+  Station& st = stations_[station];
+  const int channel = network_channel(*st.rt);
+  if (!(channel_mask & (1u << channel))) return;
+  // 1. What reached this station by now, in arrival order.
+  while (!st.inbox.empty() && st.inbox.begin()->first.first <= at) {
+    Frame f = std::move(st.inbox.begin()->second);
+    st.inbox.erase(st.inbox.begin());
+    receive(station, at, f);
+  }
+  Channel& ch = st.channels[static_cast<std::size_t>(channel)];
+  // 2. Message timers (SLC 5/03-5/05): ER, TO and 37h once the timeout has passed since the rung went
+  // true; the accumulator (word 10) shows the whole seconds so far (docs/semantics.md "MSG").
+  std::vector<std::uint64_t> expired;
+  for (auto* list : {&ch.buffers, &ch.queue})
+    for (Message& m : *list) {
+      if (m.in.slc502) continue;
+      const Nanoseconds elapsed = at - m.started;
+      set_word(station, m.in.block + 10, static_cast<std::uint16_t>(std::min<Nanoseconds>(elapsed / kNsPerS, 32767)));
+      if (m.timeout > 0 && elapsed >= m.timeout) expired.push_back(m.serial);
+    }
+  for (std::uint64_t serial : expired)
+    if (Message* m = find(station, serial)) finish(station, *m, msg::kTimedOut, msg::kTO);
+  // 3. The queue into free buffers, first in first out (RM 12-41: "at end of scan or SVC").
+  const std::size_t buffers = ch.queue.empty() || !ch.queue.front().in.slc502 ? msg::kBuffersPerChannel : 1;
+  while (!ch.queue.empty() && ch.buffers.size() < buffers) {
+    ch.buffers.push_back(std::move(ch.queue.front()));
+    ch.queue.erase(ch.queue.begin());
+    enter_buffer(station, ch.buffers.back());
+  }
+  // 4. What the buffers hold goes out.
+  for (Message& m : ch.buffers)
+    if (!m.sent) send(station, at, m);
+}
+
+void MessageNetwork::service_now(std::size_t station, VirtualTime at, std::uint16_t channel_mask) {
+  service(station, at, channel_mask);
+}
+
+void MessageNetwork::scanned(std::size_t station, VirtualTime end) {
+  stations_[station].service_due = end;
+  if (station != 0 || driving_) return;
+  driving_ = true;
+  run_lockstep(end);
+  driving_ = false;
+}
+
+void MessageNetwork::run_lockstep(VirtualTime until) {
+  for (;;) {
+    std::optional<std::size_t> next;
+    VirtualTime next_at = 0;
+    for (std::size_t i = 0; i < stations_.size(); ++i) {
+      const Station& s = stations_[i];
+      // A pending end-of-scan servicing is due at its time; otherwise the station's next scan starts
+      // at its clock, and only a station behind `until` needs one.
+      // The leader's scans are its caller's: only its servicing is run here (its clock reaches `until`
+      // once this returns).
+      if (i == 0 && !s.service_due) continue;
+      const VirtualTime at = s.service_due ? *s.service_due : s.rt->now();
+      if (at > until || (!s.service_due && at >= until)) continue;
+      if (!next || at < next_at) {
+        next = i;
+        next_at = at;
+      }
+    }
+    if (!next) return;
+    Station& s = stations_[*next];
+    if (s.service_due) {
+      s.service_due.reset();
+      service(*next, next_at, 0x3);
+    } else {
+      s.rt->scan(1);
+    }
+  }
+}
+
+}  // namespace softslc

@@ -1,0 +1,192 @@
+// The MSG network: SLC controllers that message each other on one simulated link, in one virtual time.
+//
+// A MessageNetwork joins several Runtimes (stations), each with its node address, on one link
+// (DH-485 or DH+, instructions/message_link.h). It keeps, per station and channel, what the
+// processor keeps for MSG (1747-RM001G ch. 12): four message buffers and a 10-position overflow
+// queue on the SLC 5/03-5/05 (one buffer on the 5/02), the message timers, and the frames in
+// flight. The MSG instruction's state is its control block in the data table; the interpreter
+// handles the rung logic there and calls in here only when a message starts or is aborted.
+//
+// Frames travel as timed items: a request written at time t reaches its target at t + d, where d
+// is the frame's bytes at the link's bit rate (a documented figure) with an estimated 16 bytes of
+// framing (EST). A station acts on what reached it only at its communication servicing points, as
+// the processor does: the end of every scan and every SVC. There it answers requests (reads and
+// writes of its own data table: the only way another controller reaches it), takes acks and
+// replies (ST, DN, ER and the error code), times messages out, unloads the queue into free
+// buffers and sends what the buffers hold.
+//
+// Lockstep and determinism: station 0 (the leader) is the Runtime the caller drives. After each of
+// its scans, the network runs every other station's scans and every station's end-of-scan
+// servicing in one order, smallest virtual time first, ties by station index, until all have
+// reached the leader's time. Every frame is sent at a servicing point and takes more than zero
+// time, so when a station services at time t every frame that reaches it by t has already been
+// sent: the order is causal, and two runs give byte-identical results. (An SVC in the middle of a
+// scan sees the frames sent up to the start of that scan by stations the lockstep has already run;
+// docs/semantics.md "MSG".) Nothing is dropped: every queue is bounded by the processor's own
+// limits (14 messages a channel, the MSG's WQ bit beyond), and frames in flight by them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "instructions/message_link.h"
+#include "parser/address.h"
+#include "vm/virtual_time.h"
+
+namespace softslc {
+
+class Runtime;
+struct MessageInstruction;
+
+// The control block word 0 bits (RM 12-31, table 12.11) and word 7's WQ (RM 12-29).
+namespace msg {
+inline constexpr std::uint16_t kEN = 1u << 15;
+inline constexpr std::uint16_t kST = 1u << 14;
+inline constexpr std::uint16_t kDN = 1u << 13;
+inline constexpr std::uint16_t kER = 1u << 12;
+inline constexpr std::uint16_t kCO = 1u << 11;
+inline constexpr std::uint16_t kEW = 1u << 10;
+inline constexpr std::uint16_t kNR = 1u << 9;
+inline constexpr std::uint16_t kTO = 1u << 8;
+inline constexpr std::uint16_t kErrorCode = 0x00FF;
+inline constexpr std::uint16_t kWQ = 1u << 0;  // word 7
+
+// Error codes (RM 12-41/12-42 table 12.17; the E0h-F1h codes as 1762-RM001C p. 21-22 lists them,
+// RM 12-43 was not reachable: docs/semantics.md "MSG").
+inline constexpr std::uint8_t kBadParameters = 0x04;     // "does not understand the command parameters OR the
+                                                          // control block may have been inadvertently modified"
+inline constexpr std::uint8_t kNoResponse = 0x07;        // "Target node does not respond"
+inline constexpr std::uint8_t kNoSuchFile = 0x10;        // "... or the data file specified does not exist"
+inline constexpr std::uint8_t kNodeTooHigh = 0x16;       // "Target ... address is higher than the maximum node address"
+inline constexpr std::uint8_t kTimedOut = 0x37;          // "Message timed out in local processor"
+inline constexpr std::uint8_t kAddressUnusable = 0xE6;   // "Illegal Address, address does not exist"
+inline constexpr std::uint8_t kPastEnd = 0xEA;           // "transaction size plus word address is too large"
+inline constexpr std::uint8_t kIllegalFileType = 0xF1;   // "illegal target file type"
+
+inline constexpr int kBuffersPerChannel = 4;  // RM 12-5: "up to four message instructions per channel"
+inline constexpr int kQueuePositions = 10;    // RM 12-41: "Each channel has its own 10-position MSG queue"
+inline constexpr int kFrameOverheadBytes = 16;  // EST: link framing + PCCC header of a typed read/write
+}  // namespace msg
+
+// The common interface file a 485CIF message reaches: N9 of an SLC (docs/semantics.md "MSG").
+inline constexpr int kCommonInterfaceFile = 9;
+
+// The file type code in control block word 4: the PCCC typed read/write code of the type (84h S,
+// 85h B, 86h T, 87h C, 88h R, 89h N, 8Ah F, 8Bh O, 8Ch I, 8Dh ST, 8Eh A); 0 for a type MSG cannot carry.
+std::uint16_t message_file_type_code(FileType t);
+std::optional<FileType> message_file_type(std::uint16_t code);
+
+// The time a frame of `bytes` bytes takes on `link` (the link's bit rate; framing EST).
+Nanoseconds message_frame_time(MessageLink link, int data_bytes);
+
+// A MSG instruction as the interpreter hands it over when its rung starts a message (EN was 0) or
+// its TO bit aborts one (docs/semantics.md "MSG").
+struct MessageInstruction {
+  bool slc502 = false;       // the 7-word form: one buffer, no WQ, no timer
+  bool write = false;
+  // 0 500CPU, 1 485CIF, 2 PLC5 (keyword_code of MessageDevice). The targets on a simulated network are
+  // SLCs, which answer a PLC5 typed command as a 500CPU one; 485CIF's target is in the control block
+  // (N9, the offset): so the network needs no more than the block (docs/semantics.md "MSG and SVC").
+  int device = 0;
+  int channel = 0;
+  std::uint32_t block = 0;   // data-table word index of control block word 0
+  std::uint32_t data = 0;    // data-table word index of this controller's data address
+  VirtualTime at = 0;        // virtual time of the instruction
+};
+
+class MessageNetwork {
+ public:
+  explicit MessageNetwork(MessageLink link) : link_(link) {}
+  MessageNetwork(const MessageNetwork&) = delete;
+  MessageNetwork& operator=(const MessageNetwork&) = delete;
+  ~MessageNetwork();
+
+  // Adds a station. The first one added is the leader. `owned`, when given, is kept alive by the
+  // network (the peers a leader's RuntimeOptions named). Returns the station's index.
+  std::size_t attach(Runtime& rt, int node, std::string name, std::unique_ptr<Runtime> owned = nullptr);
+
+  MessageLink link() const { return link_; }
+  std::size_t size() const { return stations_.size(); }
+  Runtime& runtime(std::size_t station) const { return *stations_[station].rt; }
+  const std::string& name(std::size_t station) const { return stations_[station].name; }
+  int node(std::size_t station) const { return stations_[station].node; }
+
+  // The interpreter's calls (through the Runtime): a MSG rung starts a message; a MSG's TO bit
+  // aborts the one in progress.
+  void start(std::size_t station, const MessageInstruction& m);
+  void abort(std::size_t station, std::uint32_t block);
+  // SVC: services the channels in `channel_mask` of `station` now.
+  void service_now(std::size_t station, VirtualTime at, std::uint16_t channel_mask);
+  // A station finished a scan at `end`: its end-of-scan servicing is due then. For the leader this
+  // also runs the lockstep up to `end` (see the header comment).
+  void scanned(std::size_t station, VirtualTime end);
+
+ private:
+  struct Message {
+    std::uint64_t serial = 0;
+    MessageInstruction in;
+    int target_node = 0;
+    int elements = 0;
+    int words = 0;            // data words (elements x words per element)
+    int target_file = 0;
+    std::uint16_t type_code = 0;
+    int target_element = 0;
+    VirtualTime started = 0;  // the timer starts with the rung (1762-RM001C p. 21-12)
+    Nanoseconds timeout = 0;  // 0: no timer
+    bool sent = false;
+    std::vector<std::uint16_t> data;  // a write's data, buffered when the message enters a buffer
+  };
+  struct Channel {
+    std::vector<Message> buffers;  // at most kBuffersPerChannel (1 on the 5/02)
+    std::vector<Message> queue;    // at most kQueuePositions, FIFO
+  };
+  enum class FrameKind : std::uint8_t { Request, Ack, NoAck, Reply };
+  struct Frame {
+    FrameKind kind = FrameKind::Request;
+    std::size_t from = 0;        // the station that sent it
+    std::uint64_t serial = 0;    // the message it belongs to
+    bool write = false;
+    int file = 0;
+    std::uint16_t type_code = 0;
+    int element = 0;
+    int words = 0;
+    std::uint8_t error = 0;            // Reply: 0 or the MSG error code
+    std::vector<std::uint16_t> data;   // a write's data, a read's reply data
+  };
+  struct Station {
+    Runtime* rt = nullptr;
+    std::shared_ptr<Runtime> owned;  // shared_ptr: Runtime is incomplete here
+    int node = 0;
+    std::string name;
+    std::array<Channel, 2> channels;
+    std::map<std::pair<VirtualTime, std::uint64_t>, Frame> inbox;  // by (arrival, sequence)
+    std::optional<VirtualTime> service_due;
+  };
+
+  void service(std::size_t station, VirtualTime at, std::uint16_t channel_mask);
+  void run_lockstep(VirtualTime until);
+  void receive(std::size_t station, VirtualTime at, Frame& f);
+  void answer(std::size_t station, VirtualTime at, const Frame& request);
+  void finish(std::size_t station, Message& m, std::uint8_t error, std::uint16_t extra_bits = 0);
+  void send(std::size_t station, VirtualTime at, Message& m);
+  void post(std::size_t to, VirtualTime arrival, Frame f);
+  void enter_buffer(std::size_t station, Message& m);
+  Message* find(std::size_t station, std::uint64_t serial, int* channel = nullptr, bool* queued = nullptr);
+  void remove(std::size_t station, std::uint64_t serial);
+  std::uint16_t word(std::size_t station, std::uint32_t index) const;
+  void set_word(std::size_t station, std::uint32_t index, std::uint16_t value);
+  std::optional<std::size_t> station_at(int node) const;
+
+  MessageLink link_;
+  std::vector<Station> stations_;
+  std::uint64_t next_serial_ = 1;
+  std::uint64_t next_frame_ = 1;
+  bool driving_ = false;
+};
+
+}  // namespace softslc

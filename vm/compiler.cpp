@@ -468,9 +468,9 @@ class Compiler {
     // STI enable: S:2/1 "The default value is 1 (set)" (RM 11-12) when no DATA block gives S:2.
     const std::uint32_t s2 = layout_.status_word(status::kControl);
     if (!initialised_[s2]) init_[s2] = static_cast<std::uint16_t>(init_[s2] | status::kStiEnabled);
-    // The DII enable S:2/12 on the 5/03-5/05 (docs/semantics.md "I/O and discrete input interrupts") and the I/O interrupt enables S:27/S:28 (slots 1-30) on the 5/02 and later start
-    // set unless DATA gives them, as the STI enable does; the manual pages that would say were not
-    // reached.
+    // The DII enable S:2/12 on the 5/03-5/05 and the I/O interrupt enables S:27/S:28 (slots 1-30) on
+    // the 5/02 and later start set unless DATA gives them, as the STI enable does; the manual pages
+    // that would say were not reached (docs/semantics.md "I/O and discrete input interrupts").
     const bool modular_503 = proc_.family == ProcessorFamily::Slc503 || proc_.family == ProcessorFamily::Slc504 ||
                              proc_.family == ProcessorFamily::Slc505;
     if (!initialised_[s2] && modular_503) init_[s2] = static_cast<std::uint16_t>(init_[s2] | status::kDiiEnabled);

@@ -117,7 +117,9 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
   if (link != MessageLink::Dh485 && link != MessageLink::DhPlus)
     return "a MSG network needs SLC 5/02-5/04 processors (DH-485 or DH+); " + program_->processor.display_name +
            " is on " + std::string(to_string(link)) + ", which softslc does not simulate for MSG";
-  const auto [lo, hi] = message_node_range(link);
+  // Not a structured binding: clang 14 cannot capture one in the lambda below.
+  const auto range = message_node_range(link);
+  const int lo = range.first, hi = range.second;
   auto node_error = [&](const std::string& who, int node) -> std::string {
     if (node < lo || node > hi)
       return who + ": node " + std::to_string(node) + " is out of range " + std::to_string(lo) + "-" +

@@ -109,6 +109,10 @@ TEST(PeerTests, EthernetLoadErrorsNameTheLine) {
               HasSubstr("IP address 192.168.1.10 is already this controller's"));
   EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.10\npeer F b.slc ip 192.168.1.20\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("is on DH-485, this network is Ethernet"));
+  // The error points at the peer it is about, not at the first peer line.
+  EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.10\npeer F f.slc ip 192.168.1.20\npeer G f.slc node 4\n",
+                           "test \"t\"\n  scan 1\n"),
+              HasSubstr("t.test:4:6: error: the MSG network did not build"));
   EXPECT_THAT(run_line("program a.slc\npeer B b.slc ip 192.168.1.20\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("names stations by node number (node N), not IP address"));
   EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.300\n", "test \"t\"\n  scan 1\n"),

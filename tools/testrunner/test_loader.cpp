@@ -92,9 +92,16 @@ class Checker {
         for (const auto& p : tc.peers)
           if (p.name == entry.failed_peer)
             error(p.loc, "peer '" + p.name + "' did not load (its errors are listed above)");
-        if (entry.failed_peer == "*")
-          error(tc.peers.empty() ? tc.program_loc : tc.peers.front().loc,
-                "the MSG network did not build (its errors are listed above)");
+        if (entry.failed_peer == "*") {
+          // The network's error names the peer it is about ("peer SRV: ..."): point at that line.
+          Location where = tc.peers.empty() ? tc.program_loc : tc.peers.front().loc;
+          for (const auto& p : tc.peers)
+            if (entry.errors.find("error: peer " + p.name + ": ") != std::string::npos) {
+              where = p.loc;
+              break;
+            }
+          error(where, "the MSG network did not build (its errors are listed above)");
+        }
       } else if (entry.bench_failed)
         error(tc.bench_loc, "bench '" + tc.bench_path + "' did not load (its errors are listed above)");
       else

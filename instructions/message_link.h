@@ -2,16 +2,19 @@
 // processor is on which link, the node addresses a link has, its data rate, and the largest message.
 //
 // softslc simulates one link per network (vm/message_network.h): DH-485 (the SLC 5/02's only
-// channel, the SLC 5/03's channel 1) and DH+ (the SLC 5/04's channel 1). The SLC 5/05's channel 1
-// is Ethernet and every 5/03-5/05 channel 0 is the RS-232 port; MSG on those is refused by `check`
-// until they are simulated, so every MSG that loads runs on a link described here. Sources:
-// 1747-RM001G p. 12-14 (channels), p. 13-4 (DH-485 nodes), 1747-SG001 p. 64 (DH+ rates).
+// channel, the SLC 5/03's channel 1), DH+ (the SLC 5/04's channel 1) and Ethernet (the SLC 5/05's
+// channel 1, whose stations are named by IP address instead of a node number). Every 5/03-5/05
+// channel 0 is the RS-232 port; MSG on it is refused by `check`, so every MSG that loads runs on a
+// link described here. Sources: 1747-RM001G p. 12-14 (channels), p. 13-4 (DH-485 nodes), p. 12-34
+// table 12.14 and p. D-21 table D.5 (the 5/05's Ethernet block and message lengths), 1747-SG001
+// p. 64 (DH+ rates).
 #pragma once
 
 #include <string_view>
 #include <utility>
 
 #include "instructions/processor.h"
+#include "parser/address.h"
 
 namespace softslc {
 
@@ -46,20 +49,52 @@ constexpr MessageLink network_link(ProcessorFamily family) {
 
 // The node addresses a MSG may name on a link. DH-485: "The node address range for all responders
 // is 1 to 31" and an SLC processor never has node 0 (RM 13-4). DH+: 0-77 octal (64 stations).
+// Ethernet has no node numbers: the target is the IP address string in the control block (RM 12-34).
 constexpr std::pair<int, int> message_node_range(MessageLink link) {
   return link == MessageLink::Dh485 ? std::pair{1, 31} : std::pair{0, 63};
 }
 
 // The link's data rate in bits per second and bits sent per byte: DH-485 19,200 baud with 11-bit
 // characters (start, 8 data, parity, stop); DH+ 57,600 baud, 8 bits a byte (1747-SG001 p. 64: 57.6K
-// the default). The default rates, not the channel configuration (not simulated).
-constexpr int message_link_baud(MessageLink link) { return link == MessageLink::Dh485 ? 19200 : 57600; }
+// the default); Ethernet 10 Mbit/s (10BASE-T, the rate every SLC 5/05 series has; [U]). The default
+// rates, not the channel configuration (not simulated).
+constexpr int message_link_baud(MessageLink link) {
+  switch (link) {
+    case MessageLink::Dh485: return 19200;
+    case MessageLink::Ethernet: return 10'000'000;
+    default: return 57600;
+  }
+}
 constexpr int message_link_bits_per_byte(MessageLink link) { return link == MessageLink::Dh485 ? 11 : 8; }
+
+// The bytes a frame carries besides its data (EST). DH-485 and DH+: 16, the link framing and the PCCC
+// header of a typed read or write. Ethernet: 106, the Ethernet II frame with preamble and FCS (26),
+// IPv4 (20) and TCP (20) headers, the 24-byte encapsulation header and the same 16 PCCC bytes.
+constexpr int message_frame_overhead_bytes(MessageLink link) { return link == MessageLink::Ethernet ? 106 : 16; }
 
 // The most data words one MSG carries on DH-485 and DH+: 103 one-word elements, 51 two-word, 34
 // three-word (1762-RM001C p. 21-12, the MicroLogix table of the same message types; the SLC table,
 // 1747-RM001G appendix D, was not reachable: docs/semantics.md "MSG").
 inline constexpr int kMessageMaxWords = 103;
+
+// The SLC 5/05's channel 1 (Ethernet) control block: 51 words (RM 12-34 table 12.14); word 35's low
+// byte is the Ethernet message type (0 not MultiHop, 10h and 11h MultiHop), word 12 bit 15 AO.
+inline constexpr int kEthernetMessageBlockWords = 51;
+inline constexpr int kEthernetMessageTypeWord = 35;
+inline constexpr int kMessageAoWord = 12;
+
+// The most elements one MSG carries on the SLC 5/05's Ethernet channel, by the local file's type: RM
+// p. D-21 table D.5 "SLC 5/05 Message Lengths" (an Ethernet buffer of 2108 bytes), the 485CIF and
+// 500CPU column: 256 of O, I, B, T, C, R, N, F, A; 83 of S; 25 of ST (24 for a 500CPU write). The
+// PLC5 columns differ for T (208 elements when the target file is a timer file) and ST (11).
+constexpr int ethernet_max_elements(FileType local, bool plc5, bool write) {
+  switch (local) {
+    case FileType::Status: return 83;
+    case FileType::String: return plc5 ? 11 : write ? 24 : 25;
+    case FileType::Timer: return plc5 ? 208 : 256;
+    default: return 256;
+  }
+}
 
 constexpr std::string_view to_string(MessageLink link) {
   switch (link) {

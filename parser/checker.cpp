@@ -681,6 +681,29 @@ class Checker {
                         op.spelling + "'");
   }
 
+  // The Ethernet block's setup that a DATA block gives it (RM 12-34 table 12.14): word 35 = 10h or 11h is a
+  // MultiHop message and AO (word 12 bit 15) with PLC5 logical ASCII addressing; softslc simulates neither,
+  // so they are refused here rather than left to end the message with 17h at run time.
+  void check_ethernet_block_data(const Operand& block, bool plc5) {
+    for (const DataBlock& d : program_.data) {
+      if (d.type != FileType::Integer || d.file != block.address.file) continue;
+      auto value = [&](int word) -> std::optional<std::int64_t> {
+        const int i = block.address.element + word - d.start_element;
+        if (i < 0 || static_cast<std::size_t>(i) >= d.words.size()) return std::nullopt;
+        return d.words[static_cast<std::size_t>(i)];
+      };
+      if (auto type = value(kEthernetMessageTypeWord); type && ((*type & 0xFF) == 0x10 || (*type & 0xFF) == 0x11))
+        error(block.pos, "MSG control block " + block.spelling + ": word 35 (set by the DATA block at line " +
+                             std::to_string(d.pos.line) + ") makes it a MultiHop message (1747-RM001G p. 12-34 "
+                             "table 12.14), which softslc does not simulate; the simulated Ethernet is one network "
+                             "of SLC 5/05s reached by IP address (word 35 = 0)");
+      if (auto ao = value(kMessageAoWord); plc5 && ao && (*ao & 0x8000))
+        error(block.pos, "MSG control block " + block.spelling + ": AO (word 12 bit 15, set by the DATA block at line " +
+                             std::to_string(d.pos.line) + ") selects PLC5 logical ASCII addressing (1747-10.4 p. 4-3), "
+                             "which softslc does not simulate");
+    }
+  }
+
   // MSG (1747-RM001G ch. 12, ch. 13; docs/semantics.md "MSG"): what the processor's channel can send,
   // the target node's range on its link, a control block and a data table range inside their files,
   // the target address, and one control block per MSG.
@@ -695,7 +718,6 @@ class Checker {
     const Operand& size = ops[slc502 ? 5 : 7];
     const Operand& node = ops[slc502 ? 6 : 8];
     const Operand& target = ops[slc502 ? 7 : 9];
-    (void)command;
     if (!slc502 && ops[2].kind == Operand::Kind::Symbol && ops[2].symbol == "REMOTE")
       return error(ops[2].pos, "MSG REMOTE (a message through a bridge to another link, 1747-RM001G p. 15-2) is not "
                                "simulated by softslc; the simulated network is one link: use LOCAL");
@@ -706,28 +728,44 @@ class Checker {
       return error(ops[5].pos, "MSG on channel 0 (the RS-232 port: DF1, DH-485 through an isolator, Modbus RTU or "
                                "ASCII, 1747-RM001G p. 12-14) is not simulated by softslc; channel 1 is the " +
                                    std::string(proc.display_name) + "'s network port");
-    if (link == MessageLink::Ethernet)
-      return error(ops[5].pos, "MSG on the SLC 5/05's channel 1 (Ethernet: a 51-word control block with the target's IP "
-                               "address, 1747-RM001G p. 12-34) is not simulated by softslc yet; DH-485 (SLC 5/02, "
-                               "5/03) and DH+ (SLC 5/04) are");
+    const bool ethernet = link == MessageLink::Ethernet;
     const std::string dev = device.kind == Operand::Kind::Symbol ? device.symbol : "";
     if (dev == "PLC5" && link == MessageLink::Dh485)
       return error(device.pos, "MSG PLC5 on DH-485: a PLC-5 is on DH+ or Ethernet; the " + proc.display_name +
                                    "'s DH-485 channel sends 500CPU and 485CIF messages (docs/semantics.md \"MSG\")");
+    // The control block: 7 words (SLC 5/02), 14 (DH-485, DH+) or 51 (the SLC 5/05's Ethernet channel, RM
+    // 12-34 table 12.14) of one N file.
+    const int blen = static_cast<int>(block_length.integer);
+    const int expected = slc502 ? 7 : ethernet ? kEthernetMessageBlockWords : 14;
+    if (block_length.kind == Operand::Kind::Integer && blen != expected) {
+      if (ethernet && blen == 93)
+        return error(block_length.pos, "the 93-word MSG control block is the SLC 5/05's logical ASCII addressing "
+                                       "form (AO=1, PLC5 only, 1747-RM001G p. 12-36 table 12.16), which softslc does "
+                                       "not simulate; use the 51-word block of table 12.14");
+      return error(block_length.pos,
+                   "MSG on " + std::string(to_string(link)) + " (channel " + std::to_string(channel) + " of the " +
+                       proc.display_name + ") takes a " + std::to_string(expected) + "-word control block, not " +
+                       block_length.spelling +
+                       (ethernet ? " (1747-RM001G p. 12-34 table 12.14)"
+                                 : blen == kEthernetMessageBlockWords ? " (51 words is the SLC 5/05's Ethernet block)"
+                                                                    : " (1747-RM001G p. 12-31)"));
+    }
     if (node.kind == Operand::Kind::Integer) {
       const auto [lo, hi] = message_node_range(link);
-      if (node.integer < lo || node.integer > hi)
+      if (ethernet && node.integer != 0)
+        error(node.pos, "MSG on Ethernet has no target node: the target is the IP address string in words 14-34 of "
+                        "the control block (1747-RM001G p. 12-34 table 12.14); write 0 for the node");
+      else if (!ethernet && (node.integer < lo || node.integer > hi))
         error(node.pos, "MSG target node " + node.spelling + " is out of range " + std::to_string(lo) + "-" +
                             std::to_string(hi) + " for " + std::string(to_string(link)) +
                             (link == MessageLink::Dh485 ? " (1747-RM001G p. 13-4: responders 1-31; node 0 is a "
                                                           "programming device)"
                                                         : " (DH+ node addresses 0-77 octal)"));
     }
-    // The control block: 7 or 14 words of one N file.
-    const int blen = static_cast<int>(block_length.integer);
     if (block.is_address() && block.address.element + blen > 256)
       error(block.pos, "the " + std::to_string(blen) + "-word MSG control block starting at " + block.spelling +
-                           " does not fit its file (it would end past element 255; 1747-RM001G p. 12-31)");
+                           " does not fit its file (it would end past element 255; 1747-RM001G p. " +
+                           (ethernet ? "12-34)" : "12-31)"));
     if (block.is_address()) {
       const int first = block.address.element, last = block.address.element + blen - 1;
       for (const auto& [file, other_first, other_last, pos] : message_blocks_)
@@ -738,6 +776,7 @@ class Checker {
           break;
         }
       message_blocks_.push_back({block.address.file, first, last, block.pos});
+      if (ethernet) check_ethernet_block_data(block, dev == "PLC5");
     }
     // The data: `size` elements of the local file, inside the file and one message.
     if (data.is_address() && size.kind == Operand::Kind::Integer) {
@@ -745,7 +784,14 @@ class Checker {
       if (data.address.element + size.integer > 256)
         error(size.pos, "MSG of " + size.spelling + " element(s) from " + data.spelling +
                             " runs past the end of the file (element 255)");
-      else if (size.integer * wpe > kMessageMaxWords)
+      else if (ethernet) {
+        const int most = ethernet_max_elements(data.address.type, dev == "PLC5", command.kind == Operand::Kind::Symbol &&
+                                                                                   command.symbol == "WRITE");
+        if (size.integer > most)
+          error(size.pos, "MSG of " + size.spelling + " " + std::string(file_letter(data.address.type)) +
+                              " element(s): one message on the SLC 5/05's Ethernet channel carries at most " +
+                              std::to_string(most) + " (1747-RM001G p. D-21 table D.5)");
+      } else if (size.integer * wpe > kMessageMaxWords)
         error(size.pos, "MSG of " + size.spelling + " " + std::string(file_letter(data.address.type)) +
                             " element(s) is " + std::to_string(size.integer * wpe) + " words; one message carries at "
                             "most " + std::to_string(kMessageMaxWords) + " (docs/semantics.md \"MSG\")");

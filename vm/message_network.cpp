@@ -36,19 +36,45 @@ std::optional<FileType> message_file_type(std::uint16_t code) {
   return std::nullopt;
 }
 
+std::optional<std::uint32_t> parse_ipv4(std::string_view text) {
+  std::uint32_t ip = 0;
+  int parts = 0;
+  std::size_t i = 0;
+  while (parts < 4) {
+    int value = 0, digits = 0;
+    while (i < text.size() && text[i] >= '0' && text[i] <= '9' && digits < 3) value = value * 10 + (text[i++] - '0'), ++digits;
+    if (digits == 0 || value > 255) return std::nullopt;
+    ip = (ip << 8) | static_cast<std::uint32_t>(value);
+    if (++parts < 4) {
+      if (i >= text.size() || text[i] != '.') return std::nullopt;
+      ++i;
+    }
+  }
+  if (i != text.size()) return std::nullopt;
+  return ip;
+}
+
+std::string format_ipv4(std::uint32_t ip) {
+  return std::to_string(ip >> 24) + "." + std::to_string((ip >> 16) & 0xFF) + "." + std::to_string((ip >> 8) & 0xFF) +
+         "." + std::to_string(ip & 0xFF);
+}
+
 Nanoseconds message_frame_time(MessageLink link, int data_bytes) {
-  const std::int64_t bits = static_cast<std::int64_t>(msg::kFrameOverheadBytes + data_bytes) * message_link_bits_per_byte(link);
+  const std::int64_t bits =
+      static_cast<std::int64_t>(message_frame_overhead_bytes(link) + data_bytes) * message_link_bits_per_byte(link);
   const std::int64_t baud = message_link_baud(link);
   return (bits * kNsPerS + baud - 1) / baud;  // rounded up: a frame never takes zero time
 }
 
 MessageNetwork::~MessageNetwork() = default;
 
-std::size_t MessageNetwork::attach(Runtime& rt, int node, std::string name, std::unique_ptr<Runtime> owned) {
+std::size_t MessageNetwork::attach(Runtime& rt, int node, std::string name, std::unique_ptr<Runtime> owned,
+                                   std::uint32_t ip) {
   Station s;
   s.rt = &rt;
   s.owned = std::move(owned);
   s.node = node;
+  s.ip = ip;
   s.name = std::move(name);
   stations_.push_back(std::move(s));
   return stations_.size() - 1;
@@ -67,6 +93,12 @@ void MessageNetwork::set_word(std::size_t station, std::uint32_t index, std::uin
 std::optional<std::size_t> MessageNetwork::station_at(int node) const {
   for (std::size_t i = 0; i < stations_.size(); ++i)
     if (stations_[i].node == node) return i;
+  return std::nullopt;
+}
+
+std::optional<std::size_t> MessageNetwork::station_at_ip(std::uint32_t ip) const {
+  for (std::size_t i = 0; i < stations_.size(); ++i)
+    if (stations_[i].ip == ip) return i;
   return std::nullopt;
 }
 
@@ -133,9 +165,14 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
   } else {
     const FileLayout& f = layout.files[static_cast<std::size_t>(file)];
     m.words = m.elements * f.words_per_element;
-    if (m.type_code != message_file_type_code(f.type) || m.elements < 1 || m.words > kMessageMaxWords ||
+    const bool too_many = link_ == MessageLink::Ethernet
+                              ? m.elements > ethernet_max_elements(f.type, in.device == 2, in.write)
+                              : m.words > kMessageMaxWords;
+    if (m.type_code != message_file_type_code(f.type) || m.elements < 1 || too_many ||
         in.data + static_cast<std::uint32_t>(m.words) > f.end())
       error = msg::kBadParameters;
+    else if (link_ == MessageLink::Ethernet)
+      error = check_ethernet_block(station, in, m);
     else if (m.target_node > message_node_range(link_).second)
       error = msg::kNodeTooHigh;
   }
@@ -162,6 +199,31 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
     if (!in.slc502)
       set_word(station, in.block + 7, static_cast<std::uint16_t>(word(station, in.block + 7) | msg::kWQ));
   }
+}
+
+// The Ethernet part of the block (RM 12-34 table 12.14): the message type, AO, this station's own
+// address and the target's IP address string; the data length in bytes goes into word 11 (RM D-21).
+std::uint8_t MessageNetwork::check_ethernet_block(std::size_t station, const MessageInstruction& in, Message& m) {
+  const std::uint8_t type = word(station, in.block + msg::kEthernetTypeWord) & 0xFF;
+  if (type == 0x10 || type == 0x11) return msg::kServiceUnsupported;  // MultiHop: not simulated
+  if (type != 0) return msg::kBadParameters;
+  // AO "has no meaning for 485CIF and 500CPU types of reads and writes" (1747-10.4 p. 4-3); with PLC5 it
+  // selects logical ASCII addressing, the 93-word block, which softslc does not simulate.
+  if (in.device == 2 && (word(station, in.block + msg::kAoWord) & msg::kAO)) return msg::kServiceUnsupported;
+  if (stations_[station].ip == 0) return msg::kNoIpConfigured;
+  std::string text;
+  bool terminated = false;
+  for (int i = 0; i < msg::kIpBytes && !terminated; ++i) {
+    const std::uint16_t w = word(station, in.block + msg::kIpWord + static_cast<std::uint32_t>(i / 2));
+    const char c = static_cast<char>(i % 2 == 0 ? w >> 8 : w & 0xFF);  // the first character in the high byte
+    if (c == '\0') terminated = true;
+    else text += c;
+  }
+  const std::optional<std::uint32_t> ip = terminated ? parse_ipv4(text) : std::nullopt;
+  if (!ip) return msg::kBadIpAddress;
+  m.target_ip = *ip;
+  set_word(station, in.block + msg::kByteCountWord, static_cast<std::uint16_t>(2 * m.words));
+  return 0;
 }
 
 void MessageNetwork::enter_buffer(std::size_t station, Message& m) {
@@ -197,6 +259,7 @@ void MessageNetwork::finish(std::size_t station, Message& m, std::uint8_t error,
   // and goes out again at this servicing point, its timer restarted (SLC 5/03-5/05).
   if (!error && !m.in.slc502 && (w0 & msg::kCO)) {
     m.sent = false;
+    m.acked.reset();
     m.data.clear();
     if (m.in.write) enter_buffer(station, m);
     return;
@@ -213,13 +276,17 @@ void MessageNetwork::post(std::size_t to, VirtualTime arrival, Frame f) {
 void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
   m.sent = true;
   const Nanoseconds d = message_frame_time(link_, m.in.write ? 2 * m.words : 0);
-  const std::optional<std::size_t> target = station_at(m.target_node);
+  const bool ethernet = link_ == MessageLink::Ethernet;
+  const std::optional<std::size_t> target = ethernet ? station_at_ip(m.target_ip) : station_at(m.target_node);
   if (!target) {
-    // No station acknowledges: the link gives up after the frame's time (EST: retries not modelled).
+    // No station acknowledges: on DH-485 and DH+ the link gives up after the frame's time (EST: retries
+    // not modelled); on Ethernet the connection is not completed before the channel's MSG Connection
+    // Timeout (15 s, 1747-UM011G p. 242): D5H, unless the message timer ends it first (37h).
     Frame f;
     f.kind = FrameKind::NoAck;
     f.serial = m.serial;
-    post(station, at + d, std::move(f));
+    f.error = ethernet ? msg::kConnectionTimeout : msg::kNoResponse;
+    post(station, ethernet ? at + msg::kConnectionTimeoutNs : at + d, std::move(f));
     return;
   }
   Frame req;
@@ -282,8 +349,9 @@ void MessageNetwork::receive(std::size_t station, VirtualTime at, Frame& f) {
     case FrameKind::Ack:
       set_word(station, m->in.block,
                static_cast<std::uint16_t>((word(station, m->in.block) | msg::kST) & ~msg::kEW));
+      m->acked = at;
       break;
-    case FrameKind::NoAck: finish(station, *m, msg::kNoResponse); break;
+    case FrameKind::NoAck: finish(station, *m, f.error); break;
     case FrameKind::Reply:
       if (f.error == 0 && !m->in.write)
         for (std::size_t i = 0; i < f.data.size(); ++i)
@@ -307,16 +375,21 @@ void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t 
   Channel& ch = st.channels[static_cast<std::size_t>(channel)];
   // 2. Message timers (SLC 5/03-5/05): ER, TO and 37h once the timeout has passed since the rung went
   // true; the accumulator (word 10) shows the whole seconds so far (docs/semantics.md "MSG").
-  std::vector<std::uint64_t> expired;
+  std::vector<std::uint64_t> expired, late;
   for (auto* list : {&ch.buffers, &ch.queue})
     for (Message& m : *list) {
       if (m.in.slc502) continue;
       const Nanoseconds elapsed = at - m.started;
       set_word(station, m.in.block + 10, static_cast<std::uint16_t>(std::min<Nanoseconds>(elapsed / kNsPerS, 32767)));
       if (m.timeout > 0 && elapsed >= m.timeout) expired.push_back(m.serial);
+      else if (link_ == MessageLink::Ethernet && m.acked && at - *m.acked >= msg::kReplyTimeoutNs)
+        late.push_back(m.serial);
     }
   for (std::uint64_t serial : expired)
     if (Message* m = find(station, serial)) finish(station, *m, msg::kTimedOut, msg::kTO);
+  // Ethernet: acknowledged, but no reply within the channel's MSG Reply Timeout (1747-UM011G p. 242).
+  for (std::uint64_t serial : late)
+    if (Message* m = find(station, serial)) finish(station, *m, msg::kReplyTimeout);
   // 3. The queue into free buffers, first in first out (RM 12-41: "at end of scan or SVC").
   const std::size_t buffers = ch.queue.empty() || !ch.queue.front().in.slc502 ? msg::kBuffersPerChannel : 1;
   while (!ch.queue.empty() && ch.buffers.size() < buffers) {

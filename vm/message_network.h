@@ -1,7 +1,8 @@
 // The MSG network: SLC controllers that message each other on one simulated link, in one virtual time.
 //
 // A MessageNetwork joins several Runtimes (stations), each with its node address, on one link
-// (DH-485 or DH+, instructions/message_link.h). It keeps, per station and channel, what the
+// (DH-485, DH+ or Ethernet, instructions/message_link.h; on Ethernet a station is named by its IP
+// address and a message by the IP address string in its 51-word control block, RM 12-34). It keeps, per station and channel, what the
 // processor keeps for MSG (1747-RM001G ch. 12): four message buffers and a 10-position overflow
 // queue on the SLC 5/03-5/05 (one buffer on the 5/02), the message timers, and the frames in
 // flight. The MSG instruction's state is its control block in the data table; the interpreter
@@ -32,6 +33,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "instructions/message_link.h"
@@ -67,11 +69,42 @@ inline constexpr std::uint8_t kTimedOut = 0x37;          // "Message timed out i
 inline constexpr std::uint8_t kAddressUnusable = 0xE6;   // "Illegal Address, address does not exist"
 inline constexpr std::uint8_t kPastEnd = 0xEA;           // "transaction size plus word address is too large"
 inline constexpr std::uint8_t kIllegalFileType = 0xF1;   // "illegal target file type"
+inline constexpr std::uint8_t kServiceUnsupported = 0x17;  // "Local service is not supported": softslc's code for
+                                                           // what it does not simulate (MultiHop, AO=1)
+// The Ethernet codes as 1762-RM001C lists them (D7H-DAH on p. 21-22; D0H-D6H on p. 21-21, which could not be
+// reached: their texts are [U], docs/semantics.md "MSG on Ethernet").
+inline constexpr std::uint8_t kNoIpConfigured = 0xD0;    // "No IP address configured for the network" [U]
+inline constexpr std::uint8_t kBadIpAddress = 0xD2;      // "Invalid internet address or host name" [U]
+inline constexpr std::uint8_t kConnectionTimeout = 0xD5;  // "Connection not completed before user-specified timeout" [U]
+inline constexpr std::uint8_t kReplyTimeout = 0xD9;      // "Reply not received before user-specified timeout."
 
 inline constexpr int kBuffersPerChannel = 4;  // RM 12-5: "up to four message instructions per channel"
 inline constexpr int kQueuePositions = 10;    // RM 12-41: "Each channel has its own 10-position MSG queue"
-inline constexpr int kFrameOverheadBytes = 16;  // EST: link framing + PCCC header of a typed read/write
+
+// The SLC 5/05's channel 1 (Ethernet) block, RM 12-34 table 12.14: word 11 the data length in bytes (the
+// processor writes it at run time, RM D-21), word 12 bit 15 AO (logical ASCII addressing, PLC5 only,
+// 1747-10.4 p. 4-3), words 14-34 the target's IP address as a NULL-terminated ASCII string of up to 42
+// bytes, the first character in the high byte of word 14, word 35's low byte the Ethernet message type
+// (0 not MultiHop; 10h, 11h MultiHop).
+inline constexpr std::uint32_t kByteCountWord = 11;
+inline constexpr std::uint32_t kAoWord = kMessageAoWord;
+inline constexpr std::uint16_t kAO = 1u << 15;
+inline constexpr std::uint32_t kIpWord = 14;
+inline constexpr int kIpBytes = 42;
+inline constexpr std::uint32_t kEthernetTypeWord = kEthernetMessageTypeWord;
+// The channel's MSG Connection Timeout: 15,000 ms by default (1747-UM011G p. 242; the channel
+// configuration is not simulated). A message to an IP address no station has fails when it expires.
+inline constexpr Nanoseconds kConnectionTimeoutNs = 15 * kNsPerS;
+// The channel's MSG Reply Timeout, "the amount of time (in ms) that the SLC 5/05 will wait for a reply to a
+// command that it has initiated via a MSG instruction": 3,000 ms by default (1747-UM011G p. 242).
+inline constexpr Nanoseconds kReplyTimeoutNs = 3 * kNsPerS;
 }  // namespace msg
+
+// An IPv4 address written A.B.C.D (each 0-255 in decimal, leading zeros allowed: the manual's own
+// example is 423.156.78.012, RM 12-34), as a 32-bit number with A in the high byte; nullopt when the
+// text is not one. format_ipv4 writes it back without leading zeros.
+std::optional<std::uint32_t> parse_ipv4(std::string_view text);
+std::string format_ipv4(std::uint32_t ip);
 
 // The common interface file a 485CIF message reaches: N9 of an SLC (docs/semantics.md "MSG").
 inline constexpr int kCommonInterfaceFile = 9;
@@ -108,13 +141,16 @@ class MessageNetwork {
 
   // Adds a station. The first one added is the leader. `owned`, when given, is kept alive by the
   // network (the peers a leader's RuntimeOptions named). Returns the station's index.
-  std::size_t attach(Runtime& rt, int node, std::string name, std::unique_ptr<Runtime> owned = nullptr);
+  // `ip` is the station's IP address on Ethernet (0: none configured, the processor's default).
+  std::size_t attach(Runtime& rt, int node, std::string name, std::unique_ptr<Runtime> owned = nullptr,
+                     std::uint32_t ip = 0);
 
   MessageLink link() const { return link_; }
   std::size_t size() const { return stations_.size(); }
   Runtime& runtime(std::size_t station) const { return *stations_[station].rt; }
   const std::string& name(std::size_t station) const { return stations_[station].name; }
   int node(std::size_t station) const { return stations_[station].node; }
+  std::uint32_t ip(std::size_t station) const { return stations_[station].ip; }
 
   // The interpreter's calls (through the Runtime): a MSG rung starts a message; a MSG's TO bit
   // aborts the one in progress.
@@ -131,6 +167,7 @@ class MessageNetwork {
     std::uint64_t serial = 0;
     MessageInstruction in;
     int target_node = 0;
+    std::uint32_t target_ip = 0;  // Ethernet: the address the block's string names
     int elements = 0;
     int words = 0;            // data words (elements x words per element)
     int target_file = 0;
@@ -139,6 +176,7 @@ class MessageNetwork {
     VirtualTime started = 0;  // the timer starts with the rung (1762-RM001C p. 21-12)
     Nanoseconds timeout = 0;  // 0: no timer
     bool sent = false;
+    std::optional<VirtualTime> acked;  // Ethernet: when the target acknowledged (the reply timeout runs from there)
     std::vector<std::uint16_t> data;  // a write's data, buffered when the message enters a buffer
   };
   struct Channel {
@@ -155,13 +193,14 @@ class MessageNetwork {
     std::uint16_t type_code = 0;
     int element = 0;
     int words = 0;
-    std::uint8_t error = 0;            // Reply: 0 or the MSG error code
+    std::uint8_t error = 0;            // Reply, NoAck: 0 or the MSG error code
     std::vector<std::uint16_t> data;   // a write's data, a read's reply data
   };
   struct Station {
     Runtime* rt = nullptr;
     std::shared_ptr<Runtime> owned;  // shared_ptr: Runtime is incomplete here
     int node = 0;
+    std::uint32_t ip = 0;
     std::string name;
     std::array<Channel, 2> channels;
     std::map<std::pair<VirtualTime, std::uint64_t>, Frame> inbox;  // by (arrival, sequence)
@@ -181,6 +220,8 @@ class MessageNetwork {
   std::uint16_t word(std::size_t station, std::uint32_t index) const;
   void set_word(std::size_t station, std::uint32_t index, std::uint16_t value);
   std::optional<std::size_t> station_at(int node) const;
+  std::optional<std::size_t> station_at_ip(std::uint32_t ip) const;
+  std::uint8_t check_ethernet_block(std::size_t station, const MessageInstruction& in, Message& m);
 
   MessageLink link_;
   std::vector<Station> stations_;

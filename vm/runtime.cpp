@@ -110,43 +110,61 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   return r;
 }
 
-// The MSG network of a leader and its peers (docs/semantics.md "MSG"): one link, every node unique
-// and in the link's range, every peer a processor on that link.
+// The MSG network of a leader and its peers (docs/semantics.md "MSG"): one link, every peer a
+// processor on that link; on DH-485 and DH+ every node unique and in the link's range, on Ethernet
+// every IP address given and unique.
 std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
   const MessageLink link = network_link(program_->processor.family);
-  if (link != MessageLink::Dh485 && link != MessageLink::DhPlus)
-    return "a MSG network needs SLC 5/02-5/04 processors (DH-485 or DH+); " + program_->processor.display_name +
-           " is on " + std::string(to_string(link)) + ", which softslc does not simulate for MSG";
+  if (link == MessageLink::None)
+    return "a MSG network needs SLC 5/02-5/05 processors (DH-485, DH+ or Ethernet); " +
+           program_->processor.display_name + " has none that softslc simulates for MSG";
+  const bool ethernet = link == MessageLink::Ethernet;
   // Not a structured binding: clang 14 cannot capture one in the lambda below.
   const auto range = message_node_range(link);
   const int lo = range.first, hi = range.second;
   auto node_error = [&](const std::string& who, int node) -> std::string {
-    if (node < lo || node > hi)
+    if (!ethernet && (node < lo || node > hi))
       return who + ": node " + std::to_string(node) + " is out of range " + std::to_string(lo) + "-" +
              std::to_string(hi) + " on " + std::string(to_string(link));
     return {};
   };
   if (auto e = node_error("this controller", node_); !e.empty()) return e;
+  if (!ethernet && ip_ != 0)
+    return "this controller is on " + std::string(to_string(link)) + ", which names stations by node number: "
+           "an IP address is for an SLC 5/05 on Ethernet";
   auto net = std::make_unique<MessageNetwork>(link);
-  net->attach(*this, node_, "");
+  net->attach(*this, node_, "", nullptr, ip_);
   for (const PeerController& p : peers) {
     if (!p.program) return "peer " + p.name + ": no program";
     RuntimeOptions po = p.options ? *p.options : RuntimeOptions{};
     po.peers.clear();
     po.node = p.node;
+    po.ip = p.ip;
     RuntimeResult pr = Runtime::create(*p.program, std::move(po));
     if (!pr.ok()) return "peer " + p.name + ": " + pr.render_errors();
     const MessageLink plink = network_link(pr.runtime->program_->processor.family);
     if (plink != link)
       return "peer " + p.name + ": its " + pr.runtime->program_->processor.display_name + " is on " +
              std::string(to_string(plink)) + ", this network is " + std::string(to_string(link));
-    if (auto e = node_error("peer " + p.name, p.node); !e.empty()) return e;
-    for (std::size_t i = 0; i < net->size(); ++i)
-      if (net->node(i) == p.node)
-        return "peer " + p.name + ": node " + std::to_string(p.node) + " is already " +
-               (i == 0 ? std::string("this controller's") : "peer " + net->name(i) + "'s");
+    if (ethernet) {
+      if (p.ip == 0)
+        return "peer " + p.name + ": an SLC 5/05 on Ethernet is named by its IP address (ip A.B.C.D), not a node";
+      for (std::size_t i = 0; i < net->size(); ++i)
+        if (net->ip(i) == p.ip)
+          return "peer " + p.name + ": IP address " + format_ipv4(p.ip) + " is already " +
+                 (i == 0 ? std::string("this controller's") : "peer " + net->name(i) + "'s");
+    } else {
+      if (p.ip != 0)
+        return "peer " + p.name + ": this network is " + std::string(to_string(link)) +
+               ", which names stations by node number (node N), not IP address";
+      if (auto e = node_error("peer " + p.name, p.node); !e.empty()) return e;
+      for (std::size_t i = 0; i < net->size(); ++i)
+        if (net->node(i) == p.node)
+          return "peer " + p.name + ": node " + std::to_string(p.node) + " is already " +
+                 (i == 0 ? std::string("this controller's") : "peer " + net->name(i) + "'s");
+    }
     Runtime& peer = *pr.runtime;
-    const std::size_t station = net->attach(peer, p.node, p.name, std::move(pr.runtime));
+    const std::size_t station = net->attach(peer, p.node, p.name, std::move(pr.runtime), p.ip);
     peer.network_ = net.get();
     peer.station_ = station;
   }
@@ -175,7 +193,7 @@ MessageNetwork& Runtime::network() {
   // nobody (07h), as on a link with no other station.
   if (!network_) {
     own_network_ = std::make_unique<MessageNetwork>(network_link(program_->processor.family));
-    station_ = own_network_->attach(*this, node_, "");
+    station_ = own_network_->attach(*this, node_, "", nullptr, ip_);
     network_ = own_network_.get();
   }
   return *network_;
@@ -191,7 +209,8 @@ Runtime::Runtime(std::unique_ptr<CompiledProgram> program, RuntimeOptions option
     : program_(std::move(program)),
       model_(options.time_model ? options.time_model : make_scan_time_model(program_->processor)),
       data_(program_->layout, program_->initial_words),
-      node_(options.node) {
+      node_(options.node),
+      ip_(options.ip) {
   const DataTableLayout& L = *program_->layout;
   // Modules: a specialty module from the factory, else generic discrete I/O, for every slot.
   for (const auto& s : program_->slots) {

@@ -71,6 +71,9 @@ struct RuntimeOptions {
   // on it. With peers, the runtime created is the network's leader: it owns the peers, drives them in
   // lockstep with its own scans, and passes its mode changes on to them.
   int node = 1;
+  // On Ethernet (SLC 5/05 channel 1) the controller is named by its IP address instead (A.B.C.D as a
+  // number, A in the high byte; 0: none configured, the processor's default, so its MSGs end with D0h).
+  std::uint32_t ip = 0;
   std::vector<PeerController> peers;
 };
 
@@ -79,6 +82,7 @@ struct RuntimeOptions {
 struct PeerController {
   std::string name;
   int node = 2;
+  std::uint32_t ip = 0;  // on Ethernet, instead of the node
   std::shared_ptr<const Program> program;
   std::shared_ptr<const RuntimeOptions> options;
 };
@@ -196,6 +200,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // This controller's node, and the peer named `name` on its network (nullptr when there is none).
   // A peer's data may be read and written at any time; its scans are driven by the leader.
   int node() const { return node_; }
+  std::uint32_t ip() const { return ip_; }
   Runtime* peer(std::string_view name) const;
   std::vector<std::string> peer_names() const;
 
@@ -280,6 +285,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   MessageNetwork* network_ = nullptr;
   std::size_t station_ = 0;
   int node_ = 1;
+  std::uint32_t ip_ = 0;
 
   Mode mode_ = Mode::Program;
   bool first_pass_ = false;

@@ -61,13 +61,70 @@ TEST(PeerTests, LoadErrorsNameTheLine) {
   EXPECT_THAT(run_line("program a.slc\npeer B b.slc node 2\npeer B b.slc node 3\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("t.test:3:6: error: peer 'B' is already defined at line 2"));
   EXPECT_THAT(run_line("program a.slc\n", "test \"t\"\n  peer B b.slc node 2\n  scan 1\n"),
-              HasSubstr("'node' and 'peer' lines belong at the top of the file"));
+              HasSubstr("'node', 'ip' and 'peer' lines belong at the top of the file"));
   EXPECT_THAT(run_line("program a.slc\npeer B b.slc\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("incomplete 'peer' line: write peer NAME FILE.slc node N"));
   EXPECT_THAT(run_line("program a.slc\npeer B b.slc node 2\n", "test \"t\"\n  force B.I:1/0 = 1\n"),
               HasSubstr("cannot be forced from a test yet"));
   EXPECT_THAT(run_line("program a.slc\npeer B nothing.slc node 2\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("peer 'B' did not load"));
+}
+
+// Two SLC 5/05s on Ethernet: E reads F's N7:0 into N10:0; the block's IP address string (words 14-20 of
+// the 51-word block, the first character in the high byte, 1747-RM001G p. 12-34 table 12.14) names
+// 192.168.1.20 = 3139h 322Eh 3136h 382Eh 312Eh 3230h 0.
+constexpr const char* kE =
+    "START 1747-L552\nLADDER 2 MAIN\n"
+    "SOR XIO N9:0/15 MSG READ 500CPU LOCAL N9:0 51 1 N10:0 1 0 N7:0 5 EOR\n"
+    "DATA N9:14\n% N9:14 % 12601 12846 12598 14382 12590 12848 0\n";
+constexpr const char* kF = "START 1747-L552\nLADDER 2 MAIN\nSOR XIC B3:0/15 CLR N7:9 EOR\n";
+
+std::string run_ethernet(const std::string& head, const std::string& body) {
+  Sandbox box;
+  box.write("e.slc", kE);
+  box.write("f.slc", kF);
+  box.write("b.slc", kB);
+  return box.run(head + body);
+}
+
+TEST(PeerTests, Slc505sOnEthernetAreNamedByIpAddress) {
+  EXPECT_EQ(run_ethernet("program e.slc\nip 192.168.1.10\npeer F f.slc ip 192.168.1.20\n",
+                         "test \"t\"\n"
+                         "  set    F.N7:0 = 555\n"
+                         "  run until N10:0 == 555 within 10ms\n"
+                         "  expect N9:0/12 == 0\n"),
+            "PASS t.test: t\n");
+  // The controller without an address: D0h (no IP address configured).
+  EXPECT_EQ(run_ethernet("program e.slc\npeer F f.slc ip 192.168.1.20\n",
+                         "test \"t\"\n"
+                         "  run until N9:0/12 == 1 within 10ms\n"
+                         "  expect N9:0 == 0b1xx1_xxxx_1101_0000\n"),
+            "PASS t.test: t\n");
+}
+
+TEST(PeerTests, EthernetLoadErrorsNameTheLine) {
+  EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.10\npeer F f.slc node 2\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("peer F: an SLC 5/05 on Ethernet is named by its IP address"));
+  EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.10\npeer F f.slc ip 192.168.1.10\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("IP address 192.168.1.10 is already this controller's"));
+  EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.10\npeer F b.slc ip 192.168.1.20\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("is on DH-485, this network is Ethernet"));
+  // The error points at the peer it is about, not at the first peer line.
+  EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.10\npeer F f.slc ip 192.168.1.20\npeer G f.slc node 4\n",
+                           "test \"t\"\n  scan 1\n"),
+              HasSubstr("t.test:4:6: error: the MSG network did not build"));
+  EXPECT_THAT(run_line("program a.slc\npeer B b.slc ip 192.168.1.20\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("names stations by node number (node N), not IP address"));
+  EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.300\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("t.test:2:4: error: '192.168.1.300' is not an IP address"));
+  EXPECT_THAT(run_ethernet("program e.slc\nip\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("incomplete 'ip' line: write ip A.B.C.D"));
+  EXPECT_THAT(run_ethernet("program e.slc\nip 10.0.0\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("'10.0.0' is not an IP address"));
+  EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.10\nip 192.168.1.11\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("a second 'ip' line (the first is at line 2)"));
+  EXPECT_THAT(run_ethernet("program e.slc\npeer F f.slc ip\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("t.test:2:16: error: expected 'node N' (DH-485, DH+) or 'ip A.B.C.D' (Ethernet)"));
 }
 
 TEST(PeerTests, APowerCycleWithPeersIsRefused) {

@@ -23,27 +23,6 @@ std::shared_ptr<const Program> load(std::string_view body, std::string_view head
   return std::make_shared<const Program>(std::move(*lr.program));
 }
 
-// The scan-time model of a processor with some costs replaced, so a test can place a servicing point
-// where it needs one: a slower housekeeping (a target that answers late), a slower MOV.
-class SlowModel final : public ScanTimeModel {
- public:
-  SlowModel(std::shared_ptr<const ScanTimeModel> base, Nanoseconds housekeeping, Nanoseconds mov = -1)
-      : base_(std::move(base)), housekeeping_(housekeeping), mov_(mov) {}
-  std::string_view name() const override { return "slow"; }
-  Nanoseconds instruction_cost(Opcode op, bool rung_in) const override {
-    return op == Opcode::MOV && mov_ >= 0 ? mov_ : base_->instruction_cost(op, rung_in);
-  }
-  Nanoseconds input_scan_cost(const Module& m) const override { return base_->input_scan_cost(m); }
-  Nanoseconds output_scan_cost(const Module& m) const override { return base_->output_scan_cost(m); }
-  Nanoseconds housekeeping_cost() const override { return housekeeping_; }
-  Nanoseconds per_word_cost(Opcode op) const override { return base_->per_word_cost(op); }
-
- private:
-  std::shared_ptr<const ScanTimeModel> base_;
-  Nanoseconds housekeeping_;
-  Nanoseconds mov_;
-};
-
 std::shared_ptr<const ScanTimeModel> slc503_model() {
   ProcessorModel p = *resolve_processor("1747-L532");
   return make_scan_time_model(p);

@@ -156,11 +156,13 @@ struct Snapshot {
   std::vector<Step> steps;
 };
 
-// A peer controller on the test's MSG network: `peer NAME PATH node N` (docs/testing.md).
+// A peer controller on the test's MSG network: `peer NAME PATH node N`, or on Ethernet `peer NAME PATH
+// ip A.B.C.D` (docs/testing.md).
 struct PeerSpec {
   std::string name;
   std::string path;  // as written, relative to the test file
   int node = 2;
+  std::uint32_t ip = 0;  // Ethernet: the peer's IP address (0: named by node)
   Location loc;      // of the name
   Location path_loc;
 };
@@ -177,6 +179,7 @@ struct TestCase {
   // The program's node and the other controllers of its MSG network (file-level `node`, `peer`).
   int node = 1;
   Location node_loc;
+  std::uint32_t ip = 0;  // `ip A.B.C.D`: the program's IP address on Ethernet (0: none)
   std::vector<PeerSpec> peers;
   std::shared_ptr<const LoadedProgram> program;  // set by the loader
   // Tests start in Run; a `mode` step written first sets the starting mode instead.

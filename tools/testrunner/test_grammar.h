@@ -50,6 +50,7 @@ struct kw_bench : TAO_PEGTL_KEYWORD("bench") {};
 struct kw_processor : TAO_PEGTL_KEYWORD("processor") {};
 struct kw_node : TAO_PEGTL_KEYWORD("node") {};
 struct kw_peer : TAO_PEGTL_KEYWORD("peer") {};
+struct kw_ip : TAO_PEGTL_KEYWORD("ip") {};
 struct kw_test : TAO_PEGTL_KEYWORD("test") {};
 struct kw_with : TAO_PEGTL_KEYWORD("with") {};
 struct kw_row : TAO_PEGTL_KEYWORD("row") {};
@@ -210,12 +211,17 @@ struct program_processor_spec : plus<not_one<' ', '\t', '#', '"'>> {};
 struct program_processor : seq<ws, kw_processor, ws, must<program_processor_spec>> {};
 struct program_line : seq<kw_program, ws, must<program_path>, opt<program_processor>> {};
 // MSG networks (docs/testing.md "Several controllers"): `node N` gives the program's node (1 by
-// default); `peer NAME PATH node N` adds another controller, its program and node.
+// default); `peer NAME PATH node N` adds another controller, its program and node. On Ethernet (SLC
+// 5/05) a controller is named by IP address instead: `ip A.B.C.D`, `peer NAME PATH ip A.B.C.D`.
 struct node_number : digits {};
 struct node_line : seq<kw_node, ws, must<node_number>> {};
+struct ip_address : seq<plus<digit>, star<one<'.'>, plus<digit>>, token_end> {};
+struct ip_line : seq<kw_ip, ws, must<ip_address>> {};
 struct peer_name : seq<pg::identifier, token_end> {};
 struct peer_path : path {};
-struct peer_node : seq<kw_node, ws, must<node_number>> {};
+struct peer_node_part : seq<kw_node, ws, must<node_number>> {};
+struct peer_ip_part : seq<kw_ip, ws, must<ip_address>> {};
+struct peer_node : sor<peer_node_part, peer_ip_part> {};
 struct peer_line : seq<kw_peer, ws, must<peer_name>, ws, must<peer_path>, ws, must<peer_node>> {};
 struct bench_line : seq<kw_bench, ws, must<bench_path>> {};
 
@@ -289,7 +295,7 @@ struct device_line : seq<kw_device, ws, must<device_line_name>, ws, must<device_
 // Anything else that starts a line: reported by its action as an unknown statement.
 struct unknown_statement : plus<not_one<' ', '\t', '#'>> {};
 
-struct statement : sor<program_line, bench_line, node_line, peer_line, test_line, row_line, set_line, force_line, unforce_line, scan_line,
+struct statement : sor<program_line, bench_line, node_line, ip_line, peer_line, test_line, row_line, set_line, force_line, unforce_line, scan_line,
                        run_line, expect_line, mode_line, power_line, clear_line, snapshot_line, restore_line,
                        device_line, unknown_statement> {};
 struct line_end : eof {};

@@ -53,7 +53,9 @@ template <> inline constexpr auto error_message<node_number> = "expected a node 
 template <> inline constexpr auto error_message<peer_name> =
     "expected the peer's name after 'peer' (peer B line_b.slc node 2)";
 template <> inline constexpr auto error_message<peer_path> = "expected the path of the peer's program after its name";
-template <> inline constexpr auto error_message<peer_node> = "expected 'node N' after the peer's program";
+template <> inline constexpr auto error_message<peer_node> =
+    "expected 'node N' (DH-485, DH+) or 'ip A.B.C.D' (Ethernet) after the peer's program";
+template <> inline constexpr auto error_message<ip_address> = "expected an IP address after 'ip' (ip 192.168.1.20)";
 template <> inline constexpr auto error_message<test_name> = "expected the test name in double quotes (test \"name\")";
 template <> inline constexpr auto error_message<column_list> =
     "expected the table's column names after 'with' (test \"name\" with A B)";

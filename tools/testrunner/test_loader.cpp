@@ -81,9 +81,10 @@ class Checker {
     std::vector<ProgramCache::Peer> peers;
     for (const auto& p : tc.peers) {
       const auto [peer_actual, peer_display] = locate(p.path);
-      peers.push_back({p.name, peer_actual, peer_display, p.node});
+      peers.push_back({p.name, peer_actual, peer_display, p.node, p.ip});
     }
-    auto& entry = cache_.load(actual, display, bench, bench_display, processor ? &*processor : nullptr, peers, tc.node);
+    auto& entry =
+        cache_.load(actual, display, bench, bench_display, processor ? &*processor : nullptr, peers, tc.node, tc.ip);
     if (!entry.program) {
       if (!entry.errors.empty() && reported_.insert(display + "\n" + bench_display).second)
         out_.program_diagnostics += entry.errors;
@@ -91,9 +92,16 @@ class Checker {
         for (const auto& p : tc.peers)
           if (p.name == entry.failed_peer)
             error(p.loc, "peer '" + p.name + "' did not load (its errors are listed above)");
-        if (entry.failed_peer == "*")
-          error(tc.peers.empty() ? tc.program_loc : tc.peers.front().loc,
-                "the MSG network did not build (its errors are listed above)");
+        if (entry.failed_peer == "*") {
+          // The network's error names the peer it is about ("peer SRV: ..."): point at that line.
+          Location where = tc.peers.empty() ? tc.program_loc : tc.peers.front().loc;
+          for (const auto& p : tc.peers)
+            if (entry.errors.find("error: peer " + p.name + ": ") != std::string::npos) {
+              where = p.loc;
+              break;
+            }
+          error(where, "the MSG network did not build (its errors are listed above)");
+        }
       } else if (entry.bench_failed)
         error(tc.bench_loc, "bench '" + tc.bench_path + "' did not load (its errors are listed above)");
       else
@@ -436,12 +444,13 @@ int width_of(const Address& a) {
 ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const std::string& display,
                                         const std::filesystem::path& bench, const std::string& bench_display,
                                         const ProcessorModel* pasted_processor, const std::vector<Peer>& peers,
-                                        int node) {
+                                        int node, std::uint32_t ip) {
   std::string key = cache_key(path) + "\n" + (bench.empty() ? std::string() : cache_key(bench)) + "\n" +
                     (pasted_processor ? pasted_processor->catalog + ":" + pasted_processor->series : std::string());
-  if (!peers.empty()) {
-    key += "\nnode " + std::to_string(node);
-    for (const auto& p : peers) key += "\npeer " + p.name + " " + std::to_string(p.node) + " " + cache_key(p.path);
+  if (!peers.empty() || ip != 0) {
+    key += "\nnode " + std::to_string(node) + " ip " + std::to_string(ip);
+    for (const auto& p : peers)
+      key += "\npeer " + p.name + " " + std::to_string(p.node) + " " + std::to_string(p.ip) + " " + cache_key(p.path);
   }
   if (auto it = entries_.find(key); it != entries_.end()) return it->second;
   Entry& e = entries_[key];
@@ -513,11 +522,13 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
     PeerController peer;
     peer.name = p.name;
     peer.node = p.node;
+    peer.ip = p.ip;
     peer.program = std::make_shared<const Program>(std::move(*plr.program));
     peer.options = std::make_shared<const RuntimeOptions>(std::move(peer_setup.options));
     setup.options.peers.push_back(std::move(peer));
   }
   setup.options.node = node;
+  setup.options.ip = ip;
   RuntimeResult rr = Runtime::create(*lr.program, setup.options);
   if (!rr.ok()) {
     for (const auto& err : rr.errors) e.errors += display + ": error: " + err.to_string() + "\n";

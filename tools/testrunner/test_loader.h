@@ -47,6 +47,7 @@ class ProgramCache {
     std::filesystem::path path;
     std::string display;
     int node = 2;
+    std::uint32_t ip = 0;
   };
   // Loads the program at `path` (shown as `display`) with the bench at `bench` (shown as
   // `bench_display`; an empty path means no bench) once per pair: the program is parsed and
@@ -61,7 +62,7 @@ class ProgramCache {
   // each peer's program is loaded with its SLOT lines, and the probe is the network's leader.
   Entry& load(const std::filesystem::path& path, const std::string& display, const std::filesystem::path& bench = {},
               const std::string& bench_display = {}, const ProcessorModel* pasted_processor = nullptr,
-              const std::vector<Peer>& peers = {}, int node = 1);
+              const std::vector<Peer>& peers = {}, int node = 1, std::uint32_t ip = 0);
   // The processor of pasted-rung programs whose test file names none (`softslc test --processor`).
   void set_default_pasted_processor(std::optional<ProcessorModel> p) { default_pasted_processor_ = std::move(p); }
   // The probe runtime of a loaded program.

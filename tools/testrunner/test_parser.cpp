@@ -17,6 +17,7 @@
 #include "parser/limits.h"
 #include "parser/loader.h"
 #include "tools/testrunner/test_grammar.h"
+#include "vm/message_network.h"
 #include "tools/testrunner/test_grammar_messages.h"
 
 namespace softslc::testing {
@@ -30,7 +31,7 @@ using namespace grammar;
 // ---- Parsed lines ------------------------------------------------------------------------------------
 
 struct ParsedLine {
-  enum class Kind : std::uint8_t { Empty, Program, Bench, Node, Peer, Test, Row, Step };
+  enum class Kind : std::uint8_t { Empty, Program, Bench, Node, Ip, Peer, Test, Row, Step };
   Kind kind = Kind::Empty;
   Location loc;  // the statement's first token
   std::string path;
@@ -41,6 +42,8 @@ struct ParsedLine {
   Location peer_loc;
   std::int64_t node = 0;  // node N, peer ... node N
   Location node_loc;
+  std::uint32_t ip = 0;   // ip A.B.C.D, peer ... ip A.B.C.D
+  Location ip_loc;
   std::string test_name;
   Location name_loc;  // the opening quote of the test name
   std::vector<std::pair<std::string, Location>> columns;
@@ -445,7 +448,18 @@ struct line_kind_action {
 };
 template <> struct action<program_line> : line_kind_action<ParsedLine::Kind::Program> {};
 template <> struct action<node_line> : line_kind_action<ParsedLine::Kind::Node> {};
+template <> struct action<ip_line> : line_kind_action<ParsedLine::Kind::Ip> {};
 template <> struct action<peer_line> : line_kind_action<ParsedLine::Kind::Peer> {};
+template <> struct action<ip_address> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    const std::optional<std::uint32_t> ip = parse_ipv4(in.string());
+    if (!ip) fail_at(in, 0, "'" + in.string() + "' is not an IP address: four numbers 0-255 separated by dots");
+    if (*ip == 0) fail_at(in, 0, "0.0.0.0 is the processor's 'no IP address configured'; give the station an address");
+    s.out.ip = *ip;
+    s.out.ip_loc = loc_of(in);
+  }
+};
 template <> struct action<peer_path> : path_action {};
 template <> struct action<peer_name> {
   template <typename Input>
@@ -626,7 +640,8 @@ constexpr std::pair<std::string_view, std::string_view> kUsage[] = {
     {"program", "program FILE.slc [processor CATALOG]"},
     {"bench", "bench FILE.bench"},
     {"node", "node N"},
-    {"peer", "peer NAME FILE.slc node N"},
+    {"ip", "ip A.B.C.D"},
+    {"peer", "peer NAME FILE.slc node N  or  peer NAME FILE.slc ip A.B.C.D"},
     {"test", "test \"name\"  or  test \"name\" with COLUMN..."},
     {"set", "set ADDRESS = VALUE"},
     {"force", "force I:1/0 = 1"},
@@ -960,10 +975,20 @@ class Driver {
         return;
       }
       case ParsedLine::Kind::Node:
+      case ParsedLine::Kind::Ip:
       case ParsedLine::Kind::Peer: {
         // The MSG network is the file's: every test of the file runs on it.
         if (pending_) {
-          error(pl.loc, "'node' and 'peer' lines belong at the top of the file, before the first test");
+          error(pl.loc, "'node', 'ip' and 'peer' lines belong at the top of the file, before the first test");
+          return;
+        }
+        if (pl.kind == ParsedLine::Kind::Ip) {
+          if (file_ip_loc_.line) {
+            error(pl.loc, "a second 'ip' line (the first is at line " + std::to_string(file_ip_loc_.line) + ")");
+            return;
+          }
+          file_ip_ = pl.ip;
+          file_ip_loc_ = pl.ip_loc;
           return;
         }
         if (pl.kind == ParsedLine::Kind::Node) {
@@ -986,6 +1011,7 @@ class Driver {
         peer.path = pl.path;
         peer.path_loc = pl.path_loc;
         peer.node = static_cast<int>(pl.node);
+        peer.ip = pl.ip;
         file_peers_.push_back(std::move(peer));
         return;
       }
@@ -1138,6 +1164,7 @@ class Driver {
     tc.bench_loc = file_bench_loc_;
     tc.node = file_node_;
     tc.node_loc = file_node_loc_;
+    tc.ip = file_ip_;
     tc.peers = file_peers_;
     bool steps_seen = false, ok = true;
     std::optional<Location> own_program, own_bench;
@@ -1212,6 +1239,8 @@ class Driver {
   Location file_bench_loc_;
   int file_node_ = 1;
   Location file_node_loc_;
+  std::uint32_t file_ip_ = 0;
+  Location file_ip_loc_;
   std::vector<PeerSpec> file_peers_;
   std::optional<PendingTest> pending_;
   std::size_t steps_ = 0;         // test lines so far, table rows expanded (kMaxStepsPerTestFile)

@@ -370,6 +370,7 @@ class Compiler {
     }
     layout_.total_words = next;
     if (next > bc::kMaxWordIndex) error({}, "the data table is too large to address");
+    else layout_.index_files();
   }
 
   // ---- Initial data ------------------------------------------------------------------------------------

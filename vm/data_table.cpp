@@ -132,7 +132,7 @@ std::optional<Location> DataTableLayout::locate(const Address& a, std::string* e
   return loc;
 }
 
-int DataTableLayout::file_containing(std::uint32_t word) const {
+int DataTableLayout::scan_for_file(std::uint32_t word) const {
   // Files lie in file-number order (see the layout in data_table.h), so the first present file
   // that ends after `word` is the only one that can hold it.
   for (std::size_t f = 0; f < files.size(); ++f) {
@@ -140,6 +140,18 @@ int DataTableLayout::file_containing(std::uint32_t word) const {
     if (fl.present && word < fl.end()) return word >= fl.base ? static_cast<int>(f) : -1;
   }
   return -1;
+}
+
+void DataTableLayout::index_files() {
+  // The same answer as the scan for every word: each word gets the first present file (in
+  // file-number order) whose span holds it; words past total_words stay outside the index.
+  word_file_.assign(total_words, kNoFile);
+  for (std::size_t f = 0; f < files.size(); ++f) {
+    const auto& fl = files[f];
+    if (!fl.present) continue;
+    for (std::uint32_t w = fl.base; w < fl.end() && w < total_words; ++w)
+      if (word_file_[w] == kNoFile) word_file_[w] = static_cast<std::uint16_t>(f);
+  }
 }
 
 std::string DataTableLayout::describe(std::uint32_t word, int bit) const {

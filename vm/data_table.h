@@ -188,10 +188,24 @@ struct DataTableLayout {
   // an S:24 index. Returns nullopt with a message when the address is outside the layout.
   std::optional<Location> locate(const Address& a, std::string* error = nullptr, bool as_file_start = false) const;
 
-  // The file whose words contain `word`, or -1.
-  int file_containing(std::uint32_t word) const;
+  // The file whose words contain `word`, or -1. O(1) once index_files() has run (the compiler runs
+  // it on every layout it makes): module instructions, file instructions and MSG ask this for their
+  // operands in every scan. A layout built by hand without the index is scanned file by file.
+  int file_containing(std::uint32_t word) const {
+    if (word < word_file_.size()) return word_file_[word] == kNoFile ? -1 : word_file_[word];
+    return word_file_.empty() ? scan_for_file(word) : -1;
+  }
+  // Records, for every word of the table, the file holding it (2 bytes a word, the size of the table
+  // itself). Call it again after changing `files` or `total_words`.
+  void index_files();
   // The canonical address of a word (and bit), e.g. "I:1.0/3", "T4:0.ACC", "T4:0/DN", "F8:2".
   std::string describe(std::uint32_t word, int bit = -1) const;
+
+ private:
+  static constexpr std::uint16_t kNoFile = 0xFFFF;
+  int scan_for_file(std::uint32_t word) const;
+  // word -> file number (kNoFile for a word in no file), total_words entries; empty until indexed.
+  std::vector<std::uint16_t> word_file_;
 };
 
 // A value as tools see it: a bit, a (16- or 32-bit) integer, or a float.

@@ -6,7 +6,13 @@
 namespace softslc {
 
 ProfileScanTimeModel::ProfileScanTimeModel(TimingProfile profile, std::string timing_key)
-    : profile_(std::move(profile)), timing_key_(std::move(timing_key)) {}
+    : profile_(std::move(profile)), timing_key_(std::move(timing_key)) {
+  for (std::size_t r = 0; r < mfile_costs_.size(); ++r) {
+    const auto row = static_cast<MFileAccess>(r);
+    const auto one = mfile_access_us(timing_key_, row, 1), two = mfile_access_us(timing_key_, row, 2);
+    if (one && two) mfile_costs_[r] = {microseconds(*one), microseconds(*two - *one)};
+  }
+}
 
 Nanoseconds ProfileScanTimeModel::instruction_cost(Opcode op, bool rung_in) const {
   const auto& t = profile_.instruction(op);
@@ -22,8 +28,9 @@ Nanoseconds ProfileScanTimeModel::output_scan_cost(const Module& m) const {
 }
 
 Nanoseconds ProfileScanTimeModel::mfile_access_cost(MFileAccess row, int words) const {
-  auto us = mfile_access_us(timing_key_, row, words);
-  return us ? microseconds(*us) : 0;
+  const auto r = static_cast<std::size_t>(row);
+  if (words < 1 || r >= mfile_costs_.size()) return 0;  // mfile_access_us has no figure: no charge
+  return mfile_costs_[r].first_word + mfile_costs_[r].next_word * (words - 1);
 }
 
 std::shared_ptr<const ScanTimeModel> make_scan_time_model(const ProcessorModel& processor,

@@ -8,6 +8,7 @@
 // hot path stays a table load and an add; only M-file accesses call back into the model.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 
@@ -36,6 +37,15 @@ class ProfileScanTimeModel final : public ScanTimeModel {
  private:
   TimingProfile profile_;
   std::string timing_key_;
+  // Every row of the access-time table is linear in the words moved (a time per access or word,
+  // or a base plus a time per word), so each MFileAccess class is kept as the cost of one word and
+  // of each further word, taken from mfile_access_us at construction: an SN or SM1 program charges
+  // an M-file access many times a scan, and the table lookup compares processor names.
+  struct MFileCost {
+    Nanoseconds first_word = 0;
+    Nanoseconds next_word = 0;
+  };
+  std::array<MFileCost, static_cast<std::size_t>(MFileAccess::OtherM) + 1> mfile_costs_{};
 };
 
 // The model for a processor: its built-in profile (or `user`, when it names the same

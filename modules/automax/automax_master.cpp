@@ -248,67 +248,88 @@ void AutomaxMaster::exchange(Drop& d) {
 // ---- Dual-port access (section 4.3) -----------------------------------------------------------------
 
 AutomaxMaster::Access AutomaxMaster::access(int word, std::string* why) const {
-  auto say = [&](Access a, std::string text) {
-    if (why) *why = std::move(text);
+  // The reason is text for refusal() only: read_m and write_m ask on every M0 access of a scan
+  // and pass no `why`, so nothing is formatted (or allocated) for them.
+  auto say = [&](Access a, auto&& text) {
+    if (why) *why = text();
     return a;
   };
-  if (word < 0 || word >= kAutomaxImageWords) return say(Access::BusError, "beyond the dual-port image");
+  if (word < 0 || word >= kAutomaxImageWords)
+    return say(Access::BusError, [&] { return std::string("beyond the dual-port image"); });
   const int area = word / kAutomaxAreaWords;
   const int slot = (word % kAutomaxAreaWords) / kAutomaxSlotRegisters;
   const int reg = word % kAutomaxSlotRegisters;
-  if (area == 0) return say(Access::ReadOnly, "drop 0 register " + std::to_string(word) + " (status, read only: section 4.2)");
+  if (area == 0)
+    return say(Access::ReadOnly,
+               [&] { return "drop 0 register " + std::to_string(word) + " (status, read only: section 4.2)"; });
   const auto& dp = drops_[static_cast<std::size_t>(area)];
-  const std::string point = point_text(area, slot, reg);
+  auto point = [&] { return point_text(area, slot, reg); };
   // The drops and their modules are the network's configuration (section 4.6): a drop that has
   // not answered yet still has its registers (decision, docs/automax.md).
-  if (!dp) return say(Access::BusError, point + ": there is no drop " + std::to_string(area) + " on the network");
+  if (!dp)
+    return say(Access::BusError,
+               [&] { return point() + ": there is no drop " + std::to_string(area) + " on the network"; });
   const Drop& d = *dp;
   const AutomaxDropSpec& s = *d.spec;
   switch (s.kind) {
     case AutomaxDropKind::Multibus: {
       for (const auto& m : s.modules)
         if (m.slot == slot) {
-          if (reg < m.inputs) return say(Access::ReadOnly, point + " (" + m.name + " input, read only)");
-          if (reg < m.inputs + m.outputs) return say(Access::ReadWrite, point);
-          return say(Access::BusError, point + ": module " + m.name + " has " + std::to_string(m.inputs + m.outputs) + " registers");
+          if (reg < m.inputs)
+            return say(Access::ReadOnly, [&] { return point() + " (" + m.name + " input, read only)"; });
+          if (reg < m.inputs + m.outputs) return say(Access::ReadWrite, [&] { return point(); });
+          return say(Access::BusError, [&] {
+            return point() + ": module " + m.name + " has " + std::to_string(m.inputs + m.outputs) + " registers";
+          });
         }
-      return say(Access::BusError, point + ": no module in slot " + std::to_string(slot));
+      return say(Access::BusError, [&] { return point() + ": no module in slot " + std::to_string(slot); });
     }
     case AutomaxDropKind::Shark: {
-      if (slot == 0 && reg == 0 && !s.all_digital_shark()) return say(Access::ReadWrite, point + " (configuration word)");
+      if (slot == 0 && reg == 0 && !s.all_digital_shark())
+        return say(Access::ReadWrite, [&] { return point() + " (configuration word)"; });
       const AutomaxModuleSpec* m = nullptr;
       for (const auto& x : s.modules)
         if (x.slot == slot) m = &x;
-      if (!m) return say(Access::BusError, point + ": no module in Shark slot " + std::to_string(slot));
-      if (reg < 8 && reg < m->inputs) return say(Access::ReadOnly, point + " (" + m->name + " input, read only)");
-      if (reg >= 8 && reg < 16 && reg - 8 < m->outputs) return say(Access::ReadWrite, point);
+      if (!m)
+        return say(Access::BusError, [&] { return point() + ": no module in Shark slot " + std::to_string(slot); });
+      if (reg < 8 && reg < m->inputs)
+        return say(Access::ReadOnly, [&] { return point() + " (" + m->name + " input, read only)"; });
+      if (reg >= 8 && reg < 16 && reg - 8 < m->outputs) return say(Access::ReadWrite, [&] { return point(); });
       // "in the case of a digital module in a mixed Shark rack, a bus error will NOT be reported"
       if (m->digital && !s.all_digital_shark())
-        return say(Access::Ignored, point + ": invalid register of digital module " + m->name + " in a mixed rack");
-      return say(Access::BusError, point + (reg >= 16 ? ": Shark registers 16-32 are not accessible"
-                                                      : ": module " + m->name + " has no such register"));
+        return say(Access::Ignored,
+                   [&] { return point() + ": invalid register of digital module " + m->name + " in a mixed rack"; });
+      return say(Access::BusError, [&] {
+        return point() + (reg >= 16 ? ": Shark registers 16-32 are not accessible"
+                                    : ": module " + m->name + " has no such register");
+      });
     }
     case AutomaxDropKind::Head57C328: {
       // Registers 0-3 inputs, 4-7 outputs, one pair per rail; 8-31 not accessible. A head's
       // registers are the drop's, whatever the SLOT field (decision, docs/automax.md).
-      if (reg >= 8) return say(Access::BusError, point + ": registers 8-31 of a 57C328 head are not accessible");
-      if (!has_rail(d, reg % 4)) return say(Access::BusError, point + ": no rail " + std::to_string(reg % 4) + " connected");
-      return say(reg < 4 ? Access::ReadOnly : Access::ReadWrite, point + (reg < 4 ? " (rail input, read only)" : ""));
+      if (reg >= 8)
+        return say(Access::BusError, [&] { return point() + ": registers 8-31 of a 57C328 head are not accessible"; });
+      if (!has_rail(d, reg % 4))
+        return say(Access::BusError, [&] { return point() + ": no rail " + std::to_string(reg % 4) + " connected"; });
+      return say(reg < 4 ? Access::ReadOnly : Access::ReadWrite,
+                 [&] { return point() + (reg < 4 ? " (rail input, read only)" : ""); });
     }
     case AutomaxDropKind::Head57C330: {
-      if (reg >= 16 || !has_rail(d, reg)) return say(Access::BusError, point + ": no rail " + std::to_string(reg) + " connected");
+      if (reg >= 16 || !has_rail(d, reg))
+        return say(Access::BusError, [&] { return point() + ": no rail " + std::to_string(reg) + " connected"; });
       const Rail st = d.rail_state[static_cast<std::size_t>(reg)];
       return say(st == Rail::Input ? Access::ReadOnly : Access::ReadWrite,
-                 point + (st == Rail::Input ? " (rail defined as input, read only)" : ""));
+                 [&] { return point() + (st == Rail::Input ? " (rail defined as input, read only)" : ""); });
     }
     case AutomaxDropKind::DriveHead: {
       if (std::find(d.rails.begin(), d.rails.end(), slot) == d.rails.end())
-        return say(Access::BusError, point + ": no drive port " + std::to_string(slot));
-      if (reg >= 4) return say(Access::BusError, point + ": a drive port has registers 0-3");
-      return say(reg < 2 ? Access::ReadWrite : Access::ReadOnly, point + (reg >= 2 ? " (from the drive, read only)" : ""));
+        return say(Access::BusError, [&] { return point() + ": no drive port " + std::to_string(slot); });
+      if (reg >= 4) return say(Access::BusError, [&] { return point() + ": a drive port has registers 0-3"; });
+      return say(reg < 2 ? Access::ReadWrite : Access::ReadOnly,
+                 [&] { return point() + (reg >= 2 ? " (from the drive, read only)" : ""); });
     }
   }
-  return say(Access::BusError, point);
+  return say(Access::BusError, [&] { return point(); });
 }
 
 std::string AutomaxMaster::refusal(int word, bool write) const {

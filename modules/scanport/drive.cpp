@@ -202,6 +202,7 @@ ErrorCode Drive::write_value(std::int64_t number, std::int64_t v) {
   if (p->stopped_only && running()) return ErrorCode::kDeviceConflict;
   if (v < p->minimum || v > p->maximum) return ErrorCode::kValueOutOfRange;
   ram_[static_cast<std::size_t>(number - 1)] = v;
+  ++ram_version_;
   refresh_roles();
   return ErrorCode::kNone;
 }
@@ -255,6 +256,7 @@ ErrorCode Drive::restore() {
   if (running()) return ErrorCode::kDeviceConflict;
   for (int n = 1; n <= parameter_count(); ++n)
     if (stored(n)) ram_[static_cast<std::size_t>(n - 1)] = stored_value(n);
+  ++ram_version_;
   ram_links_ = stored_links_;
   refresh_roles();
   return ErrorCode::kNone;
@@ -269,6 +271,7 @@ ErrorCode Drive::reset_to_defaults() {
     if (stored(n)) ram_[i] = storage_[i] = spec(n).default_value;
     ram_links_[i] = stored_links_[i] = spec(n).default_link;
   }
+  ++ram_version_;
   refresh_roles();
   return ErrorCode::kNone;
 }
@@ -276,6 +279,7 @@ ErrorCode Drive::reset_to_defaults() {
 void Drive::power_cycle() {
   for (int n = 1; n <= parameter_count(); ++n)
     if (stored(n)) ram_[static_cast<std::size_t>(n - 1)] = stored_value(n);
+  ++ram_version_;
   ram_links_ = stored_links_;
   command_ = 0;
   reference_ = 0;
@@ -386,15 +390,19 @@ void Drive::set_role(Role r, std::int64_t v) {
   const int n = desc_.roles[static_cast<int>(r)];
   if (n == 0) return;
   const auto& p = spec(n);
-  ram_[static_cast<std::size_t>(n - 1)] = std::clamp(v, p.minimum, p.maximum);
+  std::int64_t& held = ram_[static_cast<std::size_t>(n - 1)];
+  const std::int64_t clamped = std::clamp(v, p.minimum, p.maximum);
+  if (held != clamped) ++ram_version_;
+  held = clamped;
 }
 
 void Drive::refresh_roles() {
   // Frequencies go through display values, so the output parameter may use other units or
   // precision than the maximum-frequency parameter (Hz vs 0.01 Hz).
-  auto frequency = [&](std::uint16_t counts, Role r) {
+  auto frequency = [&](std::uint16_t counts, Role r, FrequencyMemo& memo) {
     const int out = desc_.roles[static_cast<int>(r)];
     if (out == 0) return;
+    if (memo.valid && memo.counts == counts && memo.version == ram_version_) return set_role(r, memo.value);
     const auto fs = desc_.speed.reference_full_scale;
     const std::int64_t c = std::min<std::int64_t>(counts, fs);
     const int maxp = desc_.roles[static_cast<int>(Role::kMaximumFrequency)];
@@ -410,10 +418,12 @@ void Drive::refresh_roles() {
     } else {
       v = c * spec(out).maximum / fs;
     }
-    set_role(r, v.value_or(0));
+    // Remembered for the values it was computed from, before set_role may change one.
+    memo = {true, counts, ram_version_, v.value_or(0)};
+    set_role(r, memo.value);
   };
-  frequency(feedback(), Role::kOutputFrequency);
-  frequency(reference_, Role::kFrequencyCommand);
+  frequency(feedback(), Role::kOutputFrequency, frequency_memo_[0]);
+  frequency(reference_, Role::kFrequencyCommand, frequency_memo_[1]);
   set_role(Role::kDriveStatus, logic_status());
   set_role(Role::kLastFault, last_fault_);
 }

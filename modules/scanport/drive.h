@@ -397,6 +397,20 @@ class Drive {
 
   VirtualTime now_ = 0;
   VirtualTime next_update_ = 0;  // the next k * update_period > every update already run
+
+  // refresh_roles runs several times a scan (every command, reference and time step) and its
+  // frequency roles cost exact rational arithmetic. Their value depends only on the counts given
+  // and on parameter values (the maximum frequency, scaling links), so each frequency role keeps
+  // its last answer with the counts and ram_version_ it was computed for. ram_version_ changes with
+  // every change to a value in ram_.
+  struct FrequencyMemo {
+    bool valid = false;
+    std::uint16_t counts = 0;
+    std::uint64_t version = 0;
+    std::int64_t value = 0;
+  };
+  std::uint64_t ram_version_ = 0;
+  std::array<FrequencyMemo, 2> frequency_memo_{};
 };
 
 }  // namespace softslc::scanport

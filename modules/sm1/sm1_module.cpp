@@ -84,16 +84,20 @@ void Sm1Module::advance_drives() {
     if (ch.drive) ch.drive->advance_to(std::max(host()->now(), ch.drive->now()));
 }
 
-bool Sm1Module::datalink_valid(const Channel& ch, int link) const {
-  if (!config_.enhanced() || !ch.de || !connected(ch)) return false;
+unsigned Sm1Module::valid_datalinks(const Channel& ch) const {
+  if (!config_.enhanced() || !ch.de || !connected(ch)) return 0;
   const int c = static_cast<int>(&ch - channels_.data()) + 1;
-  if (!(config_.g_word(1) & (1u << datalink_enable_bit(c, link)))) return false;
+  const std::uint16_t enables = config_.g_word(1);
   // A datalink the device does not have carries nothing ("if supported in the connected
   // SCANport device").
   const auto& d = ch.drive->description();
-  for (int i = 2 * link; i < 2 * link + 2; ++i)
-    if (d.data_in[static_cast<std::size_t>(i)] || d.data_out[static_cast<std::size_t>(i)]) return true;
-  return false;
+  unsigned links = 0;
+  for (int link = 0; link < 4; ++link) {
+    if (!(enables & (1u << datalink_enable_bit(c, link)))) continue;
+    for (int i = 2 * link; i < 2 * link + 2; ++i)
+      if (d.data_in[static_cast<std::size_t>(i)] || d.data_out[static_cast<std::size_t>(i)]) links |= 1u << link;
+  }
+  return links;
 }
 
 // ---- I/O image -------------------------------------------------------------------------------------------------
@@ -111,8 +115,9 @@ void Sm1Module::input_scan(std::span<std::uint16_t> image) {
     // V goes high only after the program sets DE (chapter 3): DE as the module last received it.
     const bool valid = ch.de && connected(ch);
     if (valid) status |= 1u << kValidBit;
-    for (int link = 0; link < 4; ++link)
-      if (datalink_valid(ch, link)) status |= static_cast<std::uint16_t>(1u << (kDatalinkValidBit + link));
+    // Asked once per channel and scan: the answer holds for the status bits and every datalink word.
+    const unsigned links = valid_datalinks(ch);
+    status |= static_cast<std::uint16_t>(links << kDatalinkValidBit);
     put(status_word(c), static_cast<std::uint16_t>(get(status_word(c)) | (status << byte_shift(c))));
     if (valid) {
       put(command_word(c), ch.drive->logic_status());
@@ -120,7 +125,7 @@ void Sm1Module::input_scan(std::span<std::uint16_t> image) {
     }
     if (!config_.enhanced()) continue;
     for (int i = 0; i < scanport::kDatalinkWords; ++i)
-      if (datalink_valid(ch, i / 2)) put(datalink_word(c, i), ch.drive->read_datalink(i));
+      if (links & (1u << (i / 2))) put(datalink_word(c, i), ch.drive->read_datalink(i));
     std::uint16_t msg = 0;
     if (ch.message == MessageState::Ready) msg |= 1u << ready_bit(c);
     if (ch.message == MessageState::Done) msg |= 1u << done_bit(c);
@@ -188,8 +193,9 @@ void Sm1Module::send_outputs(Channel& ch) {
   // The drive refuses a value it cannot take (read-only, out of range, running) and keeps the old
   // one, as for a message; the first refusal of this transfer is observable as "datalink error".
   scanport::ErrorCode refusal = scanport::ErrorCode::kNone;
+  const unsigned links = valid_datalinks(ch);
   for (int i = 0; i < scanport::kDatalinkWords; ++i) {
-    if (!datalink_valid(ch, i / 2) || ch.drive->description().data_in[static_cast<std::size_t>(i)] == 0) continue;
+    if (!(links & (1u << (i / 2))) || ch.drive->description().data_in[static_cast<std::size_t>(i)] == 0) continue;
     const auto e = ch.drive->write_datalink(i, ch.datalinks[static_cast<std::size_t>(i)]);
     if (refusal == scanport::ErrorCode::kNone) refusal = e;
   }

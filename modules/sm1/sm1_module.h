@@ -84,7 +84,9 @@ class Sm1Module final : public Module {
   // In Run the outputs follow the image; in every other mode the DIP switches rule.
   bool outputs_live() const;
   bool connected(const Channel& ch) const { return ch.drive && ch.powered && ch.cable; }
-  bool datalink_valid(const Channel& ch, int link) const;  // link 0-3 = A-D
+  // The channel's valid datalinks, bit n = link n (0-3 = A-D): enabled in G word 1, present in the
+  // connected device, channel enabled, enhanced mode.
+  unsigned valid_datalinks(const Channel& ch) const;
   void advance_drives();
   void fault_if_enabled(Channel& ch);
   void set_enable(Channel& ch, bool de);

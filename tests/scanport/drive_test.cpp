@@ -205,6 +205,29 @@ TEST(Speed, FirstOrderResponseToTheReference) {
   EXPECT_EQ(d.value(2), 0);
 }
 
+// The frequency parameters are kept from the reference (and feedback) and the Maximum Freq
+// parameter: a new Maximum Freq with the same reference, a reset to defaults and a restore each
+// give the frequency the new maximum stands for, and the same inputs give the same value again.
+TEST(Speed, FrequencyParametersFollowMaximumFreqChangesAtAnUnchangedReference) {
+  Drive d = drive_1305();
+  d.set_reference(16384);
+  EXPECT_EQ(d.value(3), 6000);  // 16384 / 32767 x 120 Hz
+  EXPECT_EQ(d.write_value(1, 60), ErrorCode::kNone);  // stopped: Maximum Freq may change
+  EXPECT_EQ(d.value(3), 3000);  // the same reference now stands for 30.00 Hz
+  d.set_reference(16384);
+  EXPECT_EQ(d.value(3), 3000);
+  EXPECT_EQ(d.save(), ErrorCode::kNone);
+  EXPECT_EQ(d.write_value(1, 240), ErrorCode::kNone);
+  EXPECT_EQ(d.value(3), 12000);
+  EXPECT_EQ(d.restore(), ErrorCode::kNone);  // back to the stored 60 Hz
+  EXPECT_EQ(d.value(1), 60);
+  EXPECT_EQ(d.value(3), 3000);
+  EXPECT_EQ(d.reset_to_defaults(), ErrorCode::kNone);  // default Maximum Freq: 60 Hz
+  EXPECT_EQ(d.value(3), 3000);
+  EXPECT_EQ(d.write_value(1, 120), ErrorCode::kNone);
+  EXPECT_EQ(d.value(3), 6000);
+}
+
 TEST(Speed, StateDoesNotDependOnHowTimeIsAdvanced) {
   auto make = [] {
     Drive d = drive_1305();

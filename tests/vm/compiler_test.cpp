@@ -88,6 +88,38 @@ TEST(Layout, IoImagesInSlotOrder) {
   EXPECT_EQ(L.describe(loc->word, 2), "I:3.1/2");
 }
 
+// file_containing answers from a word -> file index the compiler builds; a layout without the
+// index scans the files. Both must name the same file (or none) for every word, including the
+// words past the table and, on a MicroLogix 1100, the RTC function file after the data files.
+TEST(Layout, FileIndexAgreesWithTheScanForEveryWord) {
+  const std::pair<std::string_view, std::string_view> programs[] = {
+      {kHeader, "SOR MOV N10:25 N11:0 EOR\nSOR XIC B9:1/0 OTE B3/62 EOR\nSOR SWP #ST12:1.[N7:0] 5 EOR\n"
+                "SOR TON T15:2 1.0 10 0 EOR\nDATA ST12:0\n% ST12:0 % \"\"\n% ST12:1 % \"x\"\n"},
+      {"START Bul.1763\n", "SOR MOV N10:25 N11:0 EOR\nSOR XIC B9:1/0 OTE B3/62 EOR\nSOR MOV F8:3 L12:1 EOR\n"
+                            "SOR TON T15:2 0.001 10 0 EOR\n"}};
+  for (const auto& [header, body] : programs) {
+    CompiledProgram p = compiled(body, header);
+    const DataTableLayout& indexed = *p.layout;
+    DataTableLayout scanned;  // the same files, never indexed
+    scanned.files = indexed.files;
+    scanned.total_words = indexed.total_words;
+    int files_seen = 0, last = -2;
+    for (std::uint32_t w = 0; w < indexed.total_words + 3; ++w) {
+      const int f = indexed.file_containing(w);
+      ASSERT_EQ(f, scanned.file_containing(w)) << "word " << w;
+      if (w < indexed.total_words) {
+        ASSERT_GE(f, 0) << "word " << w << " lies in no file";
+        const FileLayout& fl = indexed.files[static_cast<std::size_t>(f)];
+        ASSERT_TRUE(w >= fl.base && w < fl.end()) << "word " << w << " is not inside file " << f;
+      } else {
+        ASSERT_EQ(f, -1) << "word " << w << " is past the table";
+      }
+      if (f != last) ++files_seen, last = f;
+    }
+    EXPECT_GE(files_seen, 13) << header;
+  }
+}
+
 TEST(Layout, InitialDataAndStructuredViews) {
   Plc plc(
       "SOR XIC B3:0/0 OTE B3:0/1 EOR\n"

@@ -9,7 +9,9 @@
 
 #include <sstream>
 
+#include "instructions/mfile_access_time.h"
 #include "vm/discrete_io.h"
+#include "vm/profile_scan_time_model.h"
 #include "vm_test_util.h"
 
 namespace softslc::test {
@@ -312,6 +314,27 @@ TEST(ScanCycle, SetAndGetFormatValuesForTools) {
   EXPECT_FALSE(plc->get("N99:0", &err).has_value());
   EXPECT_FALSE(plc->set("I:9/0", Value::bit(true))) << "no module in slot 9";
   EXPECT_THROW(plc->value("X?"), std::invalid_argument);
+}
+
+// The profile model keeps each M-file access class as a cost per first and further word; that must
+// be the 1747-SN appendix B / 1203-SM1 appendix A table (mfile_access_us) for every processor with
+// a built-in profile, every class and word counts 0-300, and nothing where the table has no row.
+TEST(ScanTimeModel, MFileAccessCostIsTheAccessTimeTableForEveryWordCount) {
+  int charged = 0;
+  for (const std::string& key : builtin_timing_profile_keys()) {
+    auto profile = builtin_timing_profile(key);
+    ASSERT_TRUE(profile) << key;
+    const ProfileScanTimeModel model(*profile, key);
+    for (int r = 0; r <= static_cast<int>(MFileAccess::OtherM); ++r)
+      for (int words = 0; words <= 300; ++words) {
+        const auto row = static_cast<MFileAccess>(r);
+        const auto us = mfile_access_us(key, row, words);
+        ASSERT_EQ(model.mfile_access_cost(row, words), us ? microseconds(*us) : 0)
+            << key << " class " << r << " words " << words;
+        charged += us ? 1 : 0;
+      }
+  }
+  EXPECT_GT(charged, 1000) << "the built-in profiles include processors with M files";
 }
 
 }  // namespace

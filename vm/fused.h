@@ -8,17 +8,27 @@
 // OTU) and the rest is branch structure (BST, NXB, BND). Such a rung is a boolean function of at
 // most kMaxContacts contact bits, so it runs as
 //
-//   v := the rung's contact bits gathered into one small integer (one load, shift and OR each)
+//   v := the rung's contact bits gathered into one small integer (bit k = contact k)
 //   elapsed += cost[v]          the exact sum of every instruction's true/false charge
 //   count   += instructions     every instruction of a contact network always executes
-//   for each coil j: its rung-in is bit v of the coil's truth table; apply OTE/OTL/OTU
+//   for each coil j: its rung-in is on[j][v] (0 or 0xFFFF); apply OTE/OTL/OTU to its bit
 //
-// The truth tables and cost tables are not written by hand per pattern: they are produced by
-// running the rung's own ops through the same rung-condition rules the interpreter uses (SOR,
+// The cost and rung-in tables are not written by hand per pattern: they are produced by running
+// the rung's own ops through the same rung-condition rules the interpreter uses (SOR,
 // BST/NXB/BND, and each op's rule from fused_rule(), which is checked against the instruction
 // table's rows) for every value of v, with the interpreter's cost table. Rungs with the same op
 // sequence share one "shape" (its tables), so memory grows with the number of distinct rung
 // shapes, not with the program.
+//
+// Speed (docs/performance.md, "Fused rungs"). Each rung is a record of pre-decoded operands: a
+// contact's word index and bit number, a coil's word index and mask, so nothing is decoded from
+// the 32-bit bit operand at run time. Records of one shape all have one layout, and consecutive
+// rungs of one shape form a segment executed by one kernel, a template instance for the shape's
+// contact count, index width and (for the commonest case, one coil) the coil's rule: inside a
+// segment the gather is straight-line code with constant offsets and the only per-rung branches
+// are the watchdog test and the loop. Word indices are 16 bits when the data table has at most
+// 65,536 words, else 32, so the bench rung's record is 16 bytes (it was 24) and the records of a
+// 10,000-rung program stay in the L2 cache beside its data table.
 //
 // Exactness. Gathering every contact before any coil writes is only correct when no contact
 // reads a bit that a coil earlier in the same rung writes; such rungs are left to the general
@@ -82,33 +92,60 @@ class FusedProgram {
   std::size_t runs() const { return runs_.size(); }
   std::size_t fused_rungs() const { return fused_rungs_; }
   std::size_t shapes() const { return shapes_.size(); }
+  std::size_t segments() const { return segments_.size(); }
+  bool wide_indices() const { return wide_; }
 
  private:
+  // One shape: a distinct op sequence, with its tables. Rungs of one shape have records of one
+  // size and layout, so a kernel specialised for the contact count and coil kind walks them.
   struct Shape {
     std::uint8_t contacts = 0;
     std::uint8_t coils = 0;
     std::uint16_t instructions = 0;  // instruction-table instructions in the rung
+    std::uint16_t stride = 0;        // record size, in 16-bit units
+    std::uint8_t kernel = 0;         // index into the kernel table (fused.cpp)
     std::uint32_t cost_at = 0;       // first of 2^contacts entries in costs_
-    std::uint32_t truth_at = 0;      // first of coils * 4 words in truth_ (256-bit table per coil)
+    std::uint32_t on_at = 0;         // first of coils * 2^contacts entries in on_
+    std::uint32_t rules_at = 0;      // first of coils entries in rules_
   };
-  struct Run {
-    std::uint32_t first = 0;  // index in stream_ of the first rung record
-    std::uint32_t last = 0;   // one past the last rung record
-    std::uint32_t next = 0;   // code offset after the run
+  // Consecutive rungs of one run that share a shape: executed by one kernel call.
+  struct Segment {
+    std::uint32_t rec = 0;         // index in records_ of the first rung's record
+    std::uint32_t rungs = 0;       // rungs in the segment
+    std::uint32_t shape = 0;
     std::uint32_t first_rung = 0;  // index in sor_ of the first rung
   };
-  static constexpr std::uint32_t kShapeMask = 0x00FFFFFF;
+  struct Run {
+    std::uint32_t first = 0;  // index in segments_ of the first segment
+    std::uint32_t last = 0;   // one past the last segment
+    std::uint32_t next = 0;   // code offset after the run
+  };
+  // Runs `segment`'s rungs from its first: returns how many completed, stopping early after the
+  // rung at which `t` reached `limit`. N contacts, word indices of 32 bits when Wide (else 16),
+  // and Coil 0 for any number of coils or the FusedRule kind of the rung's single coil (1 OTE,
+  // 2 OTL, 3 OTU).
+  template <unsigned N, bool Wide, unsigned Coil>
+  static std::uint32_t run_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w, Nanoseconds& t,
+                                   Nanoseconds limit);
+  using Kernel = std::uint32_t (*)(const FusedProgram&, const Segment&, std::uint16_t*, Nanoseconds&, Nanoseconds);
+  static const Kernel kKernels[];
 
   class Builder;
 
-  // Rung records, back to back: the shape index with the contact count in bits 31-24, one bit
-  // operand word per contact, one bit operand word per coil with the coil's FusedRule in the
-  // mode bits (31-28).
-  std::vector<std::uint32_t> stream_;
-  std::vector<std::uint32_t> sor_;  // per fused rung, in stream order: the code offset of its SOR
+  // Rung records, back to back in program order, each a fixed layout per shape (16-bit units;
+  // k = 1, or 2 when the data table has more than 65,536 words):
+  //   contacts * k     each contact's word index (pre-decoded from its bit operand)
+  //   (contacts+1)/2   each contact's bit number, one byte each
+  //   coils * (k + 1)  each coil's word index and bit mask
+  // The bench rung (four contacts, one coil) is 16 bytes.
+  std::vector<std::uint16_t> records_;
+  bool wide_ = false;
+  std::vector<std::uint32_t> sor_;  // per fused rung, in record order: the code offset of its SOR
   std::vector<Shape> shapes_;
   std::vector<Nanoseconds> costs_;
-  std::vector<std::uint64_t> truth_;
+  std::vector<std::uint16_t> on_;    // per shape, coil and contact value: the coil's rung-in, 0 or 0xFFFF
+  std::vector<std::uint8_t> rules_;  // per shape and coil: its FusedRule
+  std::vector<Segment> segments_;
   std::vector<Run> runs_;
   std::vector<std::int32_t> run_of_rung_;         // per rung of every file (in file order): its run or -1
   std::vector<std::uint32_t> file_first_rung_;    // file number -> index of its rung 0 in run_of_rung_

@@ -1931,6 +1931,20 @@ ProgramScanResult Interpreter::pass_result(bool ok, Nanoseconds elapsed) const {
   return res;
 }
 
+namespace {
+
+// The ops run_routine's bit-logic fast path executes (direct-bit XIC/XIO/OTE and the branch
+// structure); every other op goes straight to the general switch. Indexed by the op byte.
+// With coverage every op takes the general switch (kNoFastPathOp).
+constexpr std::array<bool, 256> kFastPathOp = [] {
+  std::array<bool, 256> a{};
+  for (Op op : {Op::XIC, Op::XIO, Op::OTE, Op::BST, Op::NXB, Op::BND}) a[static_cast<std::size_t>(op)] = true;
+  return a;
+}();
+constexpr std::array<bool, 256> kNoFastPathOp{};
+
+}  // namespace
+
 bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
   struct BranchFrame {
     bool entry;  // the rung condition at BST: every leg starts from it
@@ -1956,6 +1970,7 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
   // which leaves the compiler registers for the program counter and the scan time.
   int cur_file = file;
   const std::uint32_t* pc = code_ + prog_.file(file)->begin;
+  const bool* const fast_op = coverage_ ? kNoFastPathOp.data() : kFastPathOp.data();
 
   for (;;) {
   resume:
@@ -2027,6 +2042,7 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       elapsed = t;
       count_ += n;
     }
+  dispatch:
     const std::uint32_t h = *pc;
     const Op op = bc::op_of(h);
     const std::uint32_t* const o = pc + 1;
@@ -2446,6 +2462,10 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
     // The program counter advances here, after the handler, so only one copy of it is live
     // across the switch (computing it before the switch made the compiler spill it).
     pc = o + bc::count_of(h);
+    // An op the fast path would only hand back is dispatched here directly, and with coverage
+    // every op is: entering and leaving the fast path costs more than this test
+    // (docs/performance.md, "mixed").
+    if (!fast_op[static_cast<std::size_t>(bc::op_of(*pc))]) goto dispatch;
     continue;
 
   return_from_subroutine: {

@@ -14,7 +14,9 @@
 // registers; anything else drops to the general switch, whose cases implement every op
 // (including these, for run-time-resolved operands). Measured with tests/benchmarks/vm_bench:
 // the general switch alone kept the rung condition in memory and ran about 6 ns per bit
-// instruction; with the fast path about 2.4 ns (docs/bytecode.md, "Performance").
+// instruction; with the fast path about 2.4 ns (docs/bytecode.md, "Performance"). After a
+// general-switch op the next op is dispatched there directly unless the fast path runs it (and
+// always with coverage), so a TON or MOV is not switched on twice.
 //
 // Fused rungs. Runs of rungs that are pure contact networks are not dispatched instruction by
 // instruction at all: at such a run's first SOR the general switch hands it to a FusedProgram

@@ -49,13 +49,28 @@ CompiledProgram build(const std::string& text) {
   return std::move(*cr.program);
 }
 
-// A small pool of bits (four words), so contacts often read what coils of the same rung write.
-std::string random_bit(std::mt19937& rng) {
-  return "B3:" + std::to_string(rng() % 4) + "/" + std::to_string(rng() % 16);
+// The rung structure comes from `shape`; bit addresses come from `bits` when `split` is set, so
+// a saved `shape` state replays one rung structure with new operands (one fused shape repeated:
+// a segment). Unsplit, both come from `shape`.
+struct Rng {
+  explicit Rng(unsigned seed) : shape(seed), bits(seed * 7919u + 1) {}
+  std::uint32_t operator()() { return shape(); }
+  std::uint32_t bit() { return split ? bits() : shape(); }
+  std::mt19937 shape, bits;
+  bool split = false;
+  unsigned words = 4;
+  int file = 3;  // the bit file
+};
+
+// A small pool of bits (four words by default), so contacts often read what coils of the same
+// rung write, and contacts of one rung often share a word.
+std::string random_bit(Rng& rng) {
+  const std::uint32_t word = rng.bit() % rng.words;
+  return "B" + std::to_string(rng.file) + ":" + std::to_string(word) + "/" + std::to_string(rng.bit() % 16);
 }
 
 // A random condition: contacts and (nested) input branches.
-std::string random_condition(std::mt19937& rng, int depth, int& budget) {
+std::string random_condition(Rng& rng, int depth, int& budget) {
   std::string s;
   const int n = 1 + static_cast<int>(rng() % 4);
   for (int i = 0; i < n && budget > 0; ++i, --budget) {
@@ -74,14 +89,14 @@ std::string random_condition(std::mt19937& rng, int depth, int& budget) {
   return s;
 }
 
-std::string random_coil(std::mt19937& rng) {
+std::string random_coil(Rng& rng) {
   static const char* const kCoils[] = {"OTE ", "OTE ", "OTL ", "OTU "};
   return kCoils[rng() % 4] + random_bit(rng) + " ";
 }
 
 // A random rung body of contact logic: a condition, then one coil or an output branch whose legs
 // have their own conditions and coils (a later leg's contact may read an earlier leg's coil).
-std::string random_elements(std::mt19937& rng, int& budget) {
+std::string random_elements(Rng& rng, int& budget) {
   std::string s = random_condition(rng, 0, budget);
   if (rng() % 3 != 0) return s + random_coil(rng);
   const int legs = 2 + static_cast<int>(rng() % 3);
@@ -95,7 +110,7 @@ std::string random_elements(std::mt19937& rng, int& budget) {
   return s + "BND ";
 }
 
-std::string random_program(std::mt19937& rng) {
+std::string random_program(Rng& rng) {
   std::string s = "START 1747-L532\nLADDER 2\n";
   const int rungs = 40 + static_cast<int>(rng() % 40);
   for (int r = 0; r < rungs; ++r) {
@@ -158,40 +173,133 @@ void expect_same(const ProgramScanResult& a, const ProgramScanResult& b, const s
   EXPECT_EQ(a.last_rung, b.last_rung) << where;
 }
 
+// Scans `p` 30 times with fusion on and off, setting the first words of the bit file to random
+// values before every other scan, and requires the same results and data table after every scan.
+void expect_fusion_changes_nothing(const CompiledProgram& p, const std::string& text, unsigned seed,
+                                   Nanoseconds watchdog, Rng& rng) {
+  const DistinctCosts model;
+  Machine fused(p, model, true), general(p, model, false);
+  for (int scan = 0; scan < 30; ++scan) {
+    for (std::uint32_t w = 0; w < rng.words; ++w) {
+      const auto v = static_cast<std::uint16_t>(rng());
+      const std::uint32_t at = p.layout->files[static_cast<std::size_t>(rng.file)].base + w;
+      // Half the scans keep what the program wrote, so latches and feedback carry over.
+      if (scan % 2 == 0) {
+        fused.table.set_word(at, v);
+        general.table.set_word(at, v);
+      }
+    }
+    const auto a = fused.interp.program_scan(scan * 10'000'000LL, 0, scan == 0, watchdog);
+    const auto b = general.interp.program_scan(scan * 10'000'000LL, 0, scan == 0, watchdog);
+    const std::string where = "seed " + std::to_string(seed) + " scan " + std::to_string(scan) + "\n" + text;
+    expect_same(a, b, where);
+    for (std::uint32_t w = 0; w < p.layout->total_words; ++w)
+      ASSERT_EQ(fused.table.word(w), general.table.word(w)) << "word " << p.layout->describe(w) << ", " << where;
+  }
+}
+
 TEST(Fused, RandomProgramsMatchTheGeneralPath) {
   const DistinctCosts model;
   std::size_t fused_total = 0, rungs_total = 0;
   for (unsigned seed = 1; seed <= 60; ++seed) {
-    std::mt19937 rng(seed);
+    Rng rng(seed);
     const std::string text = random_program(rng);
     const CompiledProgram p = build(text);
-    Machine fused(p, model, true), general(p, model, false);
-    const FusedProgram fp(p, fused.interp.costs());
+    const FusedProgram fp(p, Machine(p, model, true).interp.costs());
     fused_total += fp.fused_rungs();
     for (const auto& f : p.files) rungs_total += f.rungs.size();
     // A watchdog that some seeds reach mid-scan, so the fused path's watchdog exit is compared too.
     const Nanoseconds watchdog = seed % 3 == 0 ? 40'000 : INT64_MAX;
-    for (int scan = 0; scan < 30; ++scan) {
-      for (std::uint32_t w = 0; w < 4; ++w) {
-        const auto v = static_cast<std::uint16_t>(rng());
-        const std::uint32_t at = p.layout->files[3].base + w;
-        // Half the scans keep what the program wrote, so latches and feedback carry over.
-        if (scan % 2 == 0) {
-          fused.table.set_word(at, v);
-          general.table.set_word(at, v);
-        }
-      }
-      const auto a = fused.interp.program_scan(scan * 10'000'000LL, 0, scan == 0, watchdog);
-      const auto b = general.interp.program_scan(scan * 10'000'000LL, 0, scan == 0, watchdog);
-      const std::string where = "seed " + std::to_string(seed) + " scan " + std::to_string(scan) + "\n" + text;
-      expect_same(a, b, where);
-      for (std::uint32_t w = 0; w < p.layout->total_words; ++w)
-        ASSERT_EQ(fused.table.word(w), general.table.word(w)) << "word " << p.layout->describe(w) << ", " << where;
-    }
+    expect_fusion_changes_nothing(p, text, seed, watchdog, rng);
   }
   // The comparison means something only if many rungs were fused and many were not.
   EXPECT_GT(fused_total, rungs_total / 3);
   EXPECT_LT(fused_total, rungs_total);
+}
+
+// Groups of consecutive rungs with one structure and fresh operands, as generated ladder and
+// copied rungs are: each group is one fused shape repeated, which a single kernel call runs as a
+// segment (vm/fused.h). Series contacts with one coil (0 to 8 contacts, each coil kind), one
+// parallel branch, and random networks; two words of bits, so contacts of a rung often share a
+// word and a contact often reads the bit its rung's coil writes (a seal-in: it must see the
+// value before the coil). Some seeds' watchdog stops a scan inside a segment.
+std::string random_segmented_program(Rng& rng, bool big_data_table) {
+  std::string s = "START 1747-L532\nLADDER 2\n";
+  // Sizes nine string files (9 x 256 x 42 words) so the data table passes 65,536 words; the
+  // ACN never runs (B9:0/0 is never set).
+  if (big_data_table)
+    s += "SOR XIC B9:0/0 ACN ST10:255 ST11:255 ST12:255 ACN ST13:255 ST14:255 ST15:255 "
+         "ACN ST16:255 ST17:255 ST18:255 EOR\n";
+  rng.split = true;
+  const int groups = 8 + static_cast<int>(rng() % 10);
+  for (int g = 0; g < groups; ++g) {
+    const int repeat = 1 + static_cast<int>(rng() % 12);
+    const unsigned kind = rng() % 5;
+    const int contacts = static_cast<int>(rng() % 9);
+    const int budget0 = 2 + static_cast<int>(rng() % 8);
+    const std::mt19937 saved = rng.shape;
+    for (int i = 0; i < repeat; ++i) {
+      rng.shape = saved;
+      std::string rung;
+      if (kind <= 1) {
+        for (int c = 0; c < contacts; ++c) rung += (rng() % 2 ? "XIC " : "XIO ") + random_bit(rng) + " ";
+        rung += random_coil(rng);
+      } else if (kind == 2) {
+        rung = "XIC " + random_bit(rng) + " BST XIC " + random_bit(rng) + " NXB XIO " + random_bit(rng) + " BND " +
+               random_coil(rng);
+      } else {
+        int budget = budget0;
+        rung = random_elements(rng, budget);
+      }
+      s += "SOR " + rung + "EOR\n";
+    }
+    // Now and then a rung the general path runs ends the run of fused rungs.
+    if (rng() % 4 == 0) s += "SOR XIC " + random_bit(rng) + " TON T4:0 0.01 5 0 EOR\n";
+  }
+  rng.split = false;
+  return s;
+}
+
+TEST(Fused, RepeatedRungShapesMatchTheGeneralPath) {
+  const DistinctCosts model;
+  std::size_t fused_total = 0, segments_total = 0, watchdog_scans = 0;
+  for (unsigned seed = 1; seed <= 60; ++seed) {
+    Rng rng(seed);
+    rng.words = 2;
+    const std::string text = random_segmented_program(rng, false);
+    const CompiledProgram p = build(text);
+    const FusedProgram fp(p, Machine(p, model, true).interp.costs());
+    EXPECT_FALSE(fp.wide_indices());
+    fused_total += fp.fused_rungs();
+    segments_total += fp.segments();
+    Nanoseconds watchdog = INT64_MAX;
+    if (seed % 2 == 0) {
+      watchdog = 20'000 + static_cast<Nanoseconds>(seed) * 7'919;
+      ++watchdog_scans;
+    }
+    expect_fusion_changes_nothing(p, text, seed, watchdog, rng);
+  }
+  // Most rungs share a segment with the rung before.
+  EXPECT_LT(segments_total * 2, fused_total);
+  EXPECT_GT(watchdog_scans, 0u);
+}
+
+// The same with a data table of more than 65,536 words: the records hold 32-bit word indices,
+// and the bits (B20, after the string files) are past word 65,535.
+TEST(Fused, WideWordIndicesMatchTheGeneralPath) {
+  const DistinctCosts model;
+  for (unsigned seed = 101; seed <= 110; ++seed) {
+    Rng rng(seed);
+    rng.words = 2;
+    rng.file = 20;
+    const std::string text = random_segmented_program(rng, true);
+    const CompiledProgram p = build(text);
+    ASSERT_GT(p.layout->files[20].base, 0xFFFFu);
+    const FusedProgram fp(p, Machine(p, model, true).interp.costs());
+    EXPECT_TRUE(fp.wide_indices());
+    EXPECT_GT(fp.fused_rungs(), 0u);
+    expect_fusion_changes_nothing(p, text, seed, seed % 2 ? INT64_MAX : 60'000, rng);
+  }
 }
 
 // docs/bytecode.md "Rung logic": each leg starts from the condition at BST, and an output acts on

@@ -10,6 +10,7 @@
 // p. 64 (DH+ rates).
 #pragma once
 
+#include <cstdint>
 #include <string_view>
 #include <utility>
 
@@ -82,6 +83,14 @@ inline constexpr int kMessageMaxWords = 103;
 inline constexpr int kEthernetMessageBlockWords = 51;
 inline constexpr int kEthernetMessageTypeWord = 35;
 inline constexpr int kMessageAoWord = 12;
+inline constexpr std::uint16_t kMessageAoBit = 1u << 15;
+
+// Word 35's low byte names a MultiHop message (10h or 11h), which softslc does not simulate: `check`
+// refuses one a DATA block sets up, the network ends one a program writes with 17h.
+constexpr bool is_multihop_message_type(std::uint16_t word35) {
+  const unsigned type = word35 & 0xFFu;
+  return type == 0x10 || type == 0x11;
+}
 
 // The most elements one MSG carries on the SLC 5/05's Ethernet channel, by the local file's type: RM
 // p. D-21 table D.5 "SLC 5/05 Message Lengths" (an Ethernet buffer of 2108 bytes), the 485CIF and

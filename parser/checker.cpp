@@ -692,12 +692,12 @@ class Checker {
         if (i < 0 || static_cast<std::size_t>(i) >= d.words.size()) return std::nullopt;
         return d.words[static_cast<std::size_t>(i)];
       };
-      if (auto type = value(kEthernetMessageTypeWord); type && ((*type & 0xFF) == 0x10 || (*type & 0xFF) == 0x11))
+      if (auto type = value(kEthernetMessageTypeWord); type && is_multihop_message_type(static_cast<std::uint16_t>(*type)))
         error(block.pos, "MSG control block " + block.spelling + ": word 35 (set by the DATA block at line " +
                              std::to_string(d.pos.line) + ") makes it a MultiHop message (1747-RM001G p. 12-34 "
                              "table 12.14), which softslc does not simulate; the simulated Ethernet is one network "
                              "of SLC 5/05s reached by IP address (word 35 = 0)");
-      if (auto ao = value(kMessageAoWord); plc5 && ao && (*ao & 0x8000))
+      if (auto ao = value(kMessageAoWord); plc5 && ao && (*ao & kMessageAoBit))
         error(block.pos, "MSG control block " + block.spelling + ": AO (word 12 bit 15, set by the DATA block at line " +
                              std::to_string(d.pos.line) + ") selects PLC5 logical ASCII addressing (1747-10.4 p. 4-3), "
                              "which softslc does not simulate");

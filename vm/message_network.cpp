@@ -204,12 +204,12 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
 // The Ethernet part of the block (RM 12-34 table 12.14): the message type, AO, this station's own
 // address and the target's IP address string; the data length in bytes goes into word 11 (RM D-21).
 std::uint8_t MessageNetwork::check_ethernet_block(std::size_t station, const MessageInstruction& in, Message& m) {
-  const std::uint8_t type = word(station, in.block + msg::kEthernetTypeWord) & 0xFF;
-  if (type == 0x10 || type == 0x11) return msg::kServiceUnsupported;  // MultiHop: not simulated
-  if (type != 0) return msg::kBadParameters;
+  const std::uint16_t type_word = word(station, in.block + msg::kEthernetTypeWord);
+  if (is_multihop_message_type(type_word)) return msg::kServiceUnsupported;  // not simulated
+  if ((type_word & 0xFF) != 0) return msg::kBadParameters;
   // AO "has no meaning for 485CIF and 500CPU types of reads and writes" (1747-10.4 p. 4-3); with PLC5 it
   // selects logical ASCII addressing, the 93-word block, which softslc does not simulate.
-  if (in.device == 2 && (word(station, in.block + msg::kAoWord) & msg::kAO)) return msg::kServiceUnsupported;
+  if (in.device == 2 && (word(station, in.block + msg::kAoWord) & kMessageAoBit)) return msg::kServiceUnsupported;
   if (stations_[station].ip == 0) return msg::kNoIpConfigured;
   std::string text;
   bool terminated = false;

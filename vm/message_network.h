@@ -88,7 +88,6 @@ inline constexpr int kQueuePositions = 10;    // RM 12-41: "Each channel has its
 // (0 not MultiHop; 10h, 11h MultiHop).
 inline constexpr std::uint32_t kByteCountWord = 11;
 inline constexpr std::uint32_t kAoWord = kMessageAoWord;
-inline constexpr std::uint16_t kAO = 1u << 15;
 inline constexpr std::uint32_t kIpWord = 14;
 inline constexpr int kIpBytes = 42;
 inline constexpr std::uint32_t kEthernetTypeWord = kEthernetMessageTypeWord;

@@ -1,5 +1,6 @@
 #include "vm/event_queue.h"
 
+#include <algorithm>
 #include <string>
 
 namespace softslc {
@@ -10,53 +11,16 @@ EventQueue::EventId EventQueue::schedule_at(VirtualTime at, Callback cb) {
                             std::to_string(clock_.now()) + " ns");
   const EventId id = next_id_++;
   heap_.push_back(Event{at, id, std::move(cb)});
-  sift_up(heap_.size() - 1);
+  std::push_heap(heap_.begin(), heap_.end(), runs_after);
   return id;
 }
 
 bool EventQueue::cancel(EventId id) {
-  for (std::size_t i = 0; i < heap_.size(); ++i)
-    if (heap_[i].id == id) {
-      take(i);
-      return true;
-    }
-  return false;
-}
-
-void EventQueue::sift_up(std::size_t i) {
-  while (i > 0) {
-    const std::size_t parent = (i - 1) / 2;
-    if (!heap_[parent].after(heap_[i])) break;
-    std::swap(heap_[parent], heap_[i]);
-    i = parent;
-  }
-}
-
-void EventQueue::sift_down(std::size_t i) {
-  const std::size_t n = heap_.size();
-  for (;;) {
-    std::size_t first = i;
-    const std::size_t l = 2 * i + 1, r = l + 1;
-    if (l < n && heap_[first].after(heap_[l])) first = l;
-    if (r < n && heap_[first].after(heap_[r])) first = r;
-    if (first == i) return;
-    std::swap(heap_[i], heap_[first]);
-    i = first;
-  }
-}
-
-EventQueue::Event EventQueue::take(std::size_t i) {
-  Event e = std::move(heap_[i]);
-  if (i + 1 != heap_.size()) {
-    heap_[i] = std::move(heap_.back());
-    heap_.pop_back();
-    // The moved-in event may belong above or below position i.
-    sift_up(i);
-    sift_down(i);
-  } else {
-    heap_.pop_back();
-  }
-  return e;
+  const auto it = std::find_if(heap_.begin(), heap_.end(), [id](const Event& e) { return e.id == id; });
+  if (it == heap_.end()) return false;
+  heap_.erase(it);
+  std::make_heap(heap_.begin(), heap_.end(), runs_after);
+  return true;
 }
 
 std::size_t EventQueue::run_until(VirtualTime until) {
@@ -65,7 +29,9 @@ std::size_t EventQueue::run_until(VirtualTime until) {
                             std::to_string(clock_.now()) + " ns)");
   std::size_t ran = 0;
   while (!heap_.empty() && heap_.front().at <= until) {
-    Event e = take(0);
+    std::pop_heap(heap_.begin(), heap_.end(), runs_after);
+    Event e = std::move(heap_.back());
+    heap_.pop_back();
     clock_.advance_to(e.at);
     // The callback may schedule more events (at >= now); the loop picks them up in order.
     e.cb(e.at);

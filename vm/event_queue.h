@@ -8,11 +8,12 @@
 // before calling it, so a callback always sees now() == its own time and time never goes
 // backwards.
 //
-// Storage: a binary min-heap on (time, sequence) in one vector that keeps its capacity, so a
-// module scheduling its next event every few microseconds of virtual time costs no allocation
-// (a std::map cost two nodes per event, and was most of the SN scanner's simulation time). A
-// cancel looks the event up by a linear search: cancels are rare and the queue holds a few events
-// per module.
+// Storage: a binary min-heap on (time, sequence) in one vector that keeps its capacity
+// (std::push_heap / std::pop_heap), so a module scheduling its next event every few microseconds
+// of virtual time costs no allocation (a std::map cost two nodes per event, and was most of the
+// SN scanner's simulation time). A cancel finds the event by a linear search and rebuilds the
+// heap: cancels are rare and the queue holds a few events per module. Keys are unique, so the
+// order events run in does not depend on how the heap is arranged.
 //
 // The runtime runs the queue between scans: when a scan ends at time t, every event due at or
 // before t runs (in order) and the clock ends at t. An event therefore changes module state
@@ -61,13 +62,10 @@ class EventQueue {
     VirtualTime at;
     EventId id;
     Callback cb;
-    // Earlier time first, then earlier sequence: the heap's top is the next event to run.
-    bool after(const Event& o) const { return at != o.at ? at > o.at : id > o.id; }
   };
-  void sift_up(std::size_t i);
-  void sift_down(std::size_t i);
-  // Removes heap_[i], keeping the heap order; returns the event.
-  Event take(std::size_t i);
+  // The heap's comparator: "a runs after b" (later time, then later sequence), so the heap's
+  // front is the next event to run.
+  static bool runs_after(const Event& a, const Event& b) { return a.at != b.at ? a.at > b.at : a.id > b.id; }
 
   VirtualClock& clock_;
   std::vector<Event> heap_;

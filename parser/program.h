@@ -28,16 +28,20 @@ struct SourcePos {
 };
 
 // One operand of an instruction as written.
+//
+// A program holds about five operands per rung, so their size is most of a large program's memory
+// (docs/performance.md "Load time"): the one-byte members and the position fill the gap after the
+// 60-byte Address instead of each opening an 8-byte slot of its own, 152 bytes instead of 160.
 struct Operand {
   enum class Kind : std::uint8_t { Address, Integer, Float, Symbol, Expression };
-  Kind kind = Kind::Integer;
   Address address;             // Kind::Address, and Kind::Symbol once resolved
+  Kind kind = Kind::Integer;
+  bool resolved = false;       // Kind::Symbol: address holds the symbol's address
+  SourcePos pos;
   std::int64_t integer = 0;    // Kind::Integer
   double real = 0.0;           // Kind::Float
   std::string symbol;          // Kind::Symbol: the name as written
   std::string spelling;        // the text as written, for diagnostics (Kind::Expression: the CPT expression)
-  SourcePos pos;
-  bool resolved = false;       // Kind::Symbol: address holds the symbol's address
 
   // True when the operand designates a data-table location (directly or through a symbol).
   bool is_address() const { return kind == Kind::Address || (kind == Kind::Symbol && resolved); }

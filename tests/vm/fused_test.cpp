@@ -353,10 +353,15 @@ std::string random_word_contact(Rng& rng) {
 std::string random_word_rung(Rng& rng) {
   static const char* const kCompares[] = {"EQU", "NEQ", "LES", "LEQ", "GRT", "GEQ"};
   std::string s;
-  // 0-3 contacts and 0-2 compares, sometimes in a parallel branch, sometimes a coil between.
+  // 0-3 contacts and 0-2 compares, sometimes a parallel branch, sometimes a coil.
   const int contacts = static_cast<int>(rng() % 4);
   const int compares = static_cast<int>(rng() % 3);
   for (int i = 0; i < contacts; ++i) s += random_word_contact(rng);
+  // An output branch whose second leg compares after the first leg's coil: a compare reading
+  // the word that coil writes must see the new value (such a rung stays general).
+  if (rng() % 5 == 0)
+    return s + "BST " + random_coil(rng) + "NXB " + kCompares[rng() % 6] + " " + random_source(rng) + " " +
+           random_source(rng) + " " + random_coil(rng) + "BND";
   for (int i = 0; i < compares; ++i)
     s += std::string(kCompares[rng() % 6]) + " " + random_source(rng) + " " + random_source(rng) + " ";
   if (rng() % 5 == 0) s += "BST " + random_word_contact(rng) + "NXB " + random_word_contact(rng) + "BND ";

@@ -78,11 +78,10 @@ constexpr bool is_coil(FusedRule r) {
   return r == FusedRule::Energize || r == FusedRule::Latch || r == FusedRule::Unlatch;
 }
 
-// The actions a word rung may end in, in kernel order (kKernels after the bit kernels).
+// The actions a word rung may end in, in the order of run_word_segment's cases.
 constexpr Op kActions[] = {Op::SOR, Op::TON, Op::TOF, Op::RTO, Op::CTU, Op::CTD, Op::RES, Op::MOV, Op::ADD, Op::SUB};
-constexpr unsigned kBitKernels = 9 * 8;
-// Per action, word-rung kernels for 0-2 contacts and 0-1 compares with no coils (the common
-// rungs: straight-line code), then one for any counts (loops).
+// Per action, run_word_segment has cases for 0-2 contacts and 0-1 compares with no coils (the
+// common rungs: straight-line code), then one for any counts (loops).
 constexpr unsigned kAnyCount = 0xFF;
 constexpr unsigned kWordVariants = 7;
 constexpr unsigned word_variant(unsigned contacts, unsigned compares, unsigned coils) {
@@ -201,7 +200,7 @@ class FusedProgram::Builder {
     if (inserted) build_shape();
     const Shape& shape = out_.shapes_[it->second];
     if (shape.word)
-      append_word_record();
+      append_word_record(it->second);
     else
       append_record(shape);
     out_.sor_.push_back(sor);
@@ -235,8 +234,9 @@ class FusedProgram::Builder {
     return true;
   }
 
-  void append_word_record() {
+  void append_word_record(std::uint32_t shape) {
     auto& r = out_.wrecords_;
+    r.push_back(shape);
     r.insert(r.end(), contacts_.begin(), contacts_.end());
     for (std::uint32_t o : compares_) r.push_back(encode(o));
     r.insert(r.end(), coils_.begin(), coils_.end());
@@ -300,10 +300,10 @@ class FusedProgram::Builder {
       if (is_instruction(bc::op_of(h)) && fused_rule(to_opcode(bc::op_of(h))) == FusedRule::Compare)
         out_.rules_.push_back(static_cast<std::uint8_t>(word_ops::compare_mask(bc::op_of(h))));
     if (s.word) {
-      s.stride = static_cast<std::uint16_t>(n + (n - nc) + coils_.size() + action_operands_.size());
+      s.stride = static_cast<std::uint16_t>(1 + n + (n - nc) + coils_.size() + action_operands_.size());
       unsigned a = 0;
       while (kActions[a] != action_) ++a;
-      s.kernel = static_cast<std::uint8_t>(kBitKernels + a * kWordVariants + word_variant(nc, n - nc, s.coils));
+      s.kernel = static_cast<std::uint8_t>(a * kWordVariants + word_variant(nc, n - nc, s.coils));
     } else {
       s.stride = static_cast<std::uint16_t>(n * k + (n + 1) / 2 + coils_.size() * (k + 1));
       // A single coil has a kernel of its own per FusedRule (1 OTE, 2 OTL, 3 OTU); 0 is any count.
@@ -403,10 +403,13 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
         run_of_rung_[base + r] = open;
       }
       Run& run = runs_[static_cast<std::size_t>(open)];
-      if (run.last > run.first && segments_.back().shape == static_cast<std::uint32_t>(shape))
+      // Consecutive word rungs share one segment whatever their shapes (each record names its
+      // shape); consecutive contact networks share one only when their shape is the same.
+      const std::uint32_t key = word ? kWordSegment : static_cast<std::uint32_t>(shape);
+      if (run.last > run.first && segments_.back().shape == key)
         ++segments_.back().rungs;
       else
-        segments_.push_back({at, 1, static_cast<std::uint32_t>(shape), rung_index});
+        segments_.push_back({at, 1, key, rung_index});
       run.last = static_cast<std::uint32_t>(segments_.size());
       run.next = end;
     }
@@ -482,84 +485,112 @@ std::uint32_t FusedProgram::run_segment(const FusedProgram& p, const Segment& se
   return done;
 }
 
+// One word rung whose record (after its shape word) is `rec`: its action is A (SOR: none), with
+// NC contacts, NM compares and no coils, or (NC = NM = kAnyCount) any counts. Adds its charge
+// to t; returns false, having changed nothing, when the general path must run it.
 template <Op A, unsigned NC, unsigned NM>
-std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
-                                             Nanoseconds& elapsed, Nanoseconds limit, const FusedScan& scan) {
+inline bool FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
+                                    Nanoseconds& t, const FusedScan& scan) {
   constexpr bool fixed = NC != kAnyCount;
-  const Shape& sh = p.shapes_[segment.shape];
-  const std::uint32_t* rec = p.wrecords_.data() + segment.rec;
   const Nanoseconds* const cost = p.costs_.data() + sh.cost_at;
   const std::uint16_t* const on = p.on_.data() + sh.on_at;
-  // The coils' FusedRules, then the compares' masks (word_ops::compare_mask).
-  const std::uint8_t* const rules = p.rules_.data() + sh.rules_at;
   const unsigned nc = fixed ? NC : sh.contacts;
   const unsigned nm = fixed ? NM : sh.compares;
   const unsigned coils = fixed ? 0 : sh.coils;
   const unsigned n = nc + nm;
-  const unsigned stride = fixed ? NC + 2 * NM + action_operands(A) : sh.stride;
+  // The coils' FusedRules, then the compares' masks (word_ops::compare_mask).
+  const std::uint8_t* const rules = p.rules_.data() + sh.rules_at;
+  const std::uint32_t* o = rec;
+  unsigned v = 0;
+  for (unsigned i = 0; i < nc; ++i, ++o)
+    v |= ((static_cast<unsigned>(w[bc::word_of_bit(*o)]) >> bc::bit_of(*o)) & 1u) << i;
+  for (unsigned j = 0; j < nm; ++j, o += 2)
+    v |= static_cast<unsigned>(word_ops::compare_by_mask(rules[coils + j], read_operand(w, o[0]), read_operand(w, o[1])))
+         << (nc + j);
+  const std::uint32_t* const act = o + coils;
+  if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
+    // Fault 0034h: the general path runs this rung and raises it (before anything is written).
+    if (word_ops::timer_negative(w + act[0])) [[unlikely]]
+      return false;
+  }
+  t += cost[v];
+  for (unsigned j = 0; j < coils; ++j, ++o)
+    apply_coil(static_cast<unsigned>(rules[j]) - static_cast<unsigned>(FusedRule::Energize) + 1,
+               w[bc::word_of_bit(*o)], static_cast<std::uint16_t>(1u << bc::bit_of(*o)), on[(j << n) + v]);
+  // The action's rung-in; it is the rung's last instruction, so the scan time it sees is t.
+  [[maybe_unused]] const bool rung = on[(coils << n) + v] != 0;
+  if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
+    word_ops::timer(A, w + act[0], rung, scan.first_pass, word_ops::timer_tick(scan.scan_start + t, sh.action_flags),
+                    (sh.action_flags & bc::kFlagA) != 0);
+  } else if constexpr (A == Op::CTU || A == Op::CTD) {
+    word_ops::counter(A, w + act[0], rung, scan.first_pass);
+  } else if constexpr (A == Op::RES) {
+    if (rung) word_ops::reset(static_cast<FileType>(sh.action_aux), w + act[0]);
+  } else if constexpr (A == Op::MOV) {
+    // Interpreter::move: an integer that does not fit saturates and sets V.
+    if (rung) {
+      bool overflow = false;
+      const std::int64_t stored = word_ops::saturate(read_operand(w, act[0]), INT16_MIN, INT16_MAX, overflow);
+      w[act[1]] = static_cast<std::uint16_t>(stored);
+      word_ops::set_arith_flags(w, p.s0_, p.s5_, false, overflow, stored == 0, stored < 0);
+    }
+  } else if constexpr (A == Op::ADD || A == Op::SUB) {
+    // Interpreter::math into a 16-bit word: C from the unsigned sum or difference, the
+    // S:2/14 overflow rule, then the flags and the S:5/0 trap.
+    if (rung) {
+      const std::int64_t a = read_operand(w, act[0]), b = read_operand(w, act[1]);
+      const bool carry = A == Op::ADD ? word_ops::add_carry(a, b, 0xFFFF) : word_ops::sub_carry(a, b, 0xFFFF);
+      bool overflow = false;
+      const std::int64_t stored = word_ops::fit_integer(A == Op::ADD ? a + b : a - b, false,
+                                                        (w[p.s2_] & status::kOverflowSelect) != 0, overflow);
+      w[act[2]] = static_cast<std::uint16_t>(stored);
+      word_ops::set_arith_flags(w, p.s0_, p.s5_, carry, overflow, stored == 0, stored < 0);
+    }
+  }
+  return true;
+}
+
+std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
+                                             Nanoseconds& elapsed, std::uint64_t& count, Nanoseconds limit,
+                                             const FusedScan& scan) {
+  const std::uint32_t* rec = p.wrecords_.data() + segment.rec;
   Nanoseconds t = elapsed;
+  std::uint64_t n = count;
   std::uint32_t done = 0;
   const std::uint32_t rungs = segment.rungs;
   for (;;) {
-    const std::uint32_t* o = rec;
-    unsigned v = 0;
-    for (unsigned i = 0; i < nc; ++i, ++o)
-      v |= ((static_cast<unsigned>(w[bc::word_of_bit(*o)]) >> bc::bit_of(*o)) & 1u) << i;
-    for (unsigned j = 0; j < nm; ++j, o += 2)
-      v |= static_cast<unsigned>(word_ops::compare_by_mask(rules[coils + j], read_operand(w, o[0]), read_operand(w, o[1])))
-           << (nc + j);
-    const std::uint32_t* const act = o + coils;
-    if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
-      // Fault 0034h: the general path runs this rung and raises it (before anything is written).
-      if (word_ops::timer_negative(w + act[0])) [[unlikely]] {
-        elapsed = t;
-        return done | kRunsGeneral;
-      }
+    const Shape& sh = p.shapes_[rec[0]];
+    bool ok = true;
+    // One case per action and contact/compare count (Builder::build_shape numbers them).
+    switch (sh.kernel) {
+#define SOFTSLC_WORD_RUNG(A, V, NC, NM) \
+  case (A) * kWordVariants + (V): ok = word_rung<kActions[A], NC, NM>(p, sh, rec + 1, w, t, scan); break;
+#define SOFTSLC_WORD_RUNGS(A)                                                                                    \
+  SOFTSLC_WORD_RUNG(A, 0, 0, 0) SOFTSLC_WORD_RUNG(A, 1, 0, 1) SOFTSLC_WORD_RUNG(A, 2, 1, 0)                      \
+  SOFTSLC_WORD_RUNG(A, 3, 1, 1) SOFTSLC_WORD_RUNG(A, 4, 2, 0) SOFTSLC_WORD_RUNG(A, 5, 2, 1)                      \
+  SOFTSLC_WORD_RUNG(A, 6, kAnyCount, kAnyCount)
+      SOFTSLC_WORD_RUNGS(0) SOFTSLC_WORD_RUNGS(1) SOFTSLC_WORD_RUNGS(2) SOFTSLC_WORD_RUNGS(3) SOFTSLC_WORD_RUNGS(4)
+      SOFTSLC_WORD_RUNGS(5) SOFTSLC_WORD_RUNGS(6) SOFTSLC_WORD_RUNGS(7) SOFTSLC_WORD_RUNGS(8) SOFTSLC_WORD_RUNGS(9)
+#undef SOFTSLC_WORD_RUNGS
+#undef SOFTSLC_WORD_RUNG
+      default: break;
     }
-    t += cost[v];
-    for (unsigned j = 0; j < coils; ++j, ++o)
-      apply_coil(static_cast<unsigned>(rules[j]) - static_cast<unsigned>(FusedRule::Energize) + 1,
-                 w[bc::word_of_bit(*o)], static_cast<std::uint16_t>(1u << bc::bit_of(*o)), on[(j << n) + v]);
-    // The action's rung-in; it is the rung's last instruction, so the scan time it sees is t.
-    [[maybe_unused]] const bool rung = on[(coils << n) + v] != 0;
-    if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
-      word_ops::timer(A, w + act[0], rung, scan.first_pass, word_ops::timer_tick(scan.scan_start + t, sh.action_flags),
-                      (sh.action_flags & bc::kFlagA) != 0);
-    } else if constexpr (A == Op::CTU || A == Op::CTD) {
-      word_ops::counter(A, w + act[0], rung, scan.first_pass);
-    } else if constexpr (A == Op::RES) {
-      if (rung) word_ops::reset(static_cast<FileType>(sh.action_aux), w + act[0]);
-    } else if constexpr (A == Op::MOV) {
-      // Interpreter::move: an integer that does not fit saturates and sets V.
-      if (rung) {
-        bool overflow = false;
-        const std::int64_t stored = word_ops::saturate(read_operand(w, act[0]), INT16_MIN, INT16_MAX, overflow);
-        w[act[1]] = static_cast<std::uint16_t>(stored);
-        word_ops::set_arith_flags(w, p.s0_, p.s5_, false, overflow, stored == 0, stored < 0);
-      }
-    } else if constexpr (A == Op::ADD || A == Op::SUB) {
-      // Interpreter::math into a 16-bit word: C from the unsigned sum or difference, the
-      // S:2/14 overflow rule, then the flags and the S:5/0 trap.
-      if (rung) {
-        const std::int64_t a = read_operand(w, act[0]), b = read_operand(w, act[1]);
-        const bool carry = A == Op::ADD ? word_ops::add_carry(a, b, 0xFFFF) : word_ops::sub_carry(a, b, 0xFFFF);
-        bool overflow = false;
-        const std::int64_t stored = word_ops::fit_integer(A == Op::ADD ? a + b : a - b, false,
-                                                          (w[p.s2_] & status::kOverflowSelect) != 0, overflow);
-        w[act[2]] = static_cast<std::uint16_t>(stored);
-        word_ops::set_arith_flags(w, p.s0_, p.s5_, carry, overflow, stored == 0, stored < 0);
-      }
+    if (!ok) [[unlikely]] {
+      elapsed = t;
+      count = n;
+      return done | kRunsGeneral;
     }
-    rec += stride;
+    n += sh.instructions;
+    rec += sh.stride;
     ++done;
     if (t >= limit || done == rungs) break;
   }
   elapsed = t;
+  count = n;
   return done;
 }
 
-// Kernel (N * 2 + Wide) * 4 + Coil, as Builder::build_shape numbers it, then the word-rung
-// kernels in kActions order.
+// Kernel (N * 2 + Wide) * 4 + Coil, as Builder::build_shape numbers it.
 const FusedProgram::Kernel FusedProgram::kKernels[] = {
 #define SOFTSLC_FUSED_KERNELS(N)                                                                          \
   &run_segment<N, false, 0>, &run_segment<N, false, 1>, &run_segment<N, false, 2>, &run_segment<N, false, 3>, \
@@ -568,16 +599,9 @@ const FusedProgram::Kernel FusedProgram::kKernels[] = {
     SOFTSLC_FUSED_KERNELS(3), SOFTSLC_FUSED_KERNELS(4), SOFTSLC_FUSED_KERNELS(5),
     SOFTSLC_FUSED_KERNELS(6), SOFTSLC_FUSED_KERNELS(7), SOFTSLC_FUSED_KERNELS(8),
 #undef SOFTSLC_FUSED_KERNELS
-#define SOFTSLC_WORD_KERNELS(A)                                                                              \
-  &run_word_segment<A, 0, 0>, &run_word_segment<A, 0, 1>, &run_word_segment<A, 1, 0>, &run_word_segment<A, 1, 1>, \
-      &run_word_segment<A, 2, 0>, &run_word_segment<A, 2, 1>, &run_word_segment<A, kAnyCount, kAnyCount>
-    SOFTSLC_WORD_KERNELS(Op::SOR), SOFTSLC_WORD_KERNELS(Op::TON), SOFTSLC_WORD_KERNELS(Op::TOF),
-    SOFTSLC_WORD_KERNELS(Op::RTO), SOFTSLC_WORD_KERNELS(Op::CTU), SOFTSLC_WORD_KERNELS(Op::CTD),
-    SOFTSLC_WORD_KERNELS(Op::RES), SOFTSLC_WORD_KERNELS(Op::MOV), SOFTSLC_WORD_KERNELS(Op::ADD),
-    SOFTSLC_WORD_KERNELS(Op::SUB),
-#undef SOFTSLC_WORD_KERNELS
 };
-static_assert(std::size(kActions) * kWordVariants + kBitKernels <= 256, "a shape's kernel index is one byte");
+static_assert(std::size(kActions) * kWordVariants <= 256, "a shape's kernel index is one byte");
+static_assert(std::size(kActions) == 10, "run_word_segment has a case for every action");
 static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every contact count");
 
 std::uint32_t FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
@@ -587,10 +611,15 @@ std::uint32_t FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseco
   std::uint64_t n = 0;
   for (std::uint32_t s = r.first;;) {
     const Segment& sg = segments_[s];
-    const Shape& sh = shapes_[sg.shape];
-    const std::uint32_t result = kKernels[sh.kernel](*this, sg, w, t, limit, scan);
+    std::uint32_t result;
+    if (sg.shape == kWordSegment) {
+      result = run_word_segment(*this, sg, w, t, n, limit, scan);
+    } else {
+      const Shape& sh = shapes_[sg.shape];
+      result = kKernels[sh.kernel](*this, sg, w, t, limit, scan);
+      n += std::uint64_t{sh.instructions} * (result & ~kRunsGeneral);
+    }
     const std::uint32_t done = result & ~kRunsGeneral;
-    n += std::uint64_t{sh.instructions} * done;
     if (result & kRunsGeneral) [[unlikely]] {
       elapsed = t;
       count += n;

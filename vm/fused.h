@@ -144,16 +144,17 @@ class FusedProgram {
     std::uint16_t action_aux = 0;     // its header aux (RES: the element's FileType)
     std::uint16_t instructions = 0;  // instruction-table instructions in the rung
     std::uint16_t stride = 0;        // record size, in 16-bit units
-    std::uint8_t kernel = 0;         // index into the kernel table (fused.cpp)
+    std::uint8_t kernel = 0;         // index into the kernel table, or (word rungs) run_word_segment's case
     std::uint32_t cost_at = 0;       // first of 2^contacts entries in costs_
     std::uint32_t on_at = 0;         // first of coils * 2^contacts entries in on_
     std::uint32_t rules_at = 0;      // first of coils entries in rules_, then (word rungs) compares Op bytes
   };
-  // Consecutive rungs of one run that share a shape: executed by one kernel call.
+  // Consecutive rungs of one run that share a shape, or consecutive word rungs: executed by one
+  // kernel call.
   struct Segment {
-    std::uint32_t rec = 0;         // index in records_ of the first rung's record
+    std::uint32_t rec = 0;         // index in records_ (wrecords_ for word rungs) of the first rung's record
     std::uint32_t rungs = 0;       // rungs in the segment
-    std::uint32_t shape = 0;
+    std::uint32_t shape = 0;       // or kWordSegment
     std::uint32_t first_rung = 0;  // index in sor_ of the first rung
   };
   struct Run {
@@ -168,12 +169,18 @@ class FusedProgram {
   template <unsigned N, bool Wide, unsigned Coil>
   static std::uint32_t run_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w, Nanoseconds& t,
                                    Nanoseconds limit, const FusedScan& scan);
-  // A segment of word rungs whose action is A (SOR: none), with NC contacts, NM compares and no
-  // coils, or (NC = NM = 0xFF) any counts. Returns the rungs completed, with
-  // kRunsGeneral set when it stopped before a rung the general path must run.
-  template <Op A, unsigned NC, unsigned NM>
+  // A segment of word rungs, each of its own shape: one loop that switches per rung on the
+  // shape's kernel number, a case per action and small contact/compare count (word_rung), so
+  // consecutive rungs of different shapes cost no call. Adds the instructions to `count`;
+  // returns the rungs completed, with kRunsGeneral set when it stopped before a rung the
+  // general path must run.
   static std::uint32_t run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w, Nanoseconds& t,
-                                        Nanoseconds limit, const FusedScan& scan);
+                                        std::uint64_t& count, Nanoseconds limit, const FusedScan& scan);
+  template <Op A, unsigned NC, unsigned NM>
+  static bool word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
+                        Nanoseconds& t, const FusedScan& scan);
+  // Segment::shape of a segment of word rungs (each record names its shape).
+  static constexpr std::uint32_t kWordSegment = 0xFFFFFFFFu;
   using Kernel = std::uint32_t (*)(const FusedProgram&, const Segment&, std::uint16_t*, Nanoseconds&, Nanoseconds,
                                    const FusedScan&);
   static const Kernel kKernels[];
@@ -187,7 +194,7 @@ class FusedProgram {
   //   coils * (k + 1)  each coil's word index and bit mask
   // The bench rung (four contacts, one coil) is 16 bytes.
   std::vector<std::uint16_t> records_;
-  // Word-rung records, 32-bit units: each contact's and coil's bit operand word (vm/bytecode.h,
+  // Word-rung records, 32-bit units: the shape's index, each contact's and coil's bit operand word (vm/bytecode.h,
   // mode BIT), two read operands per compare, then the action's table operands other than
   // literals and time bases, in instruction-box order. A read operand is a word index, or an
   // immediate with bit 31 set and its value in bits 0-30 (kImmediate).

@@ -8,7 +8,9 @@
 // faults) and call them; the fused kernels pass pre-resolved word pointers and call them with the
 // op a template constant, so the `switch` folds away. Nothing here allocates, looks anything up
 // or raises a fault: the faults these instructions can raise (a timer's negative PRE/ACC, a bad
-// indexed address) are detected by the callers before anything is written.
+// indexed address) are detected by the callers before anything is written. The longer ones are
+// always inlined: in the fused word-rung loop (one function with a case per rung kind) the
+// compiler otherwise called them, a measurable cost per rung.
 #pragma once
 
 #include <algorithm>
@@ -26,7 +28,7 @@ inline constexpr std::uint16_t kArithFlags = 0x000F;  // S:0 C V Z S
 
 // Writes C V Z S into S:0 (word s0); RM B-5: whenever V is set, the overflow trap S:5/0 (word s5)
 // is set too.
-inline void set_arith_flags(std::uint16_t* w, std::uint32_t s0, std::uint32_t s5, bool c, bool v, bool z, bool s) {
+[[gnu::always_inline]] inline void set_arith_flags(std::uint16_t* w, std::uint32_t s0, std::uint32_t s5, bool c, bool v, bool z, bool s) {
   const auto f = static_cast<std::uint16_t>((c ? status::kCarry : 0) | (v ? status::kOverflow : 0) |
                                             (z ? status::kZero : 0) | (s ? status::kSign : 0));
   w[s0] = static_cast<std::uint16_t>((w[s0] & ~kArithFlags) | f);
@@ -101,7 +103,7 @@ inline std::uint8_t timer_tick(VirtualTime at, std::uint32_t flags) {
 
 // TON, TOF or RTO on element t (control word, PRE, ACC; neither negative) at tick `now8`.
 // `base1s`: the 1.0 s time base (header flag A).
-inline void timer(Op op, std::uint16_t* t, bool rung, bool first_pass, std::uint8_t now8, bool base1s) {
+[[gnu::always_inline]] inline void timer(Op op, std::uint16_t* t, bool rung, bool first_pass, std::uint8_t now8, bool base1s) {
   const auto pre = static_cast<std::int16_t>(t[1]);
   int acc = static_cast<std::int16_t>(t[2]);
   std::uint16_t ctl = t[0];
@@ -179,7 +181,7 @@ inline void timer(Op op, std::uint16_t* t, bool rung, bool first_pass, std::uint
 // CTU or CTD on element c. RM 2-14: count on a false-to-true transition only (CU/CD remember the
 // last rung state); on the first scan after entering Run the SLC has set CU/CD, so a true rung
 // does not count.
-inline void counter(Op op, std::uint16_t* c, bool rung, bool first_pass) {
+[[gnu::always_inline]] inline void counter(Op op, std::uint16_t* c, bool rung, bool first_pass) {
   std::uint16_t ctl = c[0];
   int acc = static_cast<std::int16_t>(c[2]);
   const int pre = static_cast<std::int16_t>(c[1]);

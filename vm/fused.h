@@ -37,8 +37,11 @@
 // contacts, then one bit per compare); the action is one more "coil" of the truth table, so its
 // rung-in and every instruction's charge still come from running the rung's ops for every v.
 // The action runs through the interpreter's own semantics (vm/word_ops.h) with pre-decoded word
-// indices, in a kernel that is a template instance per action op (no dispatch on the op, no
-// operand-mode test). Because the action is the rung's last instruction, the virtual time it
+// indices (a read operand is a word index or an immediate; there is no operand-mode test), in
+// code instantiated per action and per small contact/compare count. Word rungs alternate shapes
+// (TON, then CTU, then MOV ...), so consecutive word rungs of any shapes form one segment whose
+// records each begin with their shape's index, and one loop runs them with a `switch` per rung
+// on the shape's kernel number (no call per rung). Because the action is the rung's last instruction, the virtual time it
 // sees (a timer's 10 ms tick) is the rung's start plus the rung's whole charge, exactly the
 // general path's. A timer element with a negative PRE or ACC (fault 0034h) is noticed before
 // the rung writes anything; the run then returns that rung's SOR marked kRunsGeneral and the

@@ -66,9 +66,10 @@ constexpr bool row_is_action(Opcode op, unsigned sources, OperandKind last) {
     if (s.operands[i].kind != OperandKind::Source || s.operands[i].access != OperandAccess::Read) return false;
   return s.operands[sources].kind == last && s.operands[sources].access != OperandAccess::Read;
 }
-static_assert(row_is_action(Opcode::TON, 0, OperandKind::Timer) && row_is_action(Opcode::TOF, 0, OperandKind::Timer) &&
-              row_is_action(Opcode::RTO, 0, OperandKind::Timer));
-static_assert(row_is_action(Opcode::CTU, 0, OperandKind::Counter) && row_is_action(Opcode::CTD, 0, OperandKind::Counter));
+static_assert(row_is_action(Opcode::TON, 0, OperandKind::Timer) &&
+              row_is_action(Opcode::TOF, 0, OperandKind::Timer) && row_is_action(Opcode::RTO, 0, OperandKind::Timer));
+static_assert(row_is_action(Opcode::CTU, 0, OperandKind::Counter) &&
+              row_is_action(Opcode::CTD, 0, OperandKind::Counter));
 static_assert(row_is_action(Opcode::RES, 0, OperandKind::Resettable));
 static_assert(row_is_action(Opcode::MOV, 1, OperandKind::Dest));
 static_assert(row_is_action(Opcode::ADD, 2, OperandKind::Dest) && row_is_action(Opcode::SUB, 2, OperandKind::Dest));
@@ -489,8 +490,8 @@ std::uint32_t FusedProgram::run_segment(const FusedProgram& p, const Segment& se
 // NC contacts, NM compares and no coils, or (NC = NM = kAnyCount) any counts. Adds its charge
 // to t; returns false, having changed nothing, when the general path must run it.
 template <Op A, unsigned NC, unsigned NM>
-inline bool FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
-                                    Nanoseconds& t, const FusedScan& scan) {
+inline bool FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
+                                    std::uint16_t* w, Nanoseconds& t, const FusedScan& scan) {
   constexpr bool fixed = NC != kAnyCount;
   const Nanoseconds* const cost = p.costs_.data() + sh.cost_at;
   const std::uint16_t* const on = p.on_.data() + sh.on_at;
@@ -505,7 +506,8 @@ inline bool FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, cons
   for (unsigned i = 0; i < nc; ++i, ++o)
     v |= ((static_cast<unsigned>(w[bc::word_of_bit(*o)]) >> bc::bit_of(*o)) & 1u) << i;
   for (unsigned j = 0; j < nm; ++j, o += 2)
-    v |= static_cast<unsigned>(word_ops::compare_by_mask(rules[coils + j], read_operand(w, o[0]), read_operand(w, o[1])))
+    v |= static_cast<unsigned>(
+             word_ops::compare_by_mask(rules[coils + j], read_operand(w, o[0]), read_operand(w, o[1])))
          << (nc + j);
   const std::uint32_t* const act = o + coils;
   if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {

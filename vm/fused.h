@@ -31,21 +31,21 @@
 // 10,000-rung program stay in the L2 cache beside its data table.
 //
 // Word rungs. The commonest non-bit rungs are fused the same way: a network of contacts and
-// integer compares (EQU NEQ LES LEQ GRT GEQ on direct words or immediates), optional coils, and
-// as the rung's last instruction, outside any branch, one action on direct words: TON TOF RTO,
-// CTU CTD, RES, MOV, ADD or SUB. A compare is a contact whose bit is computed (bit k of v for
+// integer compares (EQU NEQ LES LEQ GRT GEQ on direct words or immediates), optional coils, and as
+// the rung's last instruction, outside any branch, one action on direct words: TON TOF RTO, CTU
+// CTD, RES, MOV, ADD or SUB. A compare is a contact whose bit is computed (bit k of v for
 // contacts, then one bit per compare); the action is one more "coil" of the truth table, so its
-// rung-in and every instruction's charge still come from running the rung's ops for every v.
-// The action runs through the interpreter's own semantics (vm/word_ops.h) with pre-decoded word
-// indices (a read operand is a word index or an immediate; there is no operand-mode test), in
-// code instantiated per action and per small contact/compare count. Word rungs alternate shapes
-// (TON, then CTU, then MOV ...), so consecutive word rungs of any shapes form one segment whose
-// records each begin with their shape's index, and one loop runs them with a `switch` per rung
-// on the shape's kernel number (no call per rung). Because the action is the rung's last instruction, the virtual time it
-// sees (a timer's 10 ms tick) is the rung's start plus the rung's whole charge, exactly the
-// general path's. A timer element with a negative PRE or ACC (fault 0034h) is noticed before
-// the rung writes anything; the run then returns that rung's SOR marked kRunsGeneral and the
-// general path executes the rung and raises the fault. LBL, SBR and INT are no-ops (charged,
+// rung-in and every instruction's charge still come from running the rung's ops for every v. The
+// action runs through the interpreter's own semantics (vm/word_ops.h) with pre-decoded word
+// indices (a read operand is a word index or an immediate; there is no operand-mode test), in code
+// instantiated per action and per small contact/compare count. Word rungs alternate shapes (TON,
+// then CTU, then MOV ...), so consecutive word rungs of any shapes form one segment whose records
+// each begin with their shape's index, and one loop runs them with a `switch` per rung on the
+// shape's kernel number (no call per rung). Because the action is the rung's last instruction, the
+// virtual time it sees (a timer's 10 ms tick) is the rung's start plus the rung's whole charge,
+// exactly the general path's. A timer element with a negative PRE or ACC (fault 0034h) is noticed
+// before the rung writes anything; the run then returns that rung's SOR marked kRunsGeneral and
+// the general path executes the rung and raises the fault. LBL, SBR and INT are no-ops (charged,
 // counted) in either kind of rung. Floats, longs, indexed, indirect and M-file operands, and
 // LIM/MEQ/MUL/DIV/... leave the rung to the general path.
 //
@@ -177,8 +177,8 @@ class FusedProgram {
   // consecutive rungs of different shapes cost no call. Adds the instructions to `count`;
   // returns the rungs completed, with kRunsGeneral set when it stopped before a rung the
   // general path must run.
-  static std::uint32_t run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w, Nanoseconds& t,
-                                        std::uint64_t& count, Nanoseconds limit, const FusedScan& scan);
+  static std::uint32_t run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
+                                        Nanoseconds& t, std::uint64_t& count, Nanoseconds limit, const FusedScan& scan);
   template <Op A, unsigned NC, unsigned NM>
   static bool word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
                         Nanoseconds& t, const FusedScan& scan);

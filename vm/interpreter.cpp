@@ -1925,6 +1925,8 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
             if (next & FusedProgram::kRunsGeneral) general_sor = pc;
             elapsed = t;
             count_ += n;
+            // The run ends at a SOR (or EOF): dispatched here directly, as after a handler.
+            if (!fast_op[static_cast<std::size_t>(bc::op_of(*pc))]) goto dispatch;
             continue;
           }
         }

@@ -28,7 +28,8 @@ inline constexpr std::uint16_t kArithFlags = 0x000F;  // S:0 C V Z S
 
 // Writes C V Z S into S:0 (word s0); RM B-5: whenever V is set, the overflow trap S:5/0 (word s5)
 // is set too.
-[[gnu::always_inline]] inline void set_arith_flags(std::uint16_t* w, std::uint32_t s0, std::uint32_t s5, bool c, bool v, bool z, bool s) {
+[[gnu::always_inline]] inline void set_arith_flags(std::uint16_t* w, std::uint32_t s0, std::uint32_t s5, bool c,
+                                                   bool v, bool z, bool s) {
   const auto f = static_cast<std::uint16_t>((c ? status::kCarry : 0) | (v ? status::kOverflow : 0) |
                                             (z ? status::kZero : 0) | (s ? status::kSign : 0));
   w[s0] = static_cast<std::uint16_t>((w[s0] & ~kArithFlags) | f);
@@ -103,7 +104,8 @@ inline std::uint8_t timer_tick(VirtualTime at, std::uint32_t flags) {
 
 // TON, TOF or RTO on element t (control word, PRE, ACC; neither negative) at tick `now8`.
 // `base1s`: the 1.0 s time base (header flag A).
-[[gnu::always_inline]] inline void timer(Op op, std::uint16_t* t, bool rung, bool first_pass, std::uint8_t now8, bool base1s) {
+[[gnu::always_inline]] inline void timer(Op op, std::uint16_t* t, bool rung, bool first_pass, std::uint8_t now8,
+                                        bool base1s) {
   const auto pre = static_cast<std::int16_t>(t[1]);
   int acc = static_cast<std::int16_t>(t[2]);
   std::uint16_t ctl = t[0];

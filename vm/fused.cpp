@@ -4,6 +4,8 @@
 #include <map>
 #include <utility>
 
+#include "vm/word_ops.h"
+
 namespace softslc {
 
 namespace {
@@ -24,7 +26,77 @@ constexpr bool row_is_coil(Opcode op) {
 static_assert(row_is_contact(Opcode::XIC) && row_is_contact(Opcode::XIO));
 static_assert(row_is_coil(Opcode::OTE) && row_is_coil(Opcode::OTL) && row_is_coil(Opcode::OTU));
 
+// A compare is an Input that reads two Sources; a no-op leads its rung and writes nothing.
+constexpr bool row_is_compare(Opcode op) {
+  const InstructionSpec& s = spec(op);
+  return s.role == Role::Input && s.operand_count == 2 && s.operands[0].kind == OperandKind::Source &&
+         s.operands[1].kind == OperandKind::Source && s.operands[0].access == OperandAccess::Read &&
+         s.operands[1].access == OperandAccess::Read;
+}
+constexpr bool row_is_no_op(Opcode op) {
+  const InstructionSpec& s = spec(op);
+  for (unsigned i = 0; i < s.operand_count; ++i)
+    if (s.operands[i].access != OperandAccess::Read) return false;
+  return s.role == Role::Leading;
+}
+static_assert(row_is_compare(Opcode::EQU) && row_is_compare(Opcode::NEQ) && row_is_compare(Opcode::LES) &&
+              row_is_compare(Opcode::LEQ) && row_is_compare(Opcode::GRT) && row_is_compare(Opcode::GEQ));
+static_assert(row_is_no_op(Opcode::LBL) && row_is_no_op(Opcode::SBR) && row_is_no_op(Opcode::INT));
+
+// An action's operands, from its row: element, source and destination operands are recorded
+// (pre-decoded) for the kernel; literals and time bases are not (the handlers read the element).
+constexpr bool recorded(OperandKind k) {
+  return k == OperandKind::Source || k == OperandKind::Dest || k == OperandKind::Timer ||
+         k == OperandKind::Counter || k == OperandKind::Resettable;
+}
+constexpr bool skipped(OperandKind k) { return k == OperandKind::Literal || k == OperandKind::TimeBase; }
+constexpr unsigned recorded_operands(Opcode op) {
+  unsigned n = 0;
+  for (unsigned i = 0; i < spec(op).operand_count; ++i) n += recorded(spec(op).operands[i].kind) ? 1 : 0;
+  return n;
+}
+// An action's row is an Output whose operands are only recorded kinds and literals, and whose
+// element or destination comes where its kernel (run_word_segment) expects it.
+constexpr bool row_is_action(Opcode op, unsigned sources, OperandKind last) {
+  const InstructionSpec& s = spec(op);
+  if (s.role != Role::Output || recorded_operands(op) != sources + 1) return false;
+  for (unsigned i = 0; i < s.operand_count; ++i)
+    if (!recorded(s.operands[i].kind) && !skipped(s.operands[i].kind)) return false;
+  for (unsigned i = 0; i < sources; ++i)
+    if (s.operands[i].kind != OperandKind::Source || s.operands[i].access != OperandAccess::Read) return false;
+  return s.operands[sources].kind == last && s.operands[sources].access != OperandAccess::Read;
+}
+static_assert(row_is_action(Opcode::TON, 0, OperandKind::Timer) &&
+              row_is_action(Opcode::TOF, 0, OperandKind::Timer) && row_is_action(Opcode::RTO, 0, OperandKind::Timer));
+static_assert(row_is_action(Opcode::CTU, 0, OperandKind::Counter) &&
+              row_is_action(Opcode::CTD, 0, OperandKind::Counter));
+static_assert(row_is_action(Opcode::RES, 0, OperandKind::Resettable));
+static_assert(row_is_action(Opcode::MOV, 1, OperandKind::Dest));
+static_assert(row_is_action(Opcode::ADD, 2, OperandKind::Dest) && row_is_action(Opcode::SUB, 2, OperandKind::Dest));
+
 constexpr bool is_contact(FusedRule r) { return r == FusedRule::Contact || r == FusedRule::OpenContact; }
+constexpr bool is_coil(FusedRule r) {
+  return r == FusedRule::Energize || r == FusedRule::Latch || r == FusedRule::Unlatch;
+}
+
+// The actions a word rung may end in, in the order of run_word_segment's cases.
+constexpr Op kActions[] = {Op::SOR, Op::TON, Op::TOF, Op::RTO, Op::CTU, Op::CTD, Op::RES, Op::MOV, Op::ADD, Op::SUB};
+// Per action, run_word_segment has cases for 0-2 contacts and 0-1 compares with no coils (the
+// common rungs: straight-line code), then one for any counts (loops).
+constexpr unsigned kAnyCount = 0xFF;
+constexpr unsigned kWordVariants = 7;
+constexpr unsigned word_variant(unsigned contacts, unsigned compares, unsigned coils) {
+  return coils == 0 && contacts <= 2 && compares <= 1 ? contacts * 2 + compares : kWordVariants - 1;
+}
+// The action's recorded operands (its element, or its sources and destination).
+constexpr unsigned action_operands(Op a) { return a == Op::SOR ? 0 : recorded_operands(to_opcode(a)); }
+
+// A read operand in a word-rung record: a word index, or an immediate (vm/fused.h).
+constexpr std::uint32_t kImmediate = 0x80000000u;
+inline std::int64_t read_operand(const std::uint16_t* w, std::uint32_t x) {
+  if (x & kImmediate) return static_cast<std::int32_t>(x << 1) >> 1;
+  return static_cast<std::int16_t>(w[x]);
+}
 
 }  // namespace
 
@@ -35,6 +107,24 @@ FusedRule fused_rule(Opcode op) {
     case Opcode::OTE: return FusedRule::Energize;
     case Opcode::OTL: return FusedRule::Latch;
     case Opcode::OTU: return FusedRule::Unlatch;
+    case Opcode::LBL:
+    case Opcode::SBR:
+    case Opcode::INT: return FusedRule::NoOp;
+    case Opcode::EQU:
+    case Opcode::NEQ:
+    case Opcode::LES:
+    case Opcode::LEQ:
+    case Opcode::GRT:
+    case Opcode::GEQ: return FusedRule::Compare;
+    case Opcode::TON:
+    case Opcode::TOF:
+    case Opcode::RTO:
+    case Opcode::CTU:
+    case Opcode::CTD:
+    case Opcode::RES:
+    case Opcode::MOV:
+    case Opcode::ADD:
+    case Opcode::SUB: return FusedRule::Action;
     default: return FusedRule::None;
   }
 }
@@ -46,26 +136,50 @@ class FusedProgram::Builder {
   Builder(FusedProgram& out, const std::vector<Nanoseconds>& cost) : out_(out), cost_(cost) {}
 
   // Appends the rung [sor, end)'s record and returns its shape, or returns -1 (and appends
-  // nothing) when it is not a pure contact network.
+  // nothing) when it is neither a pure contact network nor a word rung (vm/fused.h).
   std::int64_t add_rung(const std::uint32_t* code, std::uint32_t sor, std::uint32_t end) {
     key_.clear();
     contacts_.clear();
     coils_.clear();
+    compares_.clear();
+    action_operands_.clear();
+    action_ = Op::SOR;
     int depth = 0;
     for (std::uint32_t pc = sor + 1; pc < end;) {
       const std::uint32_t h = code[pc];
       const Op op = bc::op_of(h);
+      // The action is the rung's last instruction.
+      if (action_ != Op::SOR) return -1;
       switch (op) {
         case Op::BST: ++depth; break;
         case Op::NXB: break;
         case Op::BND: --depth; break;
         default: {
-          if (!is_instruction(op) || bc::count_of(h) != 1 || bc::mode_of(code[pc + 1]) != bc::kBit) return -1;
+          if (!is_instruction(op)) return -1;
           const FusedRule rule = fused_rule(to_opcode(op));
           if (rule == FusedRule::None) return -1;
-          const std::uint32_t bit = code[pc + 1];
+          if (rule == FusedRule::NoOp) break;
+          // DYN (run-time address, M-file) and FLOAT keep the rung general.
+          if (bc::flags_of(h) & (bc::kFlagDyn | bc::kFlagFloat)) return -1;
+          const std::uint32_t* o = code + pc + 1;
+          if (rule == FusedRule::Compare) {
+            if (!readable(o[0]) || !readable(o[1]) || conditions() == kMaxContacts) return -1;
+            // Conditions are evaluated before any coil writes (as contacts are).
+            for (std::uint32_t c : coils_)
+              if (reads_word(o[0], bc::word_of_bit(c)) || reads_word(o[1], bc::word_of_bit(c))) return -1;
+            compares_.push_back(o[0]);
+            compares_.push_back(o[1]);
+            break;
+          }
+          if (rule == FusedRule::Action) {
+            if (depth != 0 || !take_action(op, o)) return -1;
+            action_ = op;
+            break;
+          }
+          if (bc::count_of(h) != 1 || bc::mode_of(o[0]) != bc::kBit) return -1;
+          const std::uint32_t bit = o[0];
           if (is_contact(rule)) {
-            if (contacts_.size() == kMaxContacts) return -1;
+            if (conditions() == kMaxContacts) return -1;
             // Every contact is gathered before any coil writes: a contact that reads a bit an
             // earlier coil of this rung writes must see the new value, so such a rung stays general.
             for (std::uint32_t c : coils_)
@@ -85,12 +199,51 @@ class FusedProgram::Builder {
     if (depth != 0) return -1;
     auto [it, inserted] = shape_index_.try_emplace(key_, static_cast<std::uint32_t>(out_.shapes_.size()));
     if (inserted) build_shape();
-    append_record(out_.shapes_[it->second]);
+    const Shape& shape = out_.shapes_[it->second];
+    if (shape.word)
+      append_word_record(it->second);
+    else
+      append_record(shape);
     out_.sor_.push_back(sor);
     return it->second;
   }
 
  private:
+  unsigned conditions() const { return static_cast<unsigned>(contacts_.size() + compares_.size() / 2); }
+  bool word_rung() const { return !compares_.empty() || action_ != Op::SOR; }
+
+  // A read operand the kernels take directly: a 16-bit word or an immediate.
+  static bool readable(std::uint32_t o) { return bc::mode_of(o) == bc::kWord || bc::mode_of(o) == bc::kImm; }
+  static bool reads_word(std::uint32_t o, std::uint32_t word) {
+    return bc::mode_of(o) == bc::kWord && bc::payload_of(o) == word;
+  }
+  static std::uint32_t encode(std::uint32_t o) {
+    return bc::mode_of(o) == bc::kImm ? (kImmediate | (static_cast<std::uint32_t>(bc::imm_of(o)) & ~kImmediate))
+                                      : bc::payload_of(o);
+  }
+  // Records the action's operands, walking its instruction-table row: sources may be words or
+  // immediates, the element or destination must be a direct word; literals are skipped.
+  bool take_action(Op op, const std::uint32_t* o) {
+    const InstructionSpec& row = spec(to_opcode(op));
+    for (unsigned i = 0; i < row.operand_count; ++i) {
+      const OperandKind k = row.operands[i].kind;
+      if (!recorded(k)) continue;
+      const bool source = k == OperandKind::Source;
+      if (source ? !readable(o[i]) : bc::mode_of(o[i]) != bc::kWord) return false;
+      action_operands_.push_back(encode(o[i]));
+    }
+    return true;
+  }
+
+  void append_word_record(std::uint32_t shape) {
+    auto& r = out_.wrecords_;
+    r.push_back(shape);
+    r.insert(r.end(), contacts_.begin(), contacts_.end());
+    for (std::uint32_t o : compares_) r.push_back(encode(o));
+    r.insert(r.end(), coils_.begin(), coils_.end());
+    r.insert(r.end(), action_operands_.begin(), action_operands_.end());
+  }
+
   // The record layout in vm/fused.h: word indices, then bit numbers (bytes), then coils.
   void append_record(const Shape& s) {
     const unsigned k = out_.wide_ ? 2 : 1;
@@ -116,15 +269,20 @@ class FusedProgram::Builder {
     }
   }
 
-  // Runs the rung's ops for every value of the contact bits with the interpreter's rung rules
-  // (docs/bytecode.md "Rung logic") and records each instruction's charge and each coil's rung-in.
+  // Runs the rung's ops for every value of the contact (and compare) bits with the interpreter's
+  // rung rules (docs/bytecode.md "Rung logic") and records each instruction's charge and each
+  // coil's (and the action's) rung-in.
   void build_shape() {
     Shape s;
     const unsigned k = out_.wide_ ? 2 : 1;
-    const unsigned n = static_cast<unsigned>(contacts_.size());
-    s.contacts = static_cast<std::uint8_t>(n);
+    const unsigned nc = static_cast<unsigned>(contacts_.size());
+    const unsigned n = conditions();
+    const unsigned outputs = static_cast<unsigned>(coils_.size()) + (action_ != Op::SOR ? 1 : 0);
+    s.contacts = static_cast<std::uint8_t>(nc);
+    s.compares = static_cast<std::uint8_t>(n - nc);
     s.coils = static_cast<std::uint8_t>(coils_.size());
-    s.stride = static_cast<std::uint16_t>(n * k + (n + 1) / 2 + coils_.size() * (k + 1));
+    s.word = word_rung();
+    s.action = action_;
     s.cost_at = static_cast<std::uint32_t>(out_.costs_.size());
     s.on_at = static_cast<std::uint32_t>(out_.on_.size());
     s.rules_at = static_cast<std::uint32_t>(out_.rules_.size());
@@ -133,13 +291,29 @@ class FusedProgram::Builder {
       if (!is_instruction(op)) continue;
       ++s.instructions;
       const FusedRule rule = fused_rule(to_opcode(op));
-      if (!is_contact(rule)) out_.rules_.push_back(static_cast<std::uint8_t>(rule));
+      if (is_coil(rule)) out_.rules_.push_back(static_cast<std::uint8_t>(rule));
+      if (rule == FusedRule::Action) {
+        s.action_flags = static_cast<std::uint8_t>(bc::flags_of(h));
+        s.action_aux = static_cast<std::uint16_t>(bc::aux_of(h));
+      }
     }
-    // A single coil has a kernel of its own per FusedRule (1 OTE, 2 OTL, 3 OTU); 0 is any count.
-    const unsigned coil_kind =
-        s.coils == 1 ? static_cast<unsigned>(out_.rules_[s.rules_at]) - static_cast<unsigned>(FusedRule::Energize) + 1 : 0;
-    s.kernel = static_cast<std::uint8_t>((n * 2 + (out_.wide_ ? 1 : 0)) * 4 + coil_kind);
-    out_.on_.resize(out_.on_.size() + (coils_.size() << n), 0);
+    for (std::uint32_t h : key_)
+      if (is_instruction(bc::op_of(h)) && fused_rule(to_opcode(bc::op_of(h))) == FusedRule::Compare)
+        out_.rules_.push_back(static_cast<std::uint8_t>(word_ops::compare_mask(bc::op_of(h))));
+    if (s.word) {
+      s.stride = static_cast<std::uint16_t>(1 + n + (n - nc) + coils_.size() + action_operands_.size());
+      unsigned a = 0;
+      while (kActions[a] != action_) ++a;
+      s.kernel = static_cast<std::uint8_t>(a * kWordVariants + word_variant(nc, n - nc, s.coils));
+    } else {
+      s.stride = static_cast<std::uint16_t>(n * k + (n + 1) / 2 + coils_.size() * (k + 1));
+      // A single coil has a kernel of its own per FusedRule (1 OTE, 2 OTL, 3 OTU); 0 is any count.
+      const unsigned coil_kind = s.coils == 1 ? static_cast<unsigned>(out_.rules_[s.rules_at]) -
+                                                    static_cast<unsigned>(FusedRule::Energize) + 1
+                                              : 0;
+      s.kernel = static_cast<std::uint8_t>((n * 2 + (out_.wide_ ? 1 : 0)) * 4 + coil_kind);
+    }
+    out_.on_.resize(out_.on_.size() + (outputs << n), 0);
     struct Frame {
       bool entry;
       bool acc;
@@ -148,7 +322,7 @@ class FusedProgram::Builder {
     for (std::uint32_t v = 0; v < (1u << n); ++v) {
       bool rung = true;  // SOR outside a false MCR zone
       Nanoseconds t = 0;
-      unsigned contact = 0, coil = 0;
+      unsigned contact = 0, compare = nc, output = 0;
       stack.clear();
       for (std::uint32_t h : key_) {
         const Op op = bc::op_of(h);
@@ -168,9 +342,11 @@ class FusedProgram::Builder {
             if (is_contact(rule)) {
               const bool bit = ((v >> contact++) & 1u) != 0;
               rung = rung && (rule == FusedRule::Contact ? bit : !bit);
-            } else {
-              if (rung) out_.on_[s.on_at + (coil << n) + v] = 0xFFFF;
-              ++coil;
+            } else if (rule == FusedRule::Compare) {
+              rung = rung && ((v >> compare++) & 1u) != 0;
+            } else if (is_coil(rule) || rule == FusedRule::Action) {
+              if (rung) out_.on_[s.on_at + (output << n) + v] = 0xFFFF;
+              ++output;
             }
             break;
           }
@@ -184,12 +360,16 @@ class FusedProgram::Builder {
   FusedProgram& out_;
   const std::vector<Nanoseconds>& cost_;
   std::map<std::vector<std::uint32_t>, std::uint32_t> shape_index_;
-  std::vector<std::uint32_t> key_, contacts_, coils_;
+  std::vector<std::uint32_t> key_, contacts_, coils_, compares_, action_operands_;
+  Op action_ = Op::SOR;
 };
 
 FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nanoseconds>& cost) {
   // 16-bit word indices halve the records whenever the data table allows them.
   wide_ = program.layout->total_words > 0x10000;
+  s0_ = program.layout->status_word(status::kArith);
+  s2_ = program.layout->status_word(status::kControl);
+  s5_ = program.layout->status_word(status::kMinor);
   Builder b(*this, cost);
   file_first_rung_.assign(256, 0);
   std::uint32_t total = 0;
@@ -205,13 +385,18 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
     for (std::size_t r = 0; r < f.rungs.size(); ++r) {
       const std::uint32_t sor = f.rungs[r].offset;
       const std::uint32_t end = r + 1 < f.rungs.size() ? f.rungs[r + 1].offset : f.end - 1;  // f.end - 1: EOF
-      const auto at = static_cast<std::uint32_t>(records_.size());
+      // A label rung is a jump target: it starts a run, so a JMP to it lands on fused rungs.
+      if (sor + 1 < end && bc::op_of(code[sor + 1]) == Op::LBL) open = -1;
+      const std::size_t records_before = records_.size(), wrecords_before = wrecords_.size();
       const std::int64_t shape = b.add_rung(code, sor, end);
       if (shape < 0) {
         open = -1;
         continue;
       }
       ++fused_rungs_;
+      const bool word = shapes_[static_cast<std::size_t>(shape)].word;
+      if (word) ++word_rungs_;
+      const auto at = static_cast<std::uint32_t>(word ? wrecords_before : records_before);
       const auto rung_index = static_cast<std::uint32_t>(sor_.size() - 1);
       if (open < 0) {
         open = static_cast<std::int32_t>(runs_.size());
@@ -219,10 +404,13 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
         run_of_rung_[base + r] = open;
       }
       Run& run = runs_[static_cast<std::size_t>(open)];
-      if (run.last > run.first && segments_.back().shape == static_cast<std::uint32_t>(shape))
+      // Consecutive word rungs share one segment whatever their shapes (each record names its
+      // shape); consecutive contact networks share one only when their shape is the same.
+      const std::uint32_t key = word ? kWordSegment : static_cast<std::uint32_t>(shape);
+      if (run.last > run.first && segments_.back().shape == key)
         ++segments_.back().rungs;
       else
-        segments_.push_back({at, 1, static_cast<std::uint32_t>(shape), rung_index});
+        segments_.push_back({at, 1, key, rung_index});
       run.last = static_cast<std::uint32_t>(segments_.size());
       run.next = end;
     }
@@ -267,7 +455,7 @@ inline void apply_coil(unsigned rule, std::uint16_t& word, std::uint16_t mask, s
 
 template <unsigned N, bool Wide, unsigned Coil>
 std::uint32_t FusedProgram::run_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
-                                        Nanoseconds& elapsed, Nanoseconds limit) {
+                                        Nanoseconds& elapsed, Nanoseconds limit, const FusedScan&) {
   constexpr unsigned k = Wide ? 2 : 1;
   constexpr unsigned coils_at = N * k + (N + 1) / 2;
   const Shape& sh = p.shapes_[segment.shape];
@@ -298,6 +486,112 @@ std::uint32_t FusedProgram::run_segment(const FusedProgram& p, const Segment& se
   return done;
 }
 
+// One word rung whose record (after its shape word) is `rec`: its action is A (SOR: none), with
+// NC contacts, NM compares and no coils, or (NC = NM = kAnyCount) any counts. Adds its charge
+// to t; returns false, having changed nothing, when the general path must run it.
+template <Op A, unsigned NC, unsigned NM>
+inline bool FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
+                                    std::uint16_t* w, Nanoseconds& t, const FusedScan& scan) {
+  constexpr bool fixed = NC != kAnyCount;
+  const Nanoseconds* const cost = p.costs_.data() + sh.cost_at;
+  const std::uint16_t* const on = p.on_.data() + sh.on_at;
+  const unsigned nc = fixed ? NC : sh.contacts;
+  const unsigned nm = fixed ? NM : sh.compares;
+  const unsigned coils = fixed ? 0 : sh.coils;
+  const unsigned n = nc + nm;
+  // The coils' FusedRules, then the compares' masks (word_ops::compare_mask).
+  const std::uint8_t* const rules = p.rules_.data() + sh.rules_at;
+  const std::uint32_t* o = rec;
+  unsigned v = 0;
+  for (unsigned i = 0; i < nc; ++i, ++o)
+    v |= ((static_cast<unsigned>(w[bc::word_of_bit(*o)]) >> bc::bit_of(*o)) & 1u) << i;
+  for (unsigned j = 0; j < nm; ++j, o += 2)
+    v |= static_cast<unsigned>(
+             word_ops::compare_by_mask(rules[coils + j], read_operand(w, o[0]), read_operand(w, o[1])))
+         << (nc + j);
+  const std::uint32_t* const act = o + coils;
+  if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
+    // Fault 0034h: the general path runs this rung and raises it (before anything is written).
+    if (word_ops::timer_negative(w + act[0])) [[unlikely]]
+      return false;
+  }
+  t += cost[v];
+  for (unsigned j = 0; j < coils; ++j, ++o)
+    apply_coil(static_cast<unsigned>(rules[j]) - static_cast<unsigned>(FusedRule::Energize) + 1,
+               w[bc::word_of_bit(*o)], static_cast<std::uint16_t>(1u << bc::bit_of(*o)), on[(j << n) + v]);
+  // The action's rung-in; it is the rung's last instruction, so the scan time it sees is t.
+  [[maybe_unused]] const bool rung = on[(coils << n) + v] != 0;
+  if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
+    word_ops::timer(A, w + act[0], rung, scan.first_pass, word_ops::timer_tick(scan.scan_start + t, sh.action_flags),
+                    (sh.action_flags & bc::kFlagA) != 0);
+  } else if constexpr (A == Op::CTU || A == Op::CTD) {
+    word_ops::counter(A, w + act[0], rung, scan.first_pass);
+  } else if constexpr (A == Op::RES) {
+    if (rung) word_ops::reset(static_cast<FileType>(sh.action_aux), w + act[0]);
+  } else if constexpr (A == Op::MOV) {
+    // Interpreter::move: an integer that does not fit saturates and sets V.
+    if (rung) {
+      bool overflow = false;
+      const std::int64_t stored = word_ops::saturate(read_operand(w, act[0]), INT16_MIN, INT16_MAX, overflow);
+      w[act[1]] = static_cast<std::uint16_t>(stored);
+      word_ops::set_arith_flags(w, p.s0_, p.s5_, false, overflow, stored == 0, stored < 0);
+    }
+  } else if constexpr (A == Op::ADD || A == Op::SUB) {
+    // Interpreter::math into a 16-bit word: C from the unsigned sum or difference, the
+    // S:2/14 overflow rule, then the flags and the S:5/0 trap.
+    if (rung) {
+      const std::int64_t a = read_operand(w, act[0]), b = read_operand(w, act[1]);
+      const bool carry = A == Op::ADD ? word_ops::add_carry(a, b, 0xFFFF) : word_ops::sub_carry(a, b, 0xFFFF);
+      bool overflow = false;
+      const std::int64_t stored = word_ops::fit_integer(A == Op::ADD ? a + b : a - b, false,
+                                                        (w[p.s2_] & status::kOverflowSelect) != 0, overflow);
+      w[act[2]] = static_cast<std::uint16_t>(stored);
+      word_ops::set_arith_flags(w, p.s0_, p.s5_, carry, overflow, stored == 0, stored < 0);
+    }
+  }
+  return true;
+}
+
+std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
+                                             Nanoseconds& elapsed, std::uint64_t& count, Nanoseconds limit,
+                                             const FusedScan& scan) {
+  const std::uint32_t* rec = p.wrecords_.data() + segment.rec;
+  Nanoseconds t = elapsed;
+  std::uint64_t n = count;
+  std::uint32_t done = 0;
+  const std::uint32_t rungs = segment.rungs;
+  for (;;) {
+    const Shape& sh = p.shapes_[rec[0]];
+    bool ok = true;
+    // One case per action and contact/compare count (Builder::build_shape numbers them).
+    switch (sh.kernel) {
+#define SOFTSLC_WORD_RUNG(A, V, NC, NM) \
+  case (A) * kWordVariants + (V): ok = word_rung<kActions[A], NC, NM>(p, sh, rec + 1, w, t, scan); break;
+#define SOFTSLC_WORD_RUNGS(A)                                                                                    \
+  SOFTSLC_WORD_RUNG(A, 0, 0, 0) SOFTSLC_WORD_RUNG(A, 1, 0, 1) SOFTSLC_WORD_RUNG(A, 2, 1, 0)                      \
+  SOFTSLC_WORD_RUNG(A, 3, 1, 1) SOFTSLC_WORD_RUNG(A, 4, 2, 0) SOFTSLC_WORD_RUNG(A, 5, 2, 1)                      \
+  SOFTSLC_WORD_RUNG(A, 6, kAnyCount, kAnyCount)
+      SOFTSLC_WORD_RUNGS(0) SOFTSLC_WORD_RUNGS(1) SOFTSLC_WORD_RUNGS(2) SOFTSLC_WORD_RUNGS(3) SOFTSLC_WORD_RUNGS(4)
+      SOFTSLC_WORD_RUNGS(5) SOFTSLC_WORD_RUNGS(6) SOFTSLC_WORD_RUNGS(7) SOFTSLC_WORD_RUNGS(8) SOFTSLC_WORD_RUNGS(9)
+#undef SOFTSLC_WORD_RUNGS
+#undef SOFTSLC_WORD_RUNG
+      default: break;
+    }
+    if (!ok) [[unlikely]] {
+      elapsed = t;
+      count = n;
+      return done | kRunsGeneral;
+    }
+    n += sh.instructions;
+    rec += sh.stride;
+    ++done;
+    if (t >= limit || done == rungs) break;
+  }
+  elapsed = t;
+  count = n;
+  return done;
+}
+
 // Kernel (N * 2 + Wide) * 4 + Coil, as Builder::build_shape numbers it.
 const FusedProgram::Kernel FusedProgram::kKernels[] = {
 #define SOFTSLC_FUSED_KERNELS(N)                                                                          \
@@ -308,18 +602,31 @@ const FusedProgram::Kernel FusedProgram::kKernels[] = {
     SOFTSLC_FUSED_KERNELS(6), SOFTSLC_FUSED_KERNELS(7), SOFTSLC_FUSED_KERNELS(8),
 #undef SOFTSLC_FUSED_KERNELS
 };
+static_assert(std::size(kActions) * kWordVariants <= 256, "a shape's kernel index is one byte");
+static_assert(std::size(kActions) == 10, "run_word_segment has a case for every action");
 static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every contact count");
 
 std::uint32_t FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
-                                    Nanoseconds limit) const {
+                                    Nanoseconds limit, const FusedScan& scan) const {
   const Run& r = runs_[static_cast<std::size_t>(run)];
   Nanoseconds t = elapsed;
   std::uint64_t n = 0;
   for (std::uint32_t s = r.first;;) {
     const Segment& sg = segments_[s];
-    const Shape& sh = shapes_[sg.shape];
-    const std::uint32_t done = kKernels[sh.kernel](*this, sg, w, t, limit);
-    n += std::uint64_t{sh.instructions} * done;
+    std::uint32_t result;
+    if (sg.shape == kWordSegment) {
+      result = run_word_segment(*this, sg, w, t, n, limit, scan);
+    } else {
+      const Shape& sh = shapes_[sg.shape];
+      result = kKernels[sh.kernel](*this, sg, w, t, limit, scan);
+      n += std::uint64_t{sh.instructions} * (result & ~kRunsGeneral);
+    }
+    const std::uint32_t done = result & ~kRunsGeneral;
+    if (result & kRunsGeneral) [[unlikely]] {
+      elapsed = t;
+      count += n;
+      return sor_[sg.first_rung + done] | kRunsGeneral;
+    }
     if (++s == r.last && done == sg.rungs) break;
     // The next rung's SOR: the general path raises the watchdog fault or runs the interrupt there.
     if (t >= limit) [[unlikely]] {

@@ -30,6 +30,25 @@
 // 65,536 words, else 32, so the bench rung's record is 16 bytes (it was 24) and the records of a
 // 10,000-rung program stay in the L2 cache beside its data table.
 //
+// Word rungs. The commonest non-bit rungs are fused the same way: a network of contacts and
+// integer compares (EQU NEQ LES LEQ GRT GEQ on direct words or immediates), optional coils, and as
+// the rung's last instruction, outside any branch, one action on direct words: TON TOF RTO, CTU
+// CTD, RES, MOV, ADD or SUB. A compare is a contact whose bit is computed (bit k of v for
+// contacts, then one bit per compare); the action is one more "coil" of the truth table, so its
+// rung-in and every instruction's charge still come from running the rung's ops for every v. The
+// action runs through the interpreter's own semantics (vm/word_ops.h) with pre-decoded word
+// indices (a read operand is a word index or an immediate; there is no operand-mode test), in code
+// instantiated per action and per small contact/compare count. Word rungs alternate shapes (TON,
+// then CTU, then MOV ...), so consecutive word rungs of any shapes form one segment whose records
+// each begin with their shape's index, and one loop runs them with a `switch` per rung on the
+// shape's kernel number (no call per rung). Because the action is the rung's last instruction, the
+// virtual time it sees (a timer's 10 ms tick) is the rung's start plus the rung's whole charge,
+// exactly the general path's. A timer element with a negative PRE or ACC (fault 0034h) is noticed
+// before the rung writes anything; the run then returns that rung's SOR marked kRunsGeneral and
+// the general path executes the rung and raises the fault. LBL, SBR and INT are no-ops (charged,
+// counted) in either kind of rung. Floats, longs, indexed, indirect and M-file operands, and
+// LIM/MEQ/MUL/DIV/... leave the rung to the general path.
+//
 // Exactness. Gathering every contact before any coil writes is only correct when no contact
 // reads a bit that a coil earlier in the same rung writes; such rungs are left to the general
 // path. A run of consecutive fused rungs is executed in one call; before each rung after the
@@ -40,6 +59,9 @@
 // (fused rungs hold no MCR, so the zone cannot change inside a run); in every other case the
 // general path runs, instruction by instruction, as before. Results, scan time and instruction
 // counts are identical either way (tests/vm/fused_test.cpp compares the two on random programs).
+//
+// A compare reading a word that an earlier coil of the rung writes would likewise need the new
+// value; such rungs stay general too.
 //
 // The bytecode is unchanged: the fused form is a side table the Interpreter builds once, at
 // construction, from the CompiledProgram and its cost table (which depends on the timing model).
@@ -62,6 +84,16 @@ enum class FusedRule : std::uint8_t {
   Energize,      // bit := rung
   Latch,         // if rung: bit := 1
   Unlatch,       // if rung: bit := 0
+  NoOp,          // LBL, SBR, INT: charged and counted, nothing else
+  Compare,       // rung := rung and (a op b), integer, a and b direct words or immediates
+  Action,        // the rung's last instruction, on direct words (vm/word_ops.h)
+};
+
+// What a fused kernel needs of the scan beyond the data table: timers read the tick count at
+// scan_start + their scan time; counters and timers behave differently on the first pass.
+struct FusedScan {
+  VirtualTime scan_start = 0;
+  bool first_pass = false;
 };
 
 FusedRule fused_rule(Opcode op);
@@ -82,17 +114,24 @@ class FusedProgram {
     return run_of_rung_[first + rung];
   }
 
+  // Set in execute()'s result when the rung at the returned SOR must run on the general path
+  // (it would fault): the caller must not enter a fused run there.
+  static constexpr std::uint32_t kRunsGeneral = 0x80000000u;
+
   // Executes run `run` whose first rung's SOR the caller has already executed (rung-in true).
   // Adds the scan time to `elapsed` and the instructions executed to `count`; returns the code
   // offset where the general path continues (the SOR of the next rung, the file's EOF, or the
-  // SOR of a rung at which `limit`, the watchdog or an interrupt point, was reached).
+  // SOR of a rung at which `limit`, the watchdog or an interrupt point, was reached, or, with
+  // kRunsGeneral, of a rung the general path must execute).
   std::uint32_t execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
-                        Nanoseconds limit) const;
+                        Nanoseconds limit, const FusedScan& scan) const;
 
   std::size_t runs() const { return runs_.size(); }
   std::size_t fused_rungs() const { return fused_rungs_; }
   std::size_t shapes() const { return shapes_.size(); }
   std::size_t segments() const { return segments_.size(); }
+  // Fused rungs with a compare or an action (word rungs).
+  std::size_t word_rungs() const { return word_rungs_; }
   bool wide_indices() const { return wide_; }
 
  private:
@@ -100,19 +139,25 @@ class FusedProgram {
   // size and layout, so a kernel specialised for the contact count and coil kind walks them.
   struct Shape {
     std::uint8_t contacts = 0;
+    std::uint8_t compares = 0;        // word rungs: compares, after the contacts in v
     std::uint8_t coils = 0;
+    bool word = false;                // a word rung: records in wrecords_, run_word_segment
+    Op action = Op::SOR;              // word rungs: the action, or SOR for none
+    std::uint8_t action_flags = 0;    // its header flags (a timer's time base)
+    std::uint16_t action_aux = 0;     // its header aux (RES: the element's FileType)
     std::uint16_t instructions = 0;  // instruction-table instructions in the rung
     std::uint16_t stride = 0;        // record size, in 16-bit units
-    std::uint8_t kernel = 0;         // index into the kernel table (fused.cpp)
+    std::uint8_t kernel = 0;         // index into the kernel table, or (word rungs) run_word_segment's case
     std::uint32_t cost_at = 0;       // first of 2^contacts entries in costs_
     std::uint32_t on_at = 0;         // first of coils * 2^contacts entries in on_
-    std::uint32_t rules_at = 0;      // first of coils entries in rules_
+    std::uint32_t rules_at = 0;      // first of coils entries in rules_, then (word rungs) compares Op bytes
   };
-  // Consecutive rungs of one run that share a shape: executed by one kernel call.
+  // Consecutive rungs of one run that share a shape, or consecutive word rungs: executed by one
+  // kernel call.
   struct Segment {
-    std::uint32_t rec = 0;         // index in records_ of the first rung's record
+    std::uint32_t rec = 0;         // index in records_ (wrecords_ for word rungs) of the first rung's record
     std::uint32_t rungs = 0;       // rungs in the segment
-    std::uint32_t shape = 0;
+    std::uint32_t shape = 0;       // or kWordSegment
     std::uint32_t first_rung = 0;  // index in sor_ of the first rung
   };
   struct Run {
@@ -126,8 +171,21 @@ class FusedProgram {
   // 2 OTL, 3 OTU).
   template <unsigned N, bool Wide, unsigned Coil>
   static std::uint32_t run_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w, Nanoseconds& t,
-                                   Nanoseconds limit);
-  using Kernel = std::uint32_t (*)(const FusedProgram&, const Segment&, std::uint16_t*, Nanoseconds&, Nanoseconds);
+                                   Nanoseconds limit, const FusedScan& scan);
+  // A segment of word rungs, each of its own shape: one loop that switches per rung on the
+  // shape's kernel number, a case per action and small contact/compare count (word_rung), so
+  // consecutive rungs of different shapes cost no call. Adds the instructions to `count`;
+  // returns the rungs completed, with kRunsGeneral set when it stopped before a rung the
+  // general path must run.
+  static std::uint32_t run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
+                                        Nanoseconds& t, std::uint64_t& count, Nanoseconds limit, const FusedScan& scan);
+  template <Op A, unsigned NC, unsigned NM>
+  static bool word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
+                        Nanoseconds& t, const FusedScan& scan);
+  // Segment::shape of a segment of word rungs (each record names its shape).
+  static constexpr std::uint32_t kWordSegment = 0xFFFFFFFFu;
+  using Kernel = std::uint32_t (*)(const FusedProgram&, const Segment&, std::uint16_t*, Nanoseconds&, Nanoseconds,
+                                   const FusedScan&);
   static const Kernel kKernels[];
 
   class Builder;
@@ -139,6 +197,12 @@ class FusedProgram {
   //   coils * (k + 1)  each coil's word index and bit mask
   // The bench rung (four contacts, one coil) is 16 bytes.
   std::vector<std::uint16_t> records_;
+  // Word-rung records, 32-bit units: the shape's index, each contact's and coil's bit operand word (vm/bytecode.h,
+  // mode BIT), two read operands per compare, then the action's table operands other than
+  // literals and time bases, in instruction-box order. A read operand is a word index, or an
+  // immediate with bit 31 set and its value in bits 0-30 (kImmediate).
+  std::vector<std::uint32_t> wrecords_;
+  std::uint32_t s0_ = 0, s2_ = 0, s5_ = 0;  // S:0, S:2 and S:5 word indices
   bool wide_ = false;
   std::vector<std::uint32_t> sor_;  // per fused rung, in record order: the code offset of its SOR
   std::vector<Shape> shapes_;
@@ -150,6 +214,7 @@ class FusedProgram {
   std::vector<std::int32_t> run_of_rung_;         // per rung of every file (in file order): its run or -1
   std::vector<std::uint32_t> file_first_rung_;    // file number -> index of its rung 0 in run_of_rung_
   std::size_t fused_rungs_ = 0;
+  std::size_t word_rungs_ = 0;
 };
 
 }  // namespace softslc

@@ -4,6 +4,7 @@
 
 #include "vm/coverage.h"
 #include "vm/fused.h"
+#include "vm/word_ops.h"
 
 #include "vm/compiler.h"
 #include "vm/ascii_channel.h"
@@ -20,7 +21,6 @@ namespace softslc {
 
 namespace {
 
-constexpr std::uint16_t kStatusBits = 0x000F;  // S:0 C V Z S
 // S:33/9, the status scan toggle bit (RM B-48, SLC 5/03 and later): cleared on entry into Run,
 // changes state at every END, TND or REF.
 constexpr std::uint16_t kScanToggle = 1u << 9;
@@ -438,19 +438,8 @@ std::int64_t Interpreter::st_int(std::uint32_t o, std::int64_t v, bool& overflow
     bool ignored = false;
     return static_cast<std::int64_t>(st_flt(o, static_cast<float>(v), ignored));
   }
-  const std::int64_t hi = vt == ValueType::Int32 ? INT32_MAX : INT16_MAX;
-  const std::int64_t lo = vt == ValueType::Int32 ? INT32_MIN : INT16_MIN;
-  std::int64_t stored = v;
-  if (v > hi || v < lo) {
-    overflow = true;
-    // S:2/14 = 1: keep the truncated low bits; 0 (default): clamp (PT1 20-5, ML B-10).
-    if (w_[s2_] & status::kOverflowSelect)
-      stored = vt == ValueType::Int32 ? static_cast<std::int64_t>(static_cast<std::int32_t>(static_cast<std::uint32_t>(v)))
-                                      : static_cast<std::int64_t>(static_cast<std::int16_t>(static_cast<std::uint16_t>(v)));
-    else
-      stored = v > hi ? hi : lo;
-  }
-  return st_bits(o, stored);
+  // S:2/14 = 1: keep the truncated low bits; 0 (default): clamp (PT1 20-5, ML B-10).
+  return st_bits(o, word_ops::fit_integer(v, vt == ValueType::Int32, (w_[s2_] & status::kOverflowSelect) != 0, overflow));
 }
 
 std::int64_t Interpreter::st_bits(std::uint32_t o, std::int64_t v) {
@@ -499,11 +488,7 @@ double Interpreter::st_flt(std::uint32_t o, float v, bool& overflow) {
 }
 
 void Interpreter::set_flags(bool c, bool v, bool z, bool s) {
-  const auto f = static_cast<std::uint16_t>((c ? status::kCarry : 0) | (v ? status::kOverflow : 0) |
-                                            (z ? status::kZero : 0) | (s ? status::kSign : 0));
-  w_[s0_] = static_cast<std::uint16_t>((w_[s0_] & ~kStatusBits) | f);
-  // RM B-5: whenever V is set, the overflow trap S:5/0 is set too.
-  if (v) w_[s5_] |= status::kOverflowTrap;
+  word_ops::set_arith_flags(w_, s0_, s5_, c, v, z, s);
 }
 
 bool Interpreter::file_span(std::uint32_t o, std::uint32_t elements, Span& out, std::string_view what) {
@@ -874,9 +859,9 @@ void Interpreter::ascii_clear(const std::uint32_t* o, Nanoseconds now_in_scan) {
 bool Interpreter::timer(Op op, const std::uint32_t* o, std::uint32_t h, bool rung, Nanoseconds now_in_scan) {
   std::uint16_t* t = element(o[0]);
   if (faulted_) return true;  // a DYN fault: the dispatch loop stops the scan after this instruction
-  const auto pre = static_cast<std::int16_t>(t[1]);
-  int acc = static_cast<std::int16_t>(t[2]);
-  if (pre < 0 || acc < 0) {
+  if (word_ops::timer_negative(t)) {
+    const auto pre = static_cast<std::int16_t>(t[1]);
+    const auto acc = static_cast<std::int16_t>(t[2]);
     const DataTableLayout& L = *prog_.layout;
     const std::string name = bc::mode_of(o[0]) == bc::kWord ? L.describe(bc::payload_of(o[0]))
                                                             : to_string(prog_.dyn[bc::payload_of(o[0])].address);
@@ -884,142 +869,22 @@ bool Interpreter::timer(Op op, const std::uint32_t* o, std::uint32_t h, bool run
                                           (pre < 0 ? "PRE (" + std::to_string(pre) + ")" : "ACC (" + std::to_string(acc) + ")"));
     return false;
   }
-  std::uint16_t ctl = t[0];
-  const bool base1s = (bc::flags_of(h) & bc::kFlagA) != 0;
-  // The 10 ms tick count at this instruction's virtual time; timers keep its low byte. A 0.001 s
-  // timer (MicroLogix, kFlagB) keeps the low byte of the 1 ms count instead, so it stays exact
-  // with scans up to 255 ms (docs/semantics.md, "MicroLogix").
-  const Nanoseconds unit = (bc::flags_of(h) & bc::kFlagB) ? kNsPerMs : kTick;
-  const auto now8 = static_cast<std::uint8_t>((scan_start_ + now_in_scan) / unit);
-  const auto restart = [&] { ctl = static_cast<std::uint16_t>((ctl & ~bits::kStampMask) | now8); };
-  // Whole time-base units since the stamp; the remainder of a 1.0 s unit stays in the stamp.
-  const auto advance = [&] {
-    const auto stamp = static_cast<std::uint8_t>(ctl & bits::kStampMask);
-    const unsigned delta = static_cast<std::uint8_t>(now8 - stamp);
-    const unsigned units = base1s ? delta / 100 : delta;
-    const unsigned used = base1s ? units * 100 : delta;
-    ctl = static_cast<std::uint16_t>((ctl & ~bits::kStampMask) | static_cast<std::uint8_t>(stamp + used));
-    return static_cast<int>(units);
-  };
-  const auto set_done = [&](bool done) {
-    ctl = static_cast<std::uint16_t>(done ? ((ctl | bits::kDN) & ~bits::kTT) : ((ctl | bits::kTT) & ~bits::kDN));
-  };
-  switch (op) {
-    case Op::TON:
-      // RM 2-9: EN follows the rung; TT while timing; DN at ACC >= PRE; a false rung resets all.
-      if (!rung) {
-        ctl &= static_cast<std::uint16_t>(~(bits::kEN | bits::kTT | bits::kDN));
-        acc = 0;
-        break;
-      }
-      if (first_pass_ || !(ctl & bits::kEN)) {
-        // Starting to time, or the first scan after entering Run: RM 2-9 resets ACC on return
-        // to Run with the rung true.
-        if (first_pass_) acc = 0;
-        restart();
-      } else if (acc < pre) {
-        acc = std::min<int>(pre, acc + advance());
-      }
-      ctl |= bits::kEN;
-      set_done(acc >= pre);
-      break;
-    case Op::TOF:
-      // RM 2-10: DN while the rung is true; after it goes false ACC counts, DN clears at PRE.
-      if (first_pass_ && !rung) {
-        ctl &= static_cast<std::uint16_t>(~(bits::kEN | bits::kTT | bits::kDN));
-        acc = pre;
-        break;
-      }
-      if (rung) {
-        ctl = static_cast<std::uint16_t>((ctl | bits::kEN | bits::kDN) & ~bits::kTT);
-        acc = 0;
-        break;
-      }
-      if (ctl & bits::kEN) {
-        ctl &= static_cast<std::uint16_t>(~bits::kEN);
-        restart();
-        if (ctl & bits::kDN) ctl |= bits::kTT;
-      } else if (ctl & bits::kTT) {
-        acc = std::min<int>(pre, acc + advance());
-      }
-      if ((ctl & bits::kTT) && acc >= pre) ctl &= static_cast<std::uint16_t>(~(bits::kTT | bits::kDN));
-      break;
-    case Op::RTO:
-      // Like TON, but a false rung only clears EN and TT; ACC and DN hold until RES.
-      if (!rung) {
-        ctl &= static_cast<std::uint16_t>(~(bits::kEN | bits::kTT));
-        break;
-      }
-      if (first_pass_ || !(ctl & bits::kEN)) {
-        restart();
-      } else if (acc < pre) {
-        acc = std::min<int>(pre, acc + advance());
-      }
-      ctl |= bits::kEN;
-      set_done(acc >= pre);
-      break;
-    default: break;
-  }
-  t[0] = ctl;
-  t[2] = static_cast<std::uint16_t>(acc);
+  // The tick count at this instruction's virtual time (vm/word_ops.h).
+  word_ops::timer(op, t, rung, first_pass_, word_ops::timer_tick(scan_start_ + now_in_scan, bc::flags_of(h)),
+                  (bc::flags_of(h) & bc::kFlagA) != 0);
   return true;
 }
 
 void Interpreter::counter(Op op, const std::uint32_t* o, bool rung) {
   std::uint16_t* c = element(o[0]);
   if (faulted_) return;
-  std::uint16_t ctl = c[0];
-  int acc = static_cast<std::int16_t>(c[2]);
-  const int pre = static_cast<std::int16_t>(c[1]);
-  // RM 2-14: count on a false-to-true transition only (CU/CD remember the last rung state). On
-  // the first scan after entering Run the SLC has set CU/CD, so a true rung does not count.
-  if (op == Op::CTU) {
-    if (rung && !(ctl & bits::kCU) && !first_pass_) {
-      if (acc == 32767) {
-        acc = -32768;
-        // Wrapping up out of an underflowed count brings it back in range: UN clears.
-        if (ctl & bits::kUN) ctl &= static_cast<std::uint16_t>(~bits::kUN);
-        else ctl |= bits::kOV;
-      } else {
-        ++acc;
-      }
-    }
-    ctl = static_cast<std::uint16_t>(rung ? (ctl | bits::kCU) : (ctl & ~bits::kCU));
-  } else {
-    if (rung && !(ctl & bits::kCD) && !first_pass_) {
-      if (acc == -32768) {
-        acc = 32767;
-        // RM 2-14: OV clears when a CTD brings the count back to <= +32767.
-        if (ctl & bits::kOV) ctl &= static_cast<std::uint16_t>(~bits::kOV);
-        else ctl |= bits::kUN;
-      } else {
-        --acc;
-      }
-    }
-    ctl = static_cast<std::uint16_t>(rung ? (ctl | bits::kCD) : (ctl & ~bits::kCD));
-  }
-  ctl = static_cast<std::uint16_t>(acc >= pre ? (ctl | bits::kDN) : (ctl & ~bits::kDN));
-  c[0] = ctl;
-  c[2] = static_cast<std::uint16_t>(acc);
+  word_ops::counter(op, c, rung, first_pass_);
 }
 
 void Interpreter::reset(const std::uint32_t* o, std::uint32_t h) {
   std::uint16_t* e = element(o[0]);
   if (faulted_) return;
-  switch (static_cast<FileType>(bc::aux_of(h))) {
-    case FileType::Timer:
-      e[0] &= static_cast<std::uint16_t>(~(bits::kEN | bits::kTT | bits::kDN));
-      e[2] = 0;
-      break;
-    case FileType::Counter:
-      e[0] &= static_cast<std::uint16_t>(~(bits::kCU | bits::kCD | bits::kDN | bits::kOV | bits::kUN));
-      e[2] = 0;
-      break;
-    default:  // Control: every status bit and the error code clear; POS = 0; LEN stays.
-      e[0] = 0;
-      e[2] = 0;
-      break;
-  }
+  word_ops::reset(static_cast<FileType>(bc::aux_of(h)), e);
 }
 
 // ---- Compare, math, logical, move ----------------------------------------------------------------------------
@@ -1100,20 +965,12 @@ bool Interpreter::compare(Op op, const std::uint32_t* o, std::uint32_t h) {
     }
   }
   const std::int64_t a = rd_int(o[0]), b = rd_int(o[1]);
-  switch (op) {
-    case Op::EQU: return a == b;
-    case Op::NEQ: return a != b;
-    case Op::LES: return a < b;
-    case Op::LEQ: return a <= b;
-    case Op::GRT: return a > b;
-    case Op::GEQ: return a >= b;
-    case Op::LIM: {
-      // LIM low test high: low <= high tests inside the band, low > high outside it.
-      const std::int64_t hi = rd_int(o[2]);
-      return a <= hi ? (a <= b && b <= hi) : (b >= a || b <= hi);
-    }
-    default: return false;
+  if (op == Op::LIM) {
+    // LIM low test high: low <= high tests inside the band, low > high outside it.
+    const std::int64_t hi = rd_int(o[2]);
+    return a <= hi ? (a <= b && b <= hi) : (b >= a || b <= hi);
   }
+  return word_ops::compare(op, a, b);
 }
 
 void Interpreter::math(Op op, const std::uint32_t* o, std::uint32_t h) {
@@ -1140,12 +997,11 @@ void Interpreter::math(Op op, const std::uint32_t* o, std::uint32_t h) {
   switch (op) {
     case Op::ADD:
       r = a + b;
-      // C: carry out of the destination width, adding the operands as unsigned (RM B-5).
-      carry = ((static_cast<std::uint64_t>(a) & width_mask) + (static_cast<std::uint64_t>(b) & width_mask)) > width_mask;
+      carry = word_ops::add_carry(a, b, width_mask);
       break;
     case Op::SUB:
       r = a - b;
-      carry = (static_cast<std::uint64_t>(a) & width_mask) < (static_cast<std::uint64_t>(b) & width_mask);
+      carry = word_ops::sub_carry(a, b, width_mask);
       break;
     case Op::MUL: {
       r = a * b;
@@ -1360,7 +1216,7 @@ void Interpreter::convert(Op op, const std::uint32_t* o) {
       const int n = s == 0 ? 0 : std::countr_zero(s);
       const bool many = std::popcount(s) > 1;
       st_bits(o[1], n);
-      w_[s0_] = static_cast<std::uint16_t>((w_[s0_] & ~kStatusBits) | (many ? status::kOverflow : 0) |
+      w_[s0_] = static_cast<std::uint16_t>((w_[s0_] & ~word_ops::kArithFlags) | (many ? status::kOverflow : 0) |
                                            (n == 0 ? status::kZero : 0));
       return;
     }
@@ -1479,11 +1335,7 @@ void Interpreter::move(Op op, const std::uint32_t* o, std::uint32_t h) {
   const ValueType vt = dest_type(o[1]);
   const std::int64_t hi = vt == ValueType::Int32 ? INT32_MAX : INT16_MAX;
   const std::int64_t lo = vt == ValueType::Int32 ? INT32_MIN : INT16_MIN;
-  std::int64_t c = v;
-  if (vt != ValueType::Float32 && (v > hi || v < lo)) {
-    overflow = true;
-    c = v > hi ? hi : lo;
-  }
+  const std::int64_t c = vt == ValueType::Float32 ? v : word_ops::saturate(v, lo, hi, overflow);
   const std::int64_t stored = st_bits(o[1], c);
   set_flags(false, overflow, stored == 0, stored < 0);
 }
@@ -1971,6 +1823,7 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
   int cur_file = file;
   const std::uint32_t* pc = code_ + prog_.file(file)->begin;
   const bool* const fast_op = coverage_ ? kNoFastPathOp.data() : kFastPathOp.data();
+  const std::uint32_t* general_sor = nullptr;  // a SOR fused rungs handed back (FusedProgram::kRunsGeneral)
 
   for (;;) {
   resume:
@@ -2061,14 +1914,19 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
         rung = !mcr_off || (bc::flags_of(h) & bc::kFlagA);
         // A run of fused rungs (vm/fused.h) starting here executes in one call; coverage keeps
         // the general path so it sees every instruction.
-        if (!mcr_off && fusion_ && !coverage_) {
+        // A rung a run handed back to the general path (it would fault) is not fused again.
+        if (!mcr_off && fusion_ && !coverage_ && pc != general_sor) {
           const std::int32_t run = fused_->run_at(cur_file, bc::aux_of(h));
           if (run >= 0) {
             Nanoseconds t = elapsed;
             std::uint64_t n = 0;
-            pc = code_ + fused_->execute(run, w_, t, n, limit_);
+            const std::uint32_t next = fused_->execute(run, w_, t, n, limit_, FusedScan{scan_start_, first_pass_});
+            pc = code_ + (next & ~FusedProgram::kRunsGeneral);
+            if (next & FusedProgram::kRunsGeneral) general_sor = pc;
             elapsed = t;
             count_ += n;
+            // The run ends at a SOR (or EOF): dispatched here directly, as after a handler.
+            if (!fast_op[static_cast<std::size_t>(bc::op_of(*pc))]) goto dispatch;
             continue;
           }
         }

@@ -18,10 +18,10 @@
 // general-switch op the next op is dispatched there directly unless the fast path runs it (and
 // always with coverage), so a TON or MOV is not switched on twice.
 //
-// Fused rungs. Runs of rungs that are pure contact networks are not dispatched instruction by
-// instruction at all: at such a run's first SOR the general switch hands it to a FusedProgram
-// (vm/fused.h), built once at construction, which executes the whole run as gathered bits and
-// table lookups with the same results, scan time and counts. Coverage keeps the general path.
+// Fused rungs. Runs of contact-network rungs, and of contacts and compares ending in TON/TOF/RTO, CTU/CTD,
+// RES, MOV, ADD or SUB on direct words, are handed at their first SOR to a FusedProgram (vm/fused.h, built
+// once), which runs them as gathered bits, table lookups and the handlers' own word code (vm/word_ops.h) with
+// the same results, scan time and counts; a rung it hands back runs here unfused. Coverage keeps the general path.
 //
 // Run-time addresses (indexed, indirect, M0/M1) go through resolve(), the one checked path: it
 // either yields an index inside the data table (or a module word) or records a major fault

@@ -302,6 +302,170 @@ TEST(Fused, WideWordIndicesMatchTheGeneralPath) {
   }
 }
 
+// ---- Word rungs: contacts and compares, then TON/TOF/RTO, CTU/CTD, RES, MOV, ADD or SUB ----
+
+// Slow enough that a scan spans several 10 ms ticks, so timers read the tick count at their own
+// virtual time inside the scan and a tick boundary falls between rungs; still distinct per op
+// and per rung-in, so a wrong charge anywhere shows up in the scan time and the timer stamps.
+class SlowDistinctCosts final : public ScanTimeModel {
+ public:
+  std::string_view name() const override { return "slow distinct"; }
+  Nanoseconds instruction_cost(Opcode op, bool rung_in) const override {
+    return 40'000 + 1'700 * static_cast<Nanoseconds>(op) + (rung_in ? 90'000 : 0);
+  }
+  Nanoseconds input_scan_cost(const Module&) const override { return 0; }
+  Nanoseconds output_scan_cost(const Module&) const override { return 0; }
+  Nanoseconds housekeeping_cost() const override { return 0; }
+};
+
+// A word operand read by a compare, MOV, ADD or SUB: a few N7 words (so rungs read what others
+// write, and an ADD's destination is often its own source), a timer's or counter's ACC or PRE
+// (aliasing the elements the timers and counters write), a B3 word the coils write, S:0, and
+// immediates at the 16-bit edges and past them (MOV 40000 saturates and sets V).
+std::string random_source(Rng& rng) {
+  static const char* const kImmediates[] = {"0", "1", "-1", "5", "32767", "-32768", "30000", "-30000", "40000"};
+  const unsigned pick = rng() % 13;
+  if (pick < 5) return "N7:" + std::to_string(rng() % 4);
+  if (pick < 9) return kImmediates[rng() % 9];
+  if (pick == 9) return "T4:" + std::to_string(rng() % 3) + (rng() % 2 ? ".ACC" : ".PRE");
+  if (pick == 10) return "C5:" + std::to_string(rng() % 3) + ".ACC";
+  if (pick == 11) return "B3:" + std::to_string(rng() % 2);  // the words the coils write
+  return "S:0";
+}
+std::string random_dest(Rng& rng) {
+  const unsigned pick = rng() % 16;
+  if (pick < 13) return "N7:" + std::to_string(rng() % 4);
+  if (pick < 15) return "C5:" + std::to_string(rng() % 3) + ".ACC";
+  return "T4:" + std::to_string(rng() % 3) + ".ACC";
+}
+
+// A contact on a B3 bit or on a timer's or counter's status bit.
+std::string random_word_contact(Rng& rng) {
+  static const char* const kStatus[] = {"/DN", "/EN", "/TT"};
+  const std::string kind = rng() % 2 ? "XIC " : "XIO ";
+  switch (rng() % 4) {
+    case 0: return kind + "T4:" + std::to_string(rng() % 3) + kStatus[rng() % 3] + " ";
+    case 1: return kind + "C5:" + std::to_string(rng() % 3) + "/DN ";
+    default: return kind + random_bit(rng) + " ";
+  }
+}
+
+std::string random_word_rung(Rng& rng) {
+  static const char* const kCompares[] = {"EQU", "NEQ", "LES", "LEQ", "GRT", "GEQ"};
+  std::string s;
+  // 0-3 contacts and 0-2 compares, sometimes a parallel branch, sometimes a coil.
+  const int contacts = static_cast<int>(rng() % 4);
+  const int compares = static_cast<int>(rng() % 3);
+  for (int i = 0; i < contacts; ++i) s += random_word_contact(rng);
+  // An output branch whose second leg compares after the first leg's coil: a compare reading
+  // the word that coil writes must see the new value (such a rung stays general).
+  if (rng() % 5 == 0)
+    return s + "BST " + random_coil(rng) + "NXB " + kCompares[rng() % 6] + " " + random_source(rng) + " " +
+           random_source(rng) + " " + random_coil(rng) + "BND";
+  for (int i = 0; i < compares; ++i)
+    s += std::string(kCompares[rng() % 6]) + " " + random_source(rng) + " " + random_source(rng) + " ";
+  if (rng() % 5 == 0) s += "BST " + random_word_contact(rng) + "NXB " + random_word_contact(rng) + "BND ";
+  if (rng() % 6 == 0) s += random_coil(rng);
+  const std::string e = std::to_string(rng() % 3);
+  switch (rng() % 11) {
+    case 0: return s + "TON T4:" + e + (rng() % 4 ? " 0.01 " : " 1.0 ") + std::to_string(rng() % 12) + " 0";
+    case 1: return s + "TOF T4:" + e + " 0.01 " + std::to_string(rng() % 12) + " 0";
+    case 2: return s + "RTO T4:" + e + " 0.01 " + std::to_string(rng() % 12) + " 0";
+    case 3: return s + "CTU C5:" + e + " " + std::to_string(rng() % 5) + " 0";
+    case 4: return s + "CTD C5:" + e + " " + std::to_string(-static_cast<int>(rng() % 5)) + " 0";
+    case 5: return s + "RES " + (rng() % 2 ? "T4:" : rng() % 2 ? "C5:" : "R6:") + e;
+    case 6:
+    case 7: return s + "MOV " + random_source(rng) + " " + random_dest(rng);
+    case 8:
+    case 9: return s + "ADD " + random_source(rng) + " " + random_source(rng) + " " + random_dest(rng);
+    default: return s + "SUB " + random_source(rng) + " " + random_source(rng) + " " + random_dest(rng);
+  }
+}
+
+std::string random_word_program(Rng& rng) {
+  // Presets (and accumulators) made negative below are restored first thing on half the scans (a branch of MOVs: the
+  // general path runs it).
+  std::string s = "START 1747-L532\nLADDER 2\n"
+                  "SOR XIO B3:1/15 BST MOV 7 T4:0.PRE NXB MOV 7 T4:1.PRE NXB MOV 7 T4:2.PRE NXB LES T4:0.ACC 0 "
+                  "MOV 0 T4:0.ACC NXB LES T4:1.ACC 0 MOV 0 T4:1.ACC NXB LES T4:2.ACC 0 MOV 0 T4:2.ACC BND EOR\n";
+  const int rungs = 30 + static_cast<int>(rng() % 30);
+  for (int r = 0; r < rungs; ++r) {
+    const unsigned kind = rng() % 24;
+    if (kind == 0) {
+      s += "SOR XIC " + random_bit(rng) + " JSR 3 EOR\n";
+    } else if (kind == 1 && rng() % 2) {
+      // A negative preset now and then: TON/TOF/RTO on it is fault 0034h (the fused run hands
+      // the rung back to the general path, which raises it).
+      s += "SOR XIC B3:0/" + std::to_string(rng() % 16) + " XIC B3:1/" + std::to_string(rng() % 16) + " XIC B3:0/" +
+           std::to_string(rng() % 16) + " MOV " + (rng() % 2 ? "-1" : "7") + " T4:" + std::to_string(rng() % 3) +
+           ".PRE EOR\n";
+    } else if (kind == 2) {
+      // An MCR zone around a word rung: inside a false zone it runs (false) on the general path.
+      s += "SOR XIC " + random_bit(rng) + " MCR EOR\nSOR " + random_word_rung(rng) + " EOR\nSOR MCR EOR\n";
+    } else {
+      s += "SOR " + random_word_rung(rng) + " EOR\n";
+    }
+  }
+  // Clears the overflow trap on some scans only, so an overflow is sometimes fault 0020h at END.
+  s += "SOR XIC B3:0/0 OTU S:5/0 EOR\n";
+  s += "LADDER 3\nSOR SBR " + random_word_rung(rng) + " EOR\n";
+  for (int r = 0; r < 3; ++r) s += "SOR " + random_word_rung(rng) + " EOR\n";
+  s += "SOR RET EOR\n";
+  return s;
+}
+
+TEST(Fused, WordRungShapesMatchTheGeneralPath) {
+  const SlowDistinctCosts model;
+  std::size_t word_total = 0, rungs_total = 0, faults = 0, tick_crossings = 0;
+  for (unsigned seed = 1; seed <= 80; ++seed) {
+    Rng rng(seed);
+    rng.words = 2;
+    const std::string text = random_word_program(rng);
+    const CompiledProgram p = build(text);
+    Machine fused(p, model, true), general(p, model, false);
+    word_total += FusedProgram(p, fused.interp.costs()).word_rungs();
+    for (const auto& f : p.files) rungs_total += f.rungs.size();
+    const auto& L = *p.layout;
+    // Counters near +32767 and -32768 (CTU/CTD wrap, OV and UN), S:2/14 on for some seeds
+    // (ADD/SUB keep the low bits instead of clamping).
+    for (std::uint32_t e = 0; e < 3; ++e) {
+      const auto acc = static_cast<std::uint16_t>(rng() % 2 ? 32766 : -32767);
+      fused.table.set_word(L.files[5].base + 3 * e + 2, acc);
+      general.table.set_word(L.files[5].base + 3 * e + 2, acc);
+    }
+    if (seed % 3 == 0) {
+      const std::uint32_t s2 = L.status_word(status::kControl);
+      fused.table.set_word(s2, fused.table.word(s2) | status::kOverflowSelect);
+      general.table.set_word(s2, general.table.word(s2) | status::kOverflowSelect);
+    }
+    const Nanoseconds watchdog = seed % 4 == 0 ? 9'000'000 + static_cast<Nanoseconds>(seed) * 77'777 : INT64_MAX;
+    VirtualTime start = static_cast<VirtualTime>(rng() % 10'000'000);
+    for (int scan = 0; scan < 30; ++scan) {
+      for (std::uint32_t w = 0; w < 2; ++w) {
+        const auto v = static_cast<std::uint16_t>(rng());
+        if (scan % 2 == 0) {
+          fused.table.set_word(L.files[3].base + w, v);
+          general.table.set_word(L.files[3].base + w, v);
+        }
+      }
+      const auto a = fused.interp.program_scan(start, 0, scan == 0, watchdog);
+      const auto b = general.interp.program_scan(start, 0, scan == 0, watchdog);
+      const std::string where = "seed " + std::to_string(seed) + " scan " + std::to_string(scan) + "\n" + text;
+      expect_same(a, b, where);
+      if (a.faulted) ++faults;
+      if ((start + a.elapsed) / kTick != start / kTick) ++tick_crossings;
+      for (std::uint32_t w = 0; w < L.total_words; ++w)
+        ASSERT_EQ(fused.table.word(w), general.table.word(w)) << "word " << L.describe(w) << ", " << where;
+      start += a.elapsed + static_cast<VirtualTime>(rng() % 3'000'000);
+    }
+  }
+  // The comparison means something only if most rungs were fused word rungs, some scans
+  // faulted (overflow trap, negative preset, watchdog) and the scans crossed tick boundaries.
+  EXPECT_GT(word_total * 2, rungs_total);
+  EXPECT_GT(faults, 50u);
+  EXPECT_GT(tick_crossings, 500u);
+}
+
 // docs/bytecode.md "Rung logic": each leg starts from the condition at BST, and an output acts on
 // the rung condition where it stands, so the second leg's XIC sees the bit the first leg's OTE
 // has just written. Fused rungs gather contacts first, so this rung must not be fused.

@@ -876,8 +876,9 @@ template <> struct action<data_number> {
       return;
     }
     if (v.is_float) {
-      s.diags.error(p.line, p.column, "a " + std::string(file_letter(*s.data.type)) + " file holds integers, not '" +
-                                          in.string() + "'");
+      const std::string file = is_function_file(*s.data.type) ? "the " + std::string(function_file_name(s.data.file)) + " function file"
+                                                               : "a " + std::string(file_letter(*s.data.type)) + " file";
+      s.diags.error(p.line, p.column, file + " holds integers, not '" + in.string() + "'");
       return;
     }
     // A 16-bit word is a bit pattern: 0XA200 and -24064 are the same word. Keep the signed form

@@ -726,6 +726,7 @@ TEST(MicroLogixSti, DataBlockConfiguresItAndIsChecked) {
               std::string::npos);
   }
   EXPECT_NE(load_errors(sti_program("3 0 0X0002")).find("one element of four words, PFN ER bits SPM"), std::string::npos);
+  EXPECT_NE(load_errors(sti_program("3 0 0X0002 2.5")).find("the STI function file holds integers, not '2.5'"), std::string::npos);
   EXPECT_NE(load_errors(rungs + "DATA STI9:0\n3 0 0X0002 10\n").find("the STI function file has no file number"), std::string::npos);
   // Something must name the file before anything can start it: auto start, or an STS.
   EXPECT_NE(load_errors(sti_program("0 0 0X0022 10")).find("STI:0/AS (auto start) is set but STI:0.PFN is 0"), std::string::npos);

@@ -97,11 +97,11 @@ enum class Requirement : std::uint8_t {
   SlcPid,            // PID with an N-file control block: SLC 5/02-5/05 (RM001G p. 9-1); the MicroLogix
                      // 1100-1500 PID takes a PD file element instead, which softslc does not have
   // The selectable timed interrupt: SLC 5/02 and later modular processors (RM 11-8). The
-  // MicroLogix 1100-1500 also have STS/INT, on their STI function file, not simulated yet.
+  // MicroLogix 1100-1500 have their own STS, on their STI function file (MicroLogixStiFile).
   TimedInterrupt,
   SlcInterruptControl,  // STD/STE: the SLC 5/02-5/05 only (RM 11-14; the MicroLogix use UID/UIE)
-  // Instructions that drive the MicroLogix STI function file (the one-operand STS): no processor
-  // has them in softslc until that function file is simulated.
+  // Instructions that drive the MicroLogix STI function file (the one-operand STS): the
+  // MicroLogix 1100, 1200, 1400 and 1500.
   MicroLogixStiFile,
   // ---- I/O interrupts and diagnostics (issue 15) ----
   // The I/O event-driven interrupt's instructions IID, IIE, RPI: the SLC 5/02-5/05 (RM 11-27).

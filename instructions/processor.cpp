@@ -90,11 +90,11 @@ bool ProcessorModel::supports(Requirement r) const {
     // Control Instruction"), a file type softslc does not have: refused there by name.
     case Requirement::SlcPid:
       return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
-    // The MicroLogix 1100-1500 have STS and INT too, but they drive the STI function file, which
-    // softslc does not simulate yet (docs/semantics.md "MicroLogix"): refused there until it does.
+    // The MicroLogix 1100-1500 keep their STI in the STI function file, which their one-operand STS
+    // starts (docs/semantics.md "MicroLogix"); the SLC's two-operand STS and INT stay SLC-only.
     case Requirement::TimedInterrupt:
     case Requirement::SlcInterruptControl: return slc_has_sti(family);
-    case Requirement::MicroLogixStiFile: return false;
+    case Requirement::MicroLogixStiFile: return is_micrologix_1100_class();
     // RM 11-27's availability row marks the 5/02, 5/03, 5/04 and 5/05 for the I/O
     // interrupt; FBC/DDT came with a Series C operating system (RM A-9), the same condition as SCP.
     case Requirement::IoInterrupt: return slc_has_sti(family);
@@ -135,8 +135,8 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001G p. 9-1)";
     case Requirement::MicroLogixStiFile:
-      return "with one operand (time) is the MicroLogix form, which starts the STI function file (STI:0); softslc "
-             "does not simulate the MicroLogix STI function file yet (docs/semantics.md \"MicroLogix\")" +
+      return "with one operand (time) is the MicroLogix 1100, 1200, 1400 and 1500 form, which starts the STI function "
+             "file (STI:0; 1763-RM001C p. 272); this program's processor is " + have +
              std::string(is_micrologix() ? "" : "; the SLC STS takes a file and a time (1747-RM001 11-16)");
     case Requirement::Slc502Up:
     case Requirement::Os302:
@@ -200,13 +200,13 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::SlcOneShot: return "SLC 500 processors, MicroLogix 1000";
     case Requirement::MicroLogix1100Class: return "MicroLogix 1100, 1200, 1400, 1500";
     case Requirement::SlcPid: return "SLC 5/02, 5/03, 5/04, 5/05";
-    case Requirement::TimedInterrupt: return "SLC 5/02, 5/03, 5/04, 5/05 (the MicroLogix STI function file is not simulated yet)";
+    case Requirement::TimedInterrupt: return "SLC 5/02, 5/03, 5/04, 5/05 (the MicroLogix 1100-1500 STS takes the time only)";
     case Requirement::SlcInterruptControl: return "SLC 5/02, 5/03, 5/04, 5/05";
-    case Requirement::MicroLogixStiFile: return "none yet (MicroLogix 1100-1500 once the STI function file is simulated)";
+    case Requirement::MicroLogixStiFile: return "MicroLogix 1100, 1200, 1400, 1500";
     case Requirement::IoInterrupt: return "SLC 5/02, 5/03, 5/04, 5/05";
     case Requirement::FileBitCompare: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05";
     case Requirement::MicroLogixUserInterrupt:
-      return "none yet (MicroLogix 1100-1500 once their STI/EII/HSC function files are simulated)";
+      return "none yet (MicroLogix 1100-1500 once their EII/HSC function files are simulated)";
     case Requirement::SlcMessage502: return "SLC 5/02 (the 5/03-5/05 form has 11 operands)";
     case Requirement::SlcMessage: return "SLC 5/03, 5/04, 5/05";
     case Requirement::SlcCommService: return "SLC 5/02, 5/03, 5/04, 5/05";

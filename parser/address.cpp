@@ -53,6 +53,25 @@ constexpr std::array kRtcBits{FunctionBit{"DS", rtc::kStatusWord, rtc::kDisabled
 
 bool is_rtc(int id) { return id == static_cast<int>(FunctionFile::RTC); }
 
+// The STI element's named words and bits (see sti:: in address.h). `writable` is the manual's
+// "User Program Access" (1763-RM001C pp. 270, 272 for UIX, UIE, UIL, ED, SPM; the others [U]).
+struct FunctionSubElement {
+  std::string_view name;
+  int word;
+  int bit;  // -1: a word
+  bool writable;
+};
+constexpr std::array kStiSubElements{
+    FunctionSubElement{"PFN", sti::kProgramFile, -1, false},  FunctionSubElement{"ER", sti::kErrorCode, -1, false},
+    FunctionSubElement{"SPM", sti::kSetPoint, -1, true},      FunctionSubElement{"UIX", sti::kBits, sti::kExecutingBit, false},
+    FunctionSubElement{"UIE", sti::kBits, sti::kEnableBit, true}, FunctionSubElement{"UIL", sti::kBits, sti::kLostBit, true},
+    FunctionSubElement{"UIP", sti::kBits, sti::kPendingBit, false},
+    FunctionSubElement{"TIE", sti::kBits, sti::kTimedEnableBit, true},
+    FunctionSubElement{"AS", sti::kBits, sti::kAutoStartBit, false}, FunctionSubElement{"ED", sti::kBits, sti::kErrorBit, false},
+};
+
+bool is_sti(int id) { return id == static_cast<int>(FunctionFile::STI); }
+
 }  // namespace
 
 std::string_view function_file_name(int id) {
@@ -65,11 +84,16 @@ int function_file_id(std::string_view name) {
   return -1;
 }
 
-bool function_file_simulated(int id) { return is_rtc(id); }
-int function_file_elements(int id) { return is_rtc(id) ? 1 : 0; }
-int function_file_words_per_element(int id) { return is_rtc(id) ? rtc::kWords : 0; }
+bool function_file_simulated(int id) { return is_rtc(id) || is_sti(id); }
+int function_file_elements(int id) { return is_rtc(id) || is_sti(id) ? 1 : 0; }
+int function_file_words_per_element(int id) { return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : 0; }
 
 int function_word_number(int id, std::string_view name) {
+  if (is_sti(id)) {
+    for (const auto& e : kStiSubElements)
+      if (e.bit < 0 && e.name == name) return e.word;
+    return -1;
+  }
   if (!is_rtc(id)) return -1;
   for (std::size_t i = 0; i < kRtcWords.size(); ++i)
     if (kRtcWords[i] == name) return static_cast<int>(i);
@@ -77,11 +101,25 @@ int function_word_number(int id, std::string_view name) {
 }
 
 std::string_view function_word_name(int id, int word) {
+  if (is_sti(id)) {
+    for (const auto& e : kStiSubElements)
+      if (e.bit < 0 && e.word == word) return e.name;
+    return {};
+  }
   if (!is_rtc(id) || word < 0 || word >= static_cast<int>(kRtcWords.size())) return {};
   return kRtcWords[static_cast<std::size_t>(word)];
 }
 
 bool function_bit_number(int id, std::string_view name, int& word, int& bit) {
+  if (is_sti(id)) {
+    for (const auto& e : kStiSubElements)
+      if (e.bit >= 0 && e.name == name) {
+        word = e.word;
+        bit = e.bit;
+        return true;
+      }
+    return false;
+  }
   if (!is_rtc(id)) return false;
   for (const auto& b : kRtcBits)
     if (b.name == name) {
@@ -93,10 +131,39 @@ bool function_bit_number(int id, std::string_view name, int& word, int& bit) {
 }
 
 std::string_view function_bit_name(int id, int word, int bit) {
+  if (is_sti(id)) {
+    for (const auto& e : kStiSubElements)
+      if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
+    return {};
+  }
   if (!is_rtc(id)) return {};
   for (const auto& b : kRtcBits)
     if (b.word == word && b.bit == bit) return b.name;
   return {};
+}
+
+bool function_sub_element_writable(int id, int word, int bit) {
+  // The RTC words are written by programs (CPW into RTC:0.YR, slc_adjust_clock.RSS).
+  if (!is_sti(id)) return true;
+  bool any = false;
+  for (const auto& e : kStiSubElements) {
+    if (e.word != word) continue;
+    if (bit >= 0 && e.bit >= 0 && e.bit != bit) continue;
+    any = true;
+    if (!e.writable) return false;
+  }
+  return any;  // an unnamed bit of the bit word (7-15) is nobody's to write
+}
+
+std::string function_sub_element_names(int id) {
+  if (is_rtc(id)) return "words YR, MON, DAY, HR, MIN, SEC, DOW and bits DS, BL";
+  if (!is_sti(id)) return {};
+  std::string words, bits;
+  for (const auto& e : kStiSubElements) {
+    std::string& list = e.bit < 0 ? words : bits;
+    list += (list.empty() ? "" : ", ") + std::string(e.name);
+  }
+  return "words " + words + " and bits " + bits;
 }
 
 std::string_view file_letter(FileType t) {

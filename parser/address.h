@@ -45,17 +45,19 @@ enum class FileType : std::uint8_t {
 };
 
 // The MicroLogix function files, by the names RSLogix gives them (1762-RM001C ch. 3, 1763-RM001,
-// 1766-RM001 "Function Files"). Only the real-time clock is simulated; the others are recognised
-// so that a program naming them gets a clear diagnostic instead of a syntax error.
+// 1766-RM001 "Function Files"). The real-time clock and the selectable timed interrupt are
+// simulated; the others are recognised so that a program naming them gets a clear diagnostic
+// instead of a syntax error.
 enum class FunctionFile : std::uint8_t { RTC, HSC, PTOX, PWMX, STI, EII, BHI, MMI, DAT, TPI, CS, IOS, LCD };
 inline constexpr int kFunctionFileCount = 13;
 // "RTC", "HSC", ... for a FunctionFile number; "?" when out of range.
 std::string_view function_file_name(int id);
 // The FunctionFile number of a name ("RTC" -> 0), or -1.
 int function_file_id(std::string_view name);
-// Whether softslc simulates the function file (has its layout and behaviour): RTC only.
+// Whether softslc simulates the function file (has its layout and behaviour): RTC and STI.
 bool function_file_simulated(int id);
-// Elements and words per element of a simulated function file (RTC: 1 element of 8 words).
+// Elements and words per element of a simulated function file (RTC: 1 element of 8 words, STI: 1
+// of 4).
 int function_file_elements(int id);
 int function_file_words_per_element(int id);
 // Named sub-elements of a function file element: word number, or -1 when unknown.
@@ -64,6 +66,12 @@ std::string_view function_word_name(int id, int word);
 // Named bits: sets `word` and `bit` and returns true when known.
 bool function_bit_number(int id, std::string_view name, int& word, int& bit);
 std::string_view function_bit_name(int id, int word, int bit);
+// Whether the user program may write the sub-element at word `word` (bit `bit`, or -1 for the whole
+// word) of function file `id`: false for the manuals' "read only" sub-elements, and for a whole
+// word that holds any of them (STI:0's bit word is written bit by bit).
+bool function_sub_element_writable(int id, int word, int bit);
+// The names of a simulated function file's words and bits, for diagnostics ("YR, MON, ...").
+std::string function_sub_element_names(int id);
 
 // The real-time clock function file's words (1762-RM001C p. 3-3 Table 3.2, same in 1763-RM001 and
 // 1766-RM001): YR 1998-2097, MON 1-12, DAY 1-31, HR 0-23, MIN 0-59, SEC 0-59, DOW 0-6 (Sunday =
@@ -77,6 +85,27 @@ inline constexpr int kStatusWord = 7;
 inline constexpr int kDisabledBit = 0, kBatteryLowBit = 1;
 inline constexpr int kWords = 8;
 }  // namespace rtc
+
+// The selectable timed interrupt function file STI:0 (1763-RM001C pp. 269-272, 1762-RM001C ch. 18,
+// 1766-RM001A p. 318 on). One element of four words, in the order RSLogix itself writes them in a
+// library export (`DATA STI0:0` / `0 0 0X0002 0` in 59-BSGS.SLC) and stores them in a project's
+// DATA FILES stream (docs/micrologix-function-files-sources.md section 6): PFN (program file
+// number), ER (error code), the bit word, SPM (set point, ms, 0-65,535). Access (1763 pp. 270/272
+// read; the rest [U], docs/semantics.md "MicroLogix"): PFN, ER, UIX, UIP, AS, ED read only; UIE,
+// UIL, TIE, SPM read/write. The bit positions are softslc's decision [U]: the manuals name the bits
+// without positions; the order of the manual's sub-element list (UIX, UIE, UIL, UIP, TIE, AS, ED)
+// fits the saved projects, where 0x0002 (UIE) is RSLogix's default and the auto-started STI of
+// TVZ_1100_REV02.RSS has 0x0032 (UIE, TIE, AS).
+namespace sti {
+inline constexpr int kProgramFile = 0, kErrorCode = 1, kBits = 2, kSetPoint = 3;
+inline constexpr int kWords = 4;
+inline constexpr int kExecutingBit = 0, kEnableBit = 1, kLostBit = 2, kPendingBit = 3, kTimedEnableBit = 4,
+                     kAutoStartBit = 5, kErrorBit = 6;
+// RSLogix's default bit word (UIE set): what every saved project without an STI has.
+inline constexpr std::uint16_t kDefaultBits = 1u << kEnableBit;
+// STI:0.ER 1: "Invalid Program File Number" (1763-RM001C p. 270).
+inline constexpr std::uint16_t kErrorInvalidFile = 1;
+}  // namespace sti
 
 // The letter(s) of a file type as written in addresses: "O", "I", "S", "B", ..., "ST", "M0".
 std::string_view file_letter(FileType t);

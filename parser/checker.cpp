@@ -44,6 +44,7 @@ class Checker {
     for (auto& file : program_.files) check_file(file);
     check_jsr_targets();
     check_data_blocks();
+    check_sti_function_file();
     check_forces();
     check_osr_storage();
   }
@@ -69,6 +70,7 @@ class Checker {
   std::vector<std::pair<Address, SourcePos>> osr_bits_;
   std::vector<std::pair<int, SourcePos>> jsr_targets_;
   std::vector<std::pair<int, SourcePos>> sts_targets_;
+  std::vector<SourcePos> ml_sts_uses_;  // the MicroLogix STS (time only), which starts STI:0
   // the ISR files SLOT lines name with OPTION ISR=n (RM 11-27, 11-31).
   std::vector<std::pair<int, SourcePos>> isr_targets_;
   bool unknown_in_rung_ = false;  // the rung being checked names an unknown instruction
@@ -300,7 +302,7 @@ class Checker {
       return;
     }
     if (!function_file_simulated(a.file)) {
-      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC is");
+      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC and STI are");
       return;
     }
     if (a.element >= function_file_elements(a.file))
@@ -308,6 +310,21 @@ class Checker {
     if (a.word >= function_file_words_per_element(a.file))
       error(pos, to_string(a) + ": " + name + " elements have words 0-" +
                      std::to_string(function_file_words_per_element(a.file) - 1));
+  }
+
+  // A program write into a function file: the manuals' "read only" sub-elements (STI:0.PFN, /UIX, ...;
+  // function_sub_element_writable) are refused, as RSLogix refuses them. A file operand written into
+  // the STI (COP, CPW) would cover read-only words too, so the STI is written one sub-element at a
+  // time (docs/semantics.md "MicroLogix").
+  void check_function_file_write(const Operand& op, const OperandSpec& os, const std::string& where) {
+    const Address& a = op.address;
+    if (a.file != static_cast<int>(FunctionFile::STI)) return;
+    if (os.kind == OperandKind::File)
+      return error(op.pos, where + ": the STI function file is written one sub-element at a time (MOV, OTL, "
+                                   "...); a file instruction would also write its read-only words");
+    if (a.word >= 0 && !function_sub_element_writable(a.file, a.word, a.bit))
+      error(op.pos, where + ": " + to_string(a) + " is read only to the user program (1763-RM001C pp. 270-272; "
+                                                 "docs/semantics.md \"MicroLogix\")");
   }
 
   // Checks an address on its own. `kind` and `mfile` say where it stands (for M-file rules).
@@ -424,6 +441,8 @@ class Checker {
     if (op.kind == Operand::Kind::Address && uses_memdef_file(op.address))
       return error(op.pos, where + ": " + std::string(file_letter(op.address.type)) + std::to_string(op.address.file) +
                                " holds the program's MEMDEF variables; name them instead (docs/automax.md)");
+    if (op.is_address() && is_function_file(op.address.type) && os.access != OperandAccess::Read)
+      check_function_file_write(op, os, where);
     if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
       const Symbol* sym = symbols_.at(op.symbol);
       if (sym->automax && sym->automax->kind == AutomaxDef::Kind::IoDef)
@@ -608,6 +627,7 @@ class Checker {
         in.operands[0].kind == Operand::Kind::Integer)
       (in.opcode == Opcode::JSR ? jsr_targets_ : sts_targets_)
           .emplace_back(static_cast<int>(in.operands[0].integer), in.operands[0].pos);
+    if (in.opcode == Opcode::STS_ML) ml_sts_uses_.push_back(in.pos);
     if (in.opcode == Opcode::INT && (file_number < 3 || rung_index != 0))
       error(in.pos, "INT belongs at the start of the first rung of an interrupt subroutine file (3-255)");
     if (in.opcode == Opcode::CPT && in.operands.size() == 2 && in.operands[1].kind == Operand::Kind::Expression)
@@ -1101,9 +1121,14 @@ class Checker {
     std::set<std::pair<int, int>> seen;  // (type, file) pairs, to catch a file given twice
     for (const auto& d : program_.data) {
       if (!d.type) continue;
+      const FileType t = *d.type;
+      if (is_function_file(t)) {
+        if (!seen.emplace(static_cast<int>(t), d.file).second) error(d.pos, "DATA for " + d.file_name + " is given twice");
+        check_function_file_data(d);
+        continue;
+      }
       if (!seen.emplace(static_cast<int>(*d.type), d.file).second && !is_io(*d.type))
         error(d.pos, "DATA for " + std::string(file_letter(*d.type)) + std::to_string(d.file) + " is given twice");
-      const FileType t = *d.type;
       if (is_io(t)) {
         const SlotConfig* slot = slot_of(d.start_element);
         if (!slot) {
@@ -1137,6 +1162,45 @@ class Checker {
           break;
         }
     }
+  }
+
+  // A DATA block that gives a function file its values: the STI's is its one element, the four
+  // words in the order RSLogix exports them (PFN ER bits SPM; sti:: in parser/address.h).
+  void check_function_file_data(const DataBlock& d) {
+    if (!program_.processor.is_micrologix_1100_class())
+      return error(d.pos, "function file data (" + d.file_name + ") belongs to a MicroLogix 1100, 1200, 1400 or "
+                          "1500; this program's processor is " + program_.processor.display_name);
+    if (d.start_element != 0 || d.words.size() != static_cast<std::size_t>(sti::kWords))
+      return error(d.pos, "DATA " + d.file_name + ": the STI function file has one element of four words, "
+                          "PFN ER bits SPM, as RSLogix exports it (for example 3 0 0X0032 1000)");
+    for (auto w : d.words)
+      if (w < -32768 || w > 65535) return error(d.pos, "value " + std::to_string(w) + " does not fit a 16-bit word");
+  }
+
+  // The STI's program file (STI:0.PFN) must be a ladder file of the program when it is set, and when
+  // the STI can start (auto start, or an STS): 1763-RM001C p. 270, STI error code 1 "Invalid Program
+  // File Number: less than 3, greater than 255, or does not exist". softslc finds it here, at the
+  // DATA block that sets it, rather than as the controller's fault on entering Run (docs/semantics.md
+  // "MicroLogix").
+  void check_sti_function_file() {
+    const DataBlock* block = nullptr;
+    for (const auto& d : program_.data)
+      if (d.type && is_function_file(*d.type) && d.file == static_cast<int>(FunctionFile::STI)) block = &d;
+    const bool sized = block && block->words.size() == static_cast<std::size_t>(sti::kWords);
+    const int pfn = sized ? static_cast<int>(static_cast<std::uint16_t>(block->words[sti::kProgramFile])) : 0;
+    const bool auto_start = sized && ((static_cast<std::uint16_t>(block->words[sti::kBits]) >> sti::kAutoStartBit) & 1u);
+    if (pfn != 0 && (pfn < 3 || pfn > 255 || !program_.find_file(pfn))) {
+      error(block->pos, "STI:0.PFN " + std::to_string(pfn) + " is not a subroutine file of this program (3-255, no LADDER " +
+                            std::to_string(pfn) + "): the STI's error code 1, Invalid Program File Number "
+                            "(1763-RM001C p. 270)");
+      return;
+    }
+    if (pfn != 0) return;
+    if (auto_start)
+      error(block->pos, "STI:0/AS (auto start) is set but STI:0.PFN is 0: give the STI's program file (3-255)");
+    for (const auto& pos : ml_sts_uses_)
+      error(pos, "STS starts the STI function file, whose program file STI:0.PFN is 0: give it in a DATA STI:0 block "
+                 "(PFN ER bits SPM, for example 3 0 0X0002 0)");
   }
 
   void check_forces() {

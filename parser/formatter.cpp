@@ -78,6 +78,16 @@ void format_data(const DataBlock& d, std::string& out) {
     return;
   }
   const FileType t = *d.type;
+  if (is_function_file(t)) {
+    // The STI: one row of PFN ER bits SPM as RSLogix exports it (SPM is 0-65,535).
+    out += "% .PFN    .ER  bits   .SPM  %\n";
+    for (std::size_t i = 0; i < d.words.size(); ++i) {
+      const auto w = static_cast<std::uint16_t>(d.words[i]);
+      out += (i ? " " : "") + (i == static_cast<std::size_t>(sti::kBits) ? hex_word(w) : pad_left(std::to_string(w), 6));
+    }
+    out += " % " + d.file_name + " %\n\n";
+    return;
+  }
   const std::string prefix = file_prefix(d);
   if (is_io(t)) {
     out += "% " + prefix + ":" + std::to_string(d.start_element) + ".0 %";

@@ -300,6 +300,12 @@ template <> struct action<word_number> {
   static void apply(const Input& in, AddressBuilder& b) { b.a.word = to_int(in); }
 };
 
+// What a function file's sub-elements are called, for an unknown-name diagnostic.
+std::string function_file_hint(int id) {
+  if (!function_file_simulated(id)) return " (softslc does not model this function file)";
+  return " (" + std::string(function_file_name(id)) + " has " + function_sub_element_names(id) + ")";
+}
+
 template <> struct action<word_name> {
   template <typename Input>
   static void apply(const Input& in, AddressBuilder& b) {
@@ -309,8 +315,7 @@ template <> struct action<word_name> {
       if (w < 0)
         throw pegtl::parse_error("unknown sub-element '" + in.string() + "' of function file " +
                                      std::string(function_file_name(id)) +
-                                     (function_file_simulated(id) ? " (RTC has YR, MON, DAY, HR, MIN, SEC, DOW)"
-                                                                  : " (softslc does not model this function file)"),
+                                     function_file_hint(id),
                                  in);
       b.a.word = w;
       return;
@@ -350,8 +355,7 @@ template <> struct action<bit_name> {
       if (b.a.word >= 0 || !function_bit_number(id, in.string_view(), word, bit))
         throw pegtl::parse_error("unknown bit name '" + in.string() + "' of function file " +
                                      std::string(function_file_name(id)) +
-                                     (function_file_simulated(id) ? " (RTC has bits DS and BL)"
-                                                                  : " (softslc does not model this function file)"),
+                                     function_file_hint(id),
                                  in);
       b.a.word = word;
       b.a.bit = bit;
@@ -861,10 +865,18 @@ template <> struct action<data_header> {
     s.data.start_element = std::stoi(std::string(text.substr(colon + 1)).substr(0, 9));
     auto type = file_type_from_letters(letters);
     int fixed = type ? fixed_file_number(*type) : -1;
-    s.data_opaque = !type || is_mfile(*type) || is_function_file(*type);
+    // The STI function file's block gives its configuration (docs/program-format.md); the other
+    // function files' blocks are kept as written.
+    const bool sti = type && is_function_file(*type) && function_file_id(letters) == static_cast<int>(FunctionFile::STI);
+    s.data_opaque = !type || is_mfile(*type) || (is_function_file(*type) && !sti);
     if (!s.data_opaque) {
       s.data.type = type;
-      if (fixed >= 0) {
+      if (sti) {
+        // RSLogix exports it as STI0:0; softslc's addresses write STI:0. Either names the one element.
+        if (!number.empty() && number != "0")
+          s.diags.error(s.data.pos.line, s.data.pos.column, "the STI function file has no file number: DATA STI:0 or, as RSLogix exports it, DATA STI0:0");
+        s.data.file = function_file_id(letters);
+      } else if (fixed >= 0) {
         if (!number.empty() && std::stoi(number.substr(0, 9)) != fixed) s.data_opaque = true;
         s.data.file = fixed;
       } else if (number.empty()) {
@@ -892,8 +904,9 @@ template <> struct action<data_number> {
       return;
     }
     if (v.is_float) {
-      s.diags.error(p.line, p.column, "a " + std::string(file_letter(*s.data.type)) + " file holds integers, not '" +
-                                          in.string() + "'");
+      const std::string file = is_function_file(*s.data.type) ? "the " + std::string(function_file_name(s.data.file)) + " function file"
+                                                               : "a " + std::string(file_letter(*s.data.type)) + " file";
+      s.diags.error(p.line, p.column, file + " holds integers, not '" + in.string() + "'");
       return;
     }
     // A 16-bit word is a bit pattern: 0XA200 and -24064 are the same word. Keep the signed form

@@ -288,7 +288,7 @@ class Compiler {
     note_file(7, FileType::Integer, 1, none);
     if (proc_.has_float_files()) note_file(8, FileType::Float, 1, none);
     for (const auto& d : prog_.data) {
-      if (!d.type || is_io(*d.type) || *d.type == FileType::Status || is_mfile(*d.type)) continue;
+      if (!d.type || is_io(*d.type) || *d.type == FileType::Status || is_mfile(*d.type) || is_function_file(*d.type)) continue;
       const FileType t = *d.type;
       const std::size_t n = t == FileType::Float    ? d.floats.size()
                             : t == FileType::String ? d.strings.size()
@@ -359,14 +359,18 @@ class Compiler {
     // 1200 and 1500 (1762-RM001C p. 3-3), present in the data table of all four so that a program
     // and a test can read and set it. It starts at softslc's fixed power-up date (docs/semantics.md
     // "Real-time clock") and runs in virtual time (Runtime::advance_rtc).
+    // The STI function file (1763-RM001C pp. 269-272) follows it on the same four controllers; the
+    // interpreter runs the selectable timed interrupt from it (vm/interrupts.cpp).
     if (proc_.is_micrologix_1100_class()) {
-      FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(FunctionFile::RTC)];
-      f.present = true;
-      f.type = FileType::Function;
-      f.base = next;
-      f.elements = static_cast<std::uint32_t>(function_file_elements(static_cast<int>(FunctionFile::RTC)));
-      f.words_per_element = static_cast<std::uint8_t>(rtc::kWords);
-      next += f.words();
+      for (const FunctionFile kind : {FunctionFile::RTC, FunctionFile::STI}) {
+        FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(kind)];
+        f.present = true;
+        f.type = FileType::Function;
+        f.base = next;
+        f.elements = static_cast<std::uint32_t>(function_file_elements(static_cast<int>(kind)));
+        f.words_per_element = static_cast<std::uint8_t>(function_file_words_per_element(static_cast<int>(kind)));
+        next += f.words();
+      }
     }
     layout_.total_words = next;
     if (next > bc::kMaxWordIndex) error({}, "the data table is too large to address");
@@ -391,9 +395,19 @@ class Compiler {
       set_init(clock.base + rtc::kDay, 1);
       set_init(clock.base + rtc::kDayOfWeek, 6);
     }
+    // The STI as RSLogix creates it (UIE set, nothing configured) unless a DATA STI:0 block says
+    // otherwise (every saved project without an STI has 0 0 0X0002 0; docs/semantics.md "MicroLogix").
+    if (const FileLayout& timed = layout_.function_file(FunctionFile::STI); timed.present)
+      set_init(timed.base + sti::kBits, sti::kDefaultBits);
     for (const auto& d : prog_.data) {
       if (!d.type || is_mfile(*d.type)) continue;
       const FileType t = *d.type;
+      if (is_function_file(t)) {
+        const FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(d.file)];
+        for (std::size_t i = 0; f.present && i < d.words.size() && i < f.words(); ++i)
+          set_init(f.base + static_cast<std::uint32_t>(i), static_cast<std::uint16_t>(d.words[i]));
+        continue;
+      }
       if (is_io(t)) {
         const FileLayout& f = layout_.files[static_cast<std::size_t>(fixed_file_number(t))];
         const auto& slots = t == FileType::Input ? layout_.input_slots : layout_.output_slots;

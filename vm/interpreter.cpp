@@ -106,6 +106,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
     }
   }
   if (dii_supported_) s46_ = L.status_word(status::kDiiFile);
+  locate_sti_bits();
   fused_ = std::make_shared<const FusedProgram>(program, cost_);
 }
 
@@ -2252,10 +2253,9 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
         if (faulted_) goto fault;
         break;
       case Op::STS_ML:
-        // The checker refuses it on every processor (Requirement::MicroLogixStiFile); never
-        // silently ignored if a program ever got here.
-        raise(fault::kUnsupportedInstruction, "STS on the MicroLogix STI function file is not simulated");
-        goto fault;
+        if (rung) function_file_sti_start(o, elapsed);
+        if (faulted_) goto fault;
+        break;
 
       // ---- I/O interrupts and diagnostics (issue 15) ----
       case Op::IID:

@@ -301,6 +301,9 @@ class Interpreter {
   void ascii_error();
   // STS: S:31/S:30 (or the STI function file) := file/time, enable, restart the timer from now.
   SOFTSLC_HANDLER void sti_start(const std::uint32_t* o, Nanoseconds now_in_scan);
+  // The MicroLogix STS (time only): STI:0.SPM := time, TIE := 1, the timer restarts from now; time 0
+  // stops the STI and clears TIE.
+  SOFTSLC_HANDLER void function_file_sti_start(const std::uint32_t* o, Nanoseconds now_in_scan);
   // IID, IIE, RPI (RM 11-33, B-43) on S:25-S:28; FBC, DDT (RM 7-18 .. 7-22).
   SOFTSLC_HANDLER void io_interrupt_control(Op op, const std::uint32_t* o, Nanoseconds now_in_scan);
   SOFTSLC_HANDLER void bit_compare(Op op, const std::uint32_t* o, bool rung);
@@ -333,6 +336,13 @@ class Interpreter {
   // S:13, S:14 and S:24 saved and restored (STI, DII, ISR).
   bool run_interrupt_routine(int file, int priority, Nanoseconds& elapsed);
   void sti_expire();
+  // Where the STI's pending/enabled/executing bits live (set once by the constructor): S:2/0-2 on
+  // the SLC, STI:0's UIP/UIE/UIX on a MicroLogix with the STI function file.
+  void locate_sti_bits();
+  // configure_sti for the MicroLogix STI function file (STI:0 .PFN .SPM /TIE /AS, ED and .ER).
+  bool configure_function_file_sti(VirtualTime now, bool entering_run);
+  // STI:0.PFN when it names a subroutine file; otherwise sets ED and ER 1 and raises fault 0023h.
+  int function_file_sti_program(const char* when);
   // limit_ := the scan time of the next thing a rung start must look at (watchdog, STI expiry).
   void update_limit(Nanoseconds elapsed);
   Nanoseconds sti_period(std::int64_t setpoint) const;
@@ -395,6 +405,12 @@ class Interpreter {
   bool in_fault_routine_ = false;
   bool sti_ms_units_ = false;      // S:2/10 latched on entry to Run (RM 11-13)
   StiTimer sti_;
+  // The STI's program view (locate_sti_bits): the word holding its pending, enabled and executing
+  // bits, and on a MicroLogix the STI function file's first word (-1 on the SLC).
+  std::uint32_t sti_bits_ = 0;
+  std::uint16_t sti_pending_ = 0, sti_enabled_ = 0, sti_executing_ = 0;
+  std::int64_t sti_file_word_ = -1;
+  int sti_queued_ = 0;             // MicroLogix: expiries waiting to run, at most 2 (1763-RM001C p. 270)
   // The priority of the routine running now (kPriority* in vm/interrupts.cpp).
   int priority_ = 0;
   DiiState dii_;

@@ -27,6 +27,12 @@
 // and module requests reach the runtime between scans (events and tools), so a DII or ISR they make
 // runnable starts at the first rung of the next scan: its latency is the rest of the scan in which
 // the input changed, the input scan and the entry cost (docs/semantics.md).
+//
+// The MicroLogix 1100-1500 keep their STI in the STI:0 function file (1763-RM001C pp. 270-272):
+// the same timer and the same rung-start servicing, with the program's view in STI:0 instead of
+// the status file (locate_sti_bits: UIP, UIE, UIX for S:2/0-2), PFN/SPM/TIE read where the SLC
+// reads S:30/S:31, up to two waiting expiries before the lost bit (sti_queued_), and rung starts
+// that look while one waits so that a program's OTL of UIE runs it at the next rung.
 #include <algorithm>
 #include <string>
 
@@ -90,8 +96,23 @@ Nanoseconds Interpreter::sti_period(std::int64_t setpoint) const {
 }
 
 bool Interpreter::sti_runnable() const {
-  return priority_ < kPrioritySti && sti_.file != 0 && (w_[s2_] & status::kStiPending) &&
-         (w_[s2_] & status::kStiEnabled);
+  return priority_ < kPrioritySti && sti_.file != 0 && (w_[sti_bits_] & sti_pending_) && (w_[sti_bits_] & sti_enabled_);
+}
+
+void Interpreter::locate_sti_bits() {
+  const FileLayout& f = prog_.layout->function_file(FunctionFile::STI);
+  if (!f.present) {
+    sti_bits_ = s2_;
+    sti_pending_ = status::kStiPending;
+    sti_enabled_ = status::kStiEnabled;
+    sti_executing_ = status::kStiExecuting;
+    return;
+  }
+  sti_file_word_ = f.base;
+  sti_bits_ = f.base + sti::kBits;
+  sti_pending_ = 1u << sti::kPendingBit;
+  sti_enabled_ = 1u << sti::kEnableBit;
+  sti_executing_ = 1u << sti::kExecutingBit;
 }
 
 bool Interpreter::dii_runnable() const {
@@ -121,6 +142,10 @@ int Interpreter::runnable_isr_slot() const {
 void Interpreter::update_limit(Nanoseconds elapsed) {
   Nanoseconds limit = watchdog_;
   if (sti_.file != 0) limit = std::min(limit, sti_runnable() ? elapsed : sti_.due - scan_start_);
+  // MicroLogix: an expiry held back by a clear UIE runs at the first rung start after the program
+  // sets UIE (1763-RM001C p. 270 "STI subroutine processing resumes"; 1762-RM001C p. 18-3: interrupts
+  // are serviced at the start of a rung), so rung starts look while one waits.
+  if (sti_file_word_ >= 0 && sti_queued_ > 0 && priority_ < kPrioritySti) limit = std::min(limit, elapsed);
   if (dii_runnable() || runnable_isr_slot() != 0) limit = std::min(limit, elapsed);
   limit_ = limit;
 }
@@ -135,6 +160,23 @@ bool Interpreter::at_limit(Nanoseconds& elapsed) {
 }
 
 void Interpreter::sti_expire() {
+  if (sti_file_word_ >= 0) {
+    // MicroLogix (1763-RM001C p. 270): "1 active and ... up to 2 pending user interrupt conditions
+    // before it sets the lost bit"; UIP shows that one waits.
+    std::uint16_t& bits = w_[sti_bits_];
+    if (sti_queued_ >= 2) {
+      bits = static_cast<std::uint16_t>(bits | (1u << sti::kLostBit));
+    } else {
+      ++sti_queued_;
+      bits = static_cast<std::uint16_t>(bits | sti_pending_);
+    }
+    if (sti_.next_period > 0) {
+      sti_.period = sti_.next_period;
+      sti_.next_period = 0;
+    }
+    sti_.due += sti_.period;
+    return;
+  }
   // RM 11-13: overflow S:5/10 when the timer expires while the routine runs or while an earlier
   // expiry still waits; S:36/9 (5/03+) when an expiry finds one pending: that interrupt is lost.
   if (w_[s2_] & status::kStiPending) {
@@ -195,10 +237,14 @@ bool Interpreter::run_interrupt_routine(int file, int priority, Nanoseconds& ela
 }
 
 bool Interpreter::run_sti(Nanoseconds& elapsed) {
-  // RM 11-12/11-13: starting the routine resets the pending bit and sets the executing bit.
-  w_[s2_] = static_cast<std::uint16_t>((w_[s2_] & ~status::kStiPending) | status::kStiExecuting);
+  // RM 11-12/11-13: starting the routine resets the pending bit and sets the executing bit. On the
+  // MicroLogix UIX is set while the routine runs (1763-RM001C p. 270) and UIP stays set while a
+  // second expiry still waits.
+  std::uint16_t pending_after = 0;
+  if (sti_file_word_ >= 0 && --sti_queued_ > 0) pending_after = sti_pending_;
+  w_[sti_bits_] = static_cast<std::uint16_t>((w_[sti_bits_] & ~sti_pending_) | pending_after | sti_executing_);
   if (!run_interrupt_routine(sti_.file, kPrioritySti, elapsed)) return false;
-  w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~status::kStiExecuting);
+  w_[sti_bits_] = static_cast<std::uint16_t>(w_[sti_bits_] & ~sti_executing_);
   ++sti_.runs;
   return true;
 }
@@ -383,6 +429,7 @@ bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
   faulted_ = false;
   fault_ = {};
   w_ = table_.words();
+  if (sti_file_word_ >= 0) return configure_function_file_sti(now, entering_run);
   if (entering_run) {
     // RM 11-12/11-13: pending and executing are cleared on entry to Run; S:2/10 is read on the
     // Program-to-Run transition; the timer starts from here.
@@ -430,7 +477,8 @@ void Interpreter::stop_interrupts() {
   w_ = table_.words();
   sti_.file = 0;
   sti_.next_period = 0;
-  w_[s2_] = static_cast<std::uint16_t>(w_[s2_] & ~(status::kStiPending | status::kStiExecuting));
+  sti_queued_ = 0;
+  w_[sti_bits_] = static_cast<std::uint16_t>(w_[sti_bits_] & ~(sti_pending_ | sti_executing_));
   // the DII and the I/O interrupts stop too; a module's open request is answered.
   dii_.file = 0;
   if (dii_supported_)
@@ -476,6 +524,96 @@ void Interpreter::sti_start(const std::uint32_t* o, Nanoseconds now_in_scan) {
     sti_.next_period = 0;
     sti_.setpoint = static_cast<std::uint16_t>(time);
     sti_.due = scan_start_ + now_in_scan + period;
+  }
+  update_limit(now_in_scan);
+}
+
+// ---- The MicroLogix STI function file ----------------------------------------------------------------
+// STI:0 (sti:: in parser/address.h) is the program's view; the timer is the SLC's (sti_, sti_expire,
+// run_sti). Sources: 1763-RM001C pp. 270 and 272 (UIX, UIE, UIL, ED, SPM, error code 1) and p. 318 of
+// 1766-RM001A; the rest is softslc's reading, marked [U] in docs/semantics.md "MicroLogix".
+
+int Interpreter::function_file_sti_program(const char* when) {
+  std::uint16_t* fn = w_ + sti_file_word_;
+  const int file = fn[sti::kProgramFile];
+  if (file >= 3 && file <= 255 && prog_.file(file)) {
+    fn[sti::kBits] = static_cast<std::uint16_t>(fn[sti::kBits] & ~(1u << sti::kErrorBit));
+    fn[sti::kErrorCode] = 0;
+    return file;
+  }
+  // 1763-RM001C p. 270: error code 1, a recoverable controller fault; p. 272: ED tells the program
+  // to look at ER. The fault code is the SLC's STI file fault [U].
+  fn[sti::kBits] = static_cast<std::uint16_t>(fn[sti::kBits] | (1u << sti::kErrorBit));
+  fn[sti::kErrorCode] = sti::kErrorInvalidFile;
+  raise(fault::kInvalidStiFile, std::string(when) + ": STI:0.PFN " + std::to_string(file) +
+                                    " is not a subroutine file of this program (3-255): STI error code 1, Invalid "
+                                    "Program File Number (1763-RM001C p. 270)");
+  return 0;
+}
+
+bool Interpreter::configure_function_file_sti(VirtualTime now, bool entering_run) {
+  std::uint16_t* fn = w_ + sti_file_word_;
+  std::uint16_t& bits = fn[sti::kBits];
+  const auto timed_enable = static_cast<std::uint16_t>(1u << sti::kTimedEnableBit);
+  if (entering_run) {
+    // Nothing runs or waits on entry; AS sets TIE when the controller enters an executing mode
+    // (the 2080-UM002 wording of the same bit [U]); SPM is loaded then (1763-RM001C p. 272).
+    bits = static_cast<std::uint16_t>(bits & ~(sti_executing_ | sti_pending_));
+    if ((bits >> sti::kAutoStartBit) & 1u) bits = static_cast<std::uint16_t>(bits | timed_enable);
+    sti_queued_ = 0;
+    sti_ = StiTimer{0, 0, 0, 0, 0, sti_.runs};
+  }
+  // TIE and SPM are read here, at the end of every scan: a program's change to either starts,
+  // stops or re-times the STI as an S:30/S:31 change does on the SLC (RM 11-12) [U].
+  const std::uint16_t setpoint = fn[sti::kSetPoint];
+  if (!(bits & timed_enable) || setpoint == 0) {
+    sti_.file = 0;
+    sti_.next_period = 0;
+    sti_queued_ = 0;
+    bits = static_cast<std::uint16_t>(bits & ~sti_pending_);
+    return true;
+  }
+  const int file = function_file_sti_program("entering Run or at the end of the scan");
+  if (file == 0) return false;
+  const Nanoseconds period = sti_period(setpoint);
+  if (sti_.file == 0) {
+    sti_.period = period;
+    sti_.next_period = 0;
+    sti_.due = now + period;
+  } else {
+    sti_.next_period = period != sti_.period ? period : 0;
+  }
+  sti_.file = file;
+  sti_.setpoint = setpoint;
+  return true;
+}
+
+void Interpreter::function_file_sti_start(const std::uint32_t* o, Nanoseconds now_in_scan) {
+  if (sti_file_word_ < 0) {
+    raise(fault::kUnsupportedInstruction, "STS with one operand needs the MicroLogix STI function file");
+    return;
+  }
+  const auto time = static_cast<std::uint16_t>(bc::imm_of(o[0]));
+  std::uint16_t* fn = w_ + sti_file_word_;
+  std::uint16_t& bits = fn[sti::kBits];
+  // 1763-RM001C p. 272: STS changes SPM. As the SLC STS does (RM 11-16), it restarts the timer and
+  // drops what was pending; time 0 stops the STI [U].
+  fn[sti::kSetPoint] = time;
+  sti_queued_ = 0;
+  bits = static_cast<std::uint16_t>(bits & ~sti_pending_);
+  if (time == 0) {
+    bits = static_cast<std::uint16_t>(bits & ~(1u << sti::kTimedEnableBit));
+    sti_.file = 0;
+    sti_.next_period = 0;
+  } else {
+    bits = static_cast<std::uint16_t>(bits | (1u << sti::kTimedEnableBit));
+    const int file = function_file_sti_program("STS");
+    if (file == 0) return;
+    sti_.file = file;
+    sti_.period = sti_period(time);
+    sti_.next_period = 0;
+    sti_.setpoint = time;
+    sti_.due = scan_start_ + now_in_scan + sti_.period;
   }
   update_limit(now_in_scan);
 }

@@ -147,6 +147,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // the discrete input interrupt's applied configuration, runs and last latency, and
   // the I/O event interrupt routines run (for tests and tools).
   const DiiState& dii() const { return interp_->dii(); }
+  const StiTimer& sti() const { return interp_->sti(); }
   std::uint64_t isr_runs() const { return interp_->isr_runs(); }
 
   // ---- Data ----

@@ -682,6 +682,9 @@ void write_symbols(const MemDatabase& db, std::string& out) {
 enum DataType : std::uint16_t { DtOutput = 0, DtInput = 1, DtStatus = 2, DtBinary = 3, DtTimer = 4, DtCounter = 5, DtControl = 6,
                                 DtInteger = 7, DtFloat = 8, DtUnused = 0x0A, DtString = 0x0E, DtLong = 0x10, DtMessage = 0x13 };
 
+// The type code of the STI function file's record among the function files.
+constexpr std::uint16_t kStiFunctionFile = 0x14;
+
 struct DataFileRecord {
   std::uint16_t type = 0;
   int number = 0;
@@ -833,9 +836,30 @@ void decode_data_files(std::string_view data, const ProcessorCode& processor, st
     DataFileRecord r = data_file_record(a);
     write_data_file(r, processor, a, out, forces);
   }
-  // As in an RSLogix export, the force tables follow the data files.
+  // Then a count of function files, each a CDataFile record whose type code names it. The STI's
+  // (type 0x14) is one element of four words, PFN ER bits SPM: sti_1000ms_live.RSS holds 3 0 0x0002 0
+  // (its STS sets the time), TVZ_1100_REV02.RSS 13 0 0x0032 300 (an auto-started STI every 300 ms,
+  // as its annotations say), every project without an STI 0 0 0x0002 0, which is also the row an
+  // RSLogix export writes (DATA STI0:0 in 59-BSGS.SLC; docs/micrologix-function-files-sources.md
+  // section 6). It is written as that export writes it, after the data files and before the force
+  // tables; the other function files and the M files that follow are not read (docs/program-format.md).
+  const std::uint16_t functions = a.u16();
+  for (std::uint16_t i = 0; i < functions; ++i) {
+    a.set_context("function file entry " + std::to_string(i));
+    a.expect("CDataFile");
+    const std::size_t at = a.offset();
+    DataFileRecord r = data_file_record(a);
+    if (r.type != kStiFunctionFile) continue;
+    if (r.elements != 1 || r.words_per_element != 4)
+      a.fail("the STI function file has " + std::to_string(r.elements) + " elements of " + std::to_string(r.words_per_element) +
+                 " words (one of four expected)",
+             at);
+    out += "\nDATA STI0:0\n% STI0:0 %\n";
+    for (std::size_t w = 0; w < 4; ++w)
+      out += (w ? " " : "") + (w == 2 ? hex_word(word_at(r.values, w)) : std::to_string(word_at(r.values, w)));
+    out += "\n";
+  }
   out += forces;
-  // The function files and M files that follow are not read (docs/program-format.md).
 }
 
 }  // namespace

@@ -267,15 +267,45 @@ TEST(RssReader, InstructionsSoftslcLacksAreNamedNotSupported) {
   EXPECT_NE(typo.render_diagnostics().find("unknown instruction 'QQQ'"), std::string::npos) << typo.render_diagnostics();
 }
 
-// Diagnostics about a converted project name the program file and rung (sti_1000ms_live.pdf,
-// LAD 2 rung 0000 holds the MicroLogix STS, whose STI function file softslc does not simulate yet).
+// Diagnostics about a converted project name the program file and rung (TVZ_1100_REV02_LatchmoorAnnotations.pdf,
+// LAD 2 rung 0002 drives HSC:0/FE, a bit of the HSC function file softslc does not simulate yet).
 TEST(RssReader, DiagnosticsNameTheProgramFileAndRung) {
-  fs::path f = kFixtures / "drbitboy-PLC_2s_lamp_flash" / "sti_1000ms_live.RSS";
+  fs::path f = kFixtures / "drbitboy-PLC_reject_timing" / "TVZ_1100_REV02.RSS";
   if (!fs::exists(f)) GTEST_SKIP() << "no fixture " << f;
   auto r = softslc::load_program_file(f);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 0: STS with one operand (time) is the MicroLogix form"), std::string::npos)
+  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 2: unknown bit name 'FE' of function file HSC"), std::string::npos)
       << r.render_diagnostics();
+}
+
+// The STI function file's configuration is carried from the project's DATA FILES stream (the
+// function-file record of type 0x14: PFN ER bits SPM, docs/micrologix-function-files-sources.md
+// section 6) as the DATA STI0:0 row an RSLogix export writes (59-BSGS.SLC: "0 0 0X0002 0").
+// sti_1000ms_live.RSS: its STI file is LAD 3 (the only ladder file no JSR calls; the report's
+// program file list), the time comes from its STS 2000. TVZ_1100_REV02.RSS: LAD 13 STI_SPEED,
+// "executed at regular intervals (300ms) via Selectable Timed Interrupt" (the annotated report),
+// with no STS, so auto start is set. Projects without an STI hold RSLogix's default row.
+TEST(RssReader, StiFunctionFileConfigurationIsCarried) {
+  const std::vector<std::pair<fs::path, std::string>> cases = {
+      {kFixtures / "drbitboy-PLC_2s_lamp_flash" / "sti_1000ms_live.RSS", "\nDATA STI0:0\n% STI0:0 %\n3 0 0X0002 0\n"},
+      {kFixtures / "drbitboy-PLC_reject_timing" / "TVZ_1100_REV02.RSS", "\nDATA STI0:0\n% STI0:0 %\n13 0 0X0032 300\n"},
+      {kFixtures / "drbitboy-PLC_2s_lamp_flash" / "single_timer.RSS", "\nDATA STI0:0\n% STI0:0 %\n0 0 0X0002 0\n"},
+  };
+  for (const auto& [f, row] : cases) {
+    SCOPED_TRACE(f.filename().string());
+    if (!fs::exists(f)) GTEST_SKIP() << "no fixture " << f;
+    auto r = read_project(slurp(f), f.filename().string());
+    ASSERT_TRUE(r.text) << r.error;
+    EXPECT_NE(r.text->find(row), std::string::npos) << *r.text;
+  }
+  // Loaded, the block is the STI's configuration.
+  auto sti = softslc::load_program_file(cases[0].first);
+  ASSERT_TRUE(sti.ok()) << sti.render_diagnostics();
+  const softslc::DataBlock* block = nullptr;
+  for (const auto& d : sti.program->data)
+    if (d.file_name == "STI0:0") block = &d;
+  ASSERT_NE(block, nullptr);
+  EXPECT_EQ(block->words, (std::vector<std::int64_t>{3, 0, 2, 0}));
 }
 
 // `import` then `check` of the .slc says exactly what `check` of the .RSS says (only the program
@@ -684,6 +714,7 @@ std::string data_holder(std::uint16_t type, std::uint16_t number, const std::vec
   out += '\0';  // description
   out += '\0';  // name
   out += std::string(4, '\0');
+  u16(0);  // no function files
   return out;
 }
 
@@ -702,6 +733,46 @@ TEST(RssReader, OutputFileAndForcesOfTheEmbeddedSlot) {
   ASSERT_FALSE(expansion.text);
   EXPECT_NE(expansion.error.find("OUTPUT file of 5 words; the Bul.1763's embedded I/O has 4: expansion I/O is not read"), std::string::npos)
       << expansion.error;
+}
+
+// `payload` (a data_holder) with its function-file count replaced by one record of `type`, as the
+// projects store them after the data files: a reference to the CDataFile class (0x8003), then the
+// CDataFile record.
+std::string with_function_file(std::string payload, std::uint16_t type, std::uint16_t elements, std::uint16_t words_per_element,
+                               const std::vector<std::uint16_t>& words) {
+  payload.resize(payload.size() - 2);
+  auto u16 = [&](std::uint16_t v) {
+    payload += static_cast<char>(v & 0xFF);
+    payload += static_cast<char>(v >> 8);
+  };
+  u16(1);
+  u16(0x8003);
+  u16(type);
+  payload += std::string(6, '\0');
+  u16(elements);
+  u16(words_per_element);
+  u16(0);
+  u16(0xFFFF);
+  for (auto w : words) u16(w);
+  u16(0);
+  payload += std::string(2, '\0');  // description, name
+  payload += std::string(4, '\0');
+  return payload;
+}
+
+// The STI record (type 0x14) becomes the export's DATA STI0:0 row, before the force tables; one of
+// another shape is an error, not a guess.
+TEST(RssReader, StiFunctionFileRecord) {
+  const std::string output = data_holder(0, 0, {0, 0, 0, 0}, {0, 0xFFFF, 0, 0xFFFF, 0, 0xFFFF, 0, 0xFFFF});
+  auto r = softslc::rss::decode_data_files_payload(with_function_file(output, 0x14, 1, 4, {13, 0, 0x32, 300}));
+  ASSERT_TRUE(r.text) << r.error;
+  EXPECT_NE(r.text->find("\nDATA STI0:0\n% STI0:0 %\n13 0 0X0032 300\n\nFORCE O:00\n"), std::string::npos) << *r.text;
+  auto other = softslc::rss::decode_data_files_payload(with_function_file(output, 0x17, 1, 8, std::vector<std::uint16_t>(8, 0)));
+  ASSERT_TRUE(other.text) << other.error;
+  EXPECT_EQ(other.text->find("STI"), std::string::npos) << "only the STI is carried";
+  auto bad = softslc::rss::decode_data_files_payload(with_function_file(output, 0x14, 2, 4, std::vector<std::uint16_t>(8, 0)));
+  ASSERT_FALSE(bad.text);
+  EXPECT_NE(bad.error.find("the STI function file has 2 elements of 4 words"), std::string::npos) << bad.error;
 }
 
 // A forced output saved in the project is forced when the converted program runs: the FORCE

@@ -362,10 +362,14 @@ TEST(Sti, CheckerRules) {
   EXPECT_EQ(try_build("START 1747-L511\nLADDER 2\nSOR STD EOR\n", errors), nullptr);
   EXPECT_NE(errors.find("STD is not available"), std::string::npos) << errors;
   errors.clear();
-  // The MicroLogix STS (time only, sti_1000ms_live.pdf) is refused until STI:0 is simulated; the
-  // SLC form is refused on the MicroLogix.
+  // The MicroLogix STS (time only, sti_1000ms_live.pdf) starts the STI function file: the MicroLogix
+  // 1000 has none (and an SLC takes file and time); the 1100 needs STI:0.PFN to start anything
+  // (tests/micrologix "MicroLogixSti"). The SLC form is refused on the MicroLogix.
+  EXPECT_EQ(try_build("START Bul.1761\nLADDER 2\nSOR STS 2000 EOR\n", errors), nullptr);
+  EXPECT_NE(errors.find("STS with one operand (time) is the MicroLogix 1100, 1200, 1400 and 1500 form"), std::string::npos) << errors;
+  errors.clear();
   EXPECT_EQ(try_build("START Bul.1763\nLADDER 2\nSOR STS 2000 EOR\n", errors), nullptr);
-  EXPECT_NE(errors.find("STS with one operand (time) is the MicroLogix form"), std::string::npos) << errors;
+  EXPECT_NE(errors.find("whose program file STI:0.PFN is 0"), std::string::npos) << errors;
   errors.clear();
   EXPECT_EQ(try_build(program_text("SOR STS 5 EOR"), errors), nullptr);
   EXPECT_NE(errors.find("the SLC STS takes a file and a time"), std::string::npos) << errors;

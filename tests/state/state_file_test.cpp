@@ -13,6 +13,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "../cli/cli_test_util.h"
 #include "modules/module_setup.h"
 #include "parser/loader.h"
 #include "vm/runtime.h"
@@ -271,53 +272,29 @@ TEST(StateModules, NoBuiltInModuleFamilyRetainsMFileWords) {
 
 // ---- Through the command line ------------------------------------------------------------------
 
-struct Cmd {
-  int exit_code;
-  std::string out;
-};
-
-Cmd run_cli(const std::string& args) {
-  std::string cmd = std::string(SOFTSLC_BINARY) + " " + args + " 2>&1";
-  Cmd r{-1, {}};
-  FILE* p = ::popen(cmd.c_str(), "r");
-  char buf[4096];
-  while (std::size_t n = std::fread(buf, 1, sizeof buf, p)) r.out.append(buf, n);
-  int st = ::pclose(p);
-  r.exit_code = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
-
-std::filesystem::path scratch() {
-  auto d = std::filesystem::temp_directory_path() / ("softslc-state-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
-
 std::string read_file(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 TEST(StateCli, DataSurvivesAPowerCycle) {
-  auto dir = scratch();
-  auto prog = dir / "counter.slc";
-  std::ofstream(prog) << kCounter;
+  auto dir = scratch_dir();
+  auto prog = temp_file("counter.slc", kCounter);
   auto state = dir / "counter.state";
   std::filesystem::remove(state);
-  auto first = run_cli("run " + prog.string() + " --scans 5 --state " + state.string() + " --print N7:0");
+  auto first = run("run " + prog.string() + " --scans 5 --state " + state.string() + " --print N7:0");
   EXPECT_EQ(first.out, "N7:0 = 5\n");
-  auto second = run_cli("run " + prog.string() + " --scans 5 --state " + state.string() + " --print N7:0");
+  auto second = run("run " + prog.string() + " --scans 5 --state " + state.string() + " --print N7:0");
   EXPECT_EQ(second.out, "N7:0 = 10\n");
 }
 
 TEST(StateCli, BadStateFileStopsTheRunAndIsNeverOverwritten) {
-  auto dir = scratch();
-  auto prog = dir / "counter2.slc";
-  std::ofstream(prog) << kCounter;
+  auto dir = scratch_dir();
+  auto prog = temp_file("counter2.slc", kCounter);
   auto state = dir / "bad.state";
   std::ofstream(state, std::ios::binary) << "SOFTSLC-STATE\n garbage";
   const std::string before = read_file(state);
-  auto r = run_cli("run " + prog.string() + " --scans 5 --state " + state.string() + " --print N7:0");
+  auto r = run("run " + prog.string() + " --scans 5 --state " + state.string() + " --print N7:0");
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.out.find("bad.state: "), std::string::npos) << r.out;
   EXPECT_EQ(read_file(state), before);
@@ -327,13 +304,13 @@ TEST(StateCli, BadStateFileStopsTheRunAndIsNeverOverwritten) {
   std::ofstream(other) << "START 1747-L532\nLADDER 2\nSOR ADD N7:0 2 N7:0 EOR\n";
   auto good = dir / "good.state";
   std::filesystem::remove(good);
-  ASSERT_EQ(run_cli("run " + prog.string() + " --scans 3 --state " + good.string()).exit_code, 0);
+  ASSERT_EQ(run("run " + prog.string() + " --scans 3 --state " + good.string()).exit_code, 0);
   const std::string saved = read_file(good);
-  auto foreign = run_cli("run " + other.string() + " --scans 1 --state " + good.string() + " --print N7:0");
+  auto foreign = run("run " + other.string() + " --scans 1 --state " + good.string() + " --print N7:0");
   EXPECT_EQ(foreign.exit_code, 1);
   EXPECT_NE(foreign.out.find("saved by a different program"), std::string::npos) << foreign.out;
   EXPECT_EQ(read_file(good), saved);
-  auto forced = run_cli("run " + other.string() + " --scans 1 --state " + good.string() + " --force-state --print N7:0");
+  auto forced = run("run " + other.string() + " --scans 1 --state " + good.string() + " --force-state --print N7:0");
   EXPECT_EQ(forced.exit_code, 0) << forced.out;
   EXPECT_NE(forced.out.find("N7:0 = 5"), std::string::npos) << forced.out;
 }
@@ -342,9 +319,8 @@ TEST(StateCli, BadStateFileStopsTheRunAndIsNeverOverwritten) {
 // saves per second of wall time): after every kill the state file is a complete, valid state,
 // and the counter it holds never goes backwards.
 TEST(StateCli, KillingDuringSavesNeverLosesTheState) {
-  auto dir = scratch();
-  auto prog = dir / "counter3.slc";
-  std::ofstream(prog) << kCounter;
+  auto dir = scratch_dir();
+  auto prog = temp_file("counter3.slc", kCounter);
   auto state = dir / "kill.state";
   std::filesystem::remove(state);
   auto program = load(kCounter);
@@ -397,9 +373,8 @@ TEST(StateCli, KillingDuringSavesNeverLosesTheState) {
 }
 
 TEST(StateCli, SigtermSavesAndExits) {
-  auto dir = scratch();
-  auto prog = dir / "counter4.slc";
-  std::ofstream(prog) << kCounter;
+  auto dir = scratch_dir();
+  auto prog = temp_file("counter4.slc", kCounter);
   auto state = dir / "term.state";
   std::filesystem::remove(state);
   pid_t pid = ::fork();

@@ -88,8 +88,6 @@ constexpr unsigned kWordVariants = 7;
 constexpr unsigned word_variant(unsigned contacts, unsigned compares, unsigned coils) {
   return coils == 0 && contacts <= 2 && compares <= 1 ? contacts * 2 + compares : kWordVariants - 1;
 }
-// The action's recorded operands (its element, or its sources and destination).
-constexpr unsigned action_operands(Op a) { return a == Op::SOR ? 0 : recorded_operands(to_opcode(a)); }
 
 // A read operand in a word-rung record: a word index, or an immediate (vm/fused.h).
 constexpr std::uint32_t kImmediate = 0x80000000u;

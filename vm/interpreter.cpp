@@ -90,6 +90,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
                    program.processor.supports(Requirement::IoInterrupt) &&
                    program.processor.family != ProcessorFamily::Slc502 &&
                    L.files[2].elements > static_cast<std::uint32_t>(status::kDiiAccumulator);
+  indirect_bit_runs_on_ = program.processor.is_micrologix();
   io_supported_ = program.processor.supports(Requirement::IoInterrupt) &&
                   L.files[2].elements > static_cast<std::uint32_t>(status::kIsrExecuting);
   if (io_supported_) {
@@ -213,15 +214,31 @@ bool Interpreter::resolve_common(const DynOperand& d, Ref& out, std::uint16_t& c
     }
     word_index = f.base + elem * f.words_per_element + sub;
   }
-  if (d.ptr_bit >= 0 && !d.bit_offset) bit = ptr(d.ptr_bit);
+  const bool pointer_bit = d.ptr_bit >= 0 && !d.bit_offset;
+  if (pointer_bit) {
+    bit = ptr(d.ptr_bit);
+    if (bit < 0) {
+      message = to_string(d.address) + index_note() + ": negative bit number";
+      return false;
+    }
+  }
   if (bit >= 0) {
     const int limit = d.type == FileType::Long ? 32 : 16;
-    if (bit >= limit) {
+    // MicroLogix (decision, docs/semantics.md "Indexed and indirect addresses"): a pointer bit past
+    // the word's last bit counts on into the following words of a B, N or L file, as B3/[N7:0] does.
+    const bool runs_on = pointer_bit && indirect_bit_runs_on_ &&
+                         (d.type == FileType::Bit || d.type == FileType::Integer || d.type == FileType::Long);
+    if (bit >= limit && !runs_on) {
       message = to_string(d.address) + index_note() + ": bit " + std::to_string(bit) + " does not exist";
       return false;
     }
     word_index += bit / 16;
     bit %= 16;
+    if (word_index >= static_cast<std::int64_t>(f.end())) {
+      message = to_string(d.address) + index_note() + " is beyond the end of " + std::string(file_letter(f.type)) +
+                std::to_string(file);
+      return false;
+    }
   }
   out = {};
   out.word = static_cast<std::uint32_t>(word_index);

@@ -340,6 +340,28 @@ TEST(MicroLogixFixtures, LiveReportsLampHalfPeriodsAreReproduced) {
   EXPECT_FALSE(slc.get_bit("B3:0/0"));
 }
 
+// lecky_demo_tof_loop.RSS models a reject station 5.12 s down the line from a camera: each failed
+// can (L9:0 counts them) takes the first free one of 112 reject timers, selected through
+// B103:10/[N7:0] and L105:[N7:0], and is rejected when its 5,120 ms have run (L9:1). Its
+// FAIL_AT_20HZ bit B3:0/12 fails a can on every rising edge of S:4/8: every 256 ticks of 100 us x 2
+// = 51.2 ms on the 1100 (1763-RM001C p. 476, S:4 ticks). Each selected can's L105 word adds up
+// S:35, the last scan in whole 100 us ticks, to 51,200; the truncation makes each can's delay at
+// most one tick a scan longer (its scans take about 15 ticks here: up to 1/15 more). So in a steady
+// stream 100 (5,120 / 51.2) to 107 cans are between camera and pusher, and every earlier one has
+// been rejected — which needs the bit pointer to run past bit 15
+// (MicroLogixIndirect.BitPointerPastFifteenRunsOnIntoTheNextWords).
+TEST(MicroLogixFixtures, LeckyTofLoopRejectsEveryFailedCanFiveSecondsLater) {
+  const std::string rss = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rss/drbitboy-PLC_reject_timing/lecky_demo_tof_loop.RSS";
+  Controller plc = Controller::load(rss);
+  plc.set("B3:0/12", 1);
+  plc.run_for(seconds(60));
+  ASSERT_FALSE(plc.fault().has_value()) << plc.fault()->to_string();
+  const std::int64_t failed = plc.get_int("L9:0"), rejected = plc.get_int("L9:1");
+  EXPECT_NEAR(static_cast<double>(failed), 60'000 / 51.2, 2) << "one failed can every 51.2 ms";
+  EXPECT_GE(failed - rejected, 100);
+  EXPECT_LE(failed - rejected, 107) << "only the last 5.12-5.46 s of cans are still on their way";
+}
+
 // S:35, the last scan, is in 100 us units on the MicroLogix 1100 (RSLogix's status page:
 // "Last 100 uSec Scan Time S:35") and in ms on the SLC.
 TEST(MicroLogixStatusFile, LastScanS35IsInHundredMicroseconds) {
@@ -411,6 +433,35 @@ TEST(MicroLogixTimers, MillisecondTimerCountsMilliseconds) {
 
 // ---- L-file math (1762-RM001 / 1766-RM001 "Math Instructions": long-word operands are 32-bit,
 // -2,147,483,648 to 2,147,483,647; overflow clamps to the limit with S:0/1 set when S:2/14 = 0) --------
+
+// Decision (docs/semantics.md "Indexed and indirect addresses", [U]): on a MicroLogix a bit
+// pointer past the word's last bit counts on into the following words of a B, N or L file, as
+// lecky_demo_tof_loop.RSS needs (B103:10/[N7:0] for N7:0 = 0..111, B103 sized for it); past
+// the file's end, or negative, it is major fault 0029h as on the SLC.
+TEST(MicroLogixIndirect, BitPointerPastFifteenRunsOnIntoTheNextWords) {
+  const std::string text =
+      "START Bul.1763\nLADDER 2\nSOR OTL B3:1/[N7:0] OTL N9:0/[N7:1] OTL L10:0/[N7:2] EOR\n"
+      "DATA B3:0\n% B3:0 % 0 0 0 0\nDATA N9:0\n% N9:0 % 0 0\nDATA L10:0\n% L10:0 % 0 0\n"
+      "DATA N7:0\n% N7:0 % 0 0 0\n";
+  Controller plc = Controller::from_text(text);
+  plc.set("N7:0", 37);  // B3:1 bit 37 = B3:3/5
+  plc.set("N7:1", 16);  // N9:1/0
+  plc.set("N7:2", 33);  // L10:1/1
+  plc.run_for(milliseconds(5));
+  ASSERT_FALSE(plc.fault().has_value()) << plc.fault()->to_string();
+  EXPECT_EQ(plc.get_int("B3:3"), 1 << 5);
+  EXPECT_EQ(plc.get_int("B3:1"), 0);
+  EXPECT_EQ(plc.get_int("N9:1"), 1);
+  EXPECT_EQ(plc.get_int("L10:1"), 2);
+  for (int pointer : {48, -1}) {  // B3:1 + 48 bits = B3:4, one past the file; negative
+    SCOPED_TRACE(pointer);
+    Controller bad = Controller::from_text(text);
+    bad.set("N7:0", pointer);
+    bad.run_for(milliseconds(5));
+    ASSERT_TRUE(bad.fault().has_value());
+    EXPECT_EQ(bad.fault()->code, 0x0029);
+  }
+}
 
 TEST(MicroLogixMath, LongWordOperandsAre32Bit) {
   Controller plc = Controller::from_text(
@@ -901,10 +952,8 @@ const std::vector<RssFixture> kRssFixtures = {
     {"drbitboy-PLC_reject_timing/TVZ_1100_REV02_LatchmoorAnnotations.RSS", "of function file HSC"},
     {"drbitboy-PLC_reject_timing/lecky_demo.RSS", nullptr},
     {"drbitboy-PLC_reject_timing/lecky_demo_tof.RSS", nullptr},
-    // B103:10/[N7:0] with N7:0 up to 111: the program walks bits past the element's 16, which
-    // softslc faults on; whether a MicroLogix B-file indirect bit runs on into the next words is
-    // not in the project's sources yet.
-    {"drbitboy-PLC_reject_timing/lecky_demo_tof_loop.RSS", nullptr, "B103:10/[N7:0] (N7:0 = 16): bit 16 does not exist"},
+    // B103:10/[N7:0] with N7:0 up to 111 (MicroLogixIndirect.BitPointerPastFifteenRunsOnIntoTheNextWords).
+    {"drbitboy-PLC_reject_timing/lecky_demo_tof_loop.RSS", nullptr},
     {"mitagorashi-Water_Filtration/water_filtration_system.RSS", nullptr},
 };
 

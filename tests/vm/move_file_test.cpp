@@ -163,6 +163,21 @@ TEST(Indirect, PointerPastTheFileIsMajorFault0029) {
   EXPECT_EQ(plc.i("N10:5"), 0) << "nothing was written";
 }
 
+// A bit pointer must name bit 0-15 of the addressed word on the SLC (docs/semantics.md "Indexed and
+// indirect addresses"): 16 and a negative pointer are both 0029h, and nothing is written (a negative
+// pointer once addressed the whole word).
+TEST(Indirect, BitPointerOutsideTheWordIsMajorFault0029OnTheSlc) {
+  for (int pointer : {16, -1}) {
+    SCOPED_TRACE(pointer);
+    Plc plc("SOR OTL N7:0/[N10:0] EOR\nDATA N7:0\n% N7:0 % 0 0\nDATA N10:0\n% N10:0 % 0");
+    plc.set("N10:0", pointer);
+    plc.run_scans(1);
+    EXPECT_EQ(plc.fault_code(), 0x0029);
+    EXPECT_EQ(plc.i("N7:0"), 0);
+    EXPECT_EQ(plc.i("N7:1"), 0);
+  }
+}
+
 TEST(Indirect, PointerToAMissingFileIsMajorFault0029) {
   Plc plc("SOR MOV N[N10:0]:0 N10:5 EOR\nDATA N10:0\n% N10:0 % 40");
   plc.run_scans(1);

@@ -805,12 +805,12 @@ std::vector<RungElement> exact_copy(std::vector<RungElement>& scratch) {
   std::vector<RungElement> out;
   out.reserve(scratch.size());
   for (RungElement& e : scratch) {
-    RungElement& c = out.emplace_back();
-    c.kind = e.kind;
-    c.pos = e.pos;
-    c.instruction = std::move(e.instruction);
-    c.legs.reserve(e.legs.size());
-    for (auto& leg : e.legs) c.legs.push_back(exact_copy(leg));
+    // Every field is moved; only the legs are rebuilt at their exact sizes.
+    std::vector<std::vector<RungElement>> legs = std::move(e.legs);
+    RungElement& c = out.emplace_back(std::move(e));
+    c.legs.clear();
+    c.legs.reserve(legs.size());
+    for (auto& leg : legs) c.legs.push_back(exact_copy(leg));
   }
   return out;
 }

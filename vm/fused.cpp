@@ -634,7 +634,7 @@ inline unsigned FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, 
   return kRungDone;
 }
 
-std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
+[[gnu::always_inline]] inline std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
                                              Nanoseconds& elapsed, std::uint64_t& count, Nanoseconds limit,
                                              const FusedScan& scan, Exit& exit) {
   const std::uint32_t* rec = p.wrecords_.data() + segment.rec;

@@ -178,7 +178,8 @@ class FusedProgram::Builder {
       if (transfer_ != Op::SOR && op != Op::BND) return -1;
       // After the action only branch structure and a transfer: every condition and coil is
       // evaluated before the action writes.
-      if (action_ != Op::SOR && op != Op::NXB && op != Op::BND && !(is_instruction(op) && fused_rule(to_opcode(op)) == FusedRule::Transfer))
+      if (action_ != Op::SOR && op != Op::NXB && op != Op::BND &&
+          !(is_instruction(op) && fused_rule(to_opcode(op)) == FusedRule::Transfer))
         return -1;
       switch (op) {
         case Op::BST: ++depth; break;
@@ -442,6 +443,9 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
     total += static_cast<std::uint32_t>(f.rungs.size());
   }
   run_of_rung_.assign(total, -1);
+  // execute() returns code offsets in 30 bits (kOffsetMask); a larger program (4 GB of code) is
+  // not fused.
+  if (program.code.size() > kOffsetMask) return;
   const std::uint32_t* code = program.code.data();
   for (const CompiledFile& f : program.files) {
     const std::uint32_t base = file_first_rung_[static_cast<std::size_t>(f.number)];
@@ -560,7 +564,7 @@ std::uint32_t FusedProgram::run_segment(const FusedProgram& p, const Segment& se
 // a JSR or RET last. Adds its charge to t; returns kRungGeneral, having changed nothing, when the
 // general path must run it, kRungTransfer when its JSR or RET is taken.
 template <Op A, unsigned NC, unsigned NM, bool Transfer>
-inline unsigned FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
+[[gnu::always_inline]] inline unsigned FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
                                     std::uint16_t* w, Nanoseconds& t, const FusedScan& scan) {
   constexpr bool fixed = NC != kAnyCount;
   const Nanoseconds* const cost = p.costs_.data() + sh.cost_at;

@@ -31,23 +31,26 @@
 // 10,000-rung program stay in the L2 cache beside its data table.
 //
 // Word rungs. The commonest non-bit rungs are fused the same way: a network of contacts and
-// integer compares (EQU NEQ LES LEQ GRT GEQ on direct words or immediates), optional coils, and as
-// the rung's last instruction, outside any branch, one action on direct words: TON TOF RTO, CTU
-// CTD, RES, MOV, ADD or SUB. A compare is a contact whose bit is computed (bit k of v for
-// contacts, then one bit per compare); the action is one more "coil" of the truth table, so its
-// rung-in and every instruction's charge still come from running the rung's ops for every v. The
+// integer compares (EQU NEQ LES LEQ GRT GEQ on direct words or immediates), optional coils, and
+// after them one action on direct words: TON TOF RTO, CTU CTD, RES, MOV, ADD, SUB or COP (only
+// branch structure, and a JSR or RET, may follow it). A compare is a contact whose bit is
+// computed (bit k of v for contacts, then one bit per compare); the action is one more "coil" of
+// the truth table, so its rung-in and every instruction's charge still come from running the
+// rung's ops for every v. The
 // action runs through the interpreter's own semantics (vm/word_ops.h) with pre-decoded word
 // indices (a read operand is a word index or an immediate; there is no operand-mode test), in code
 // instantiated per action and per small contact/compare count. Word rungs alternate shapes (TON,
 // then CTU, then MOV ...), so consecutive word rungs of any shapes form one segment whose records
 // each begin with their shape's index, and one loop runs them with a `switch` per rung on the
-// shape's kernel number (no call per rung). Because the action is the rung's last instruction, the
-// virtual time it sees (a timer's 10 ms tick) is the rung's start plus the rung's whole charge,
-// exactly the general path's. A timer element with a negative PRE or ACC (fault 0034h) is noticed
-// before the rung writes anything; the run then returns that rung's SOR marked kRunsGeneral and
-// the general path executes the rung and raises the fault. LBL, SBR and INT are no-ops (charged,
-// counted) in either kind of rung. Floats, longs, indexed, indirect and M-file operands, and
-// LIM/MEQ/MUL/DIV/... leave the rung to the general path.
+// shape's kernel number (no call per rung). Because a timer is its rung's last instruction (only
+// BNDs may follow it), the virtual time it sees (a timer's 10 ms tick) is the rung's start plus
+// the rung's whole charge, exactly the general path's. A timer element with a negative PRE or
+// ACC (fault 0034h) is noticed before the rung writes anything; the run then returns that rung's
+// SOR marked kRunsGeneral and the general path executes the rung and raises the fault. LBL, SBR
+// and INT are no-ops (charged, counted) in either kind of rung. Floats, longs, indexed, indirect
+// and M-file operands, and LIM/MEQ/MUL/DIV/... leave the rung to the general path. (A timer's
+// steps are functions in vm/word_ops.h, not lambdas capturing its words: GCC built those
+// closures on the stack on every call of the word-rung loop.)
 //
 // Transfers (issue 20). A word rung may end in a JSR or RET (followed by nothing but BNDs), after
 // its action if it has one (COP NXB JSR: a file copy and a subroutine call in parallel legs). The

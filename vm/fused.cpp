@@ -447,9 +447,12 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
   // not fused.
   if (program.code.size() > kOffsetMask) return;
   const std::uint32_t* code = program.code.data();
+  // Runs that start after a transfer inside another run, and that run: they end where it ends.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> tails;
   for (const CompiledFile& f : program.files) {
     const std::uint32_t base = file_first_rung_[static_cast<std::size_t>(f.number)];
-    std::int32_t open = -1;  // the run being extended
+    std::int32_t open = -1;        // the run being extended
+    bool after_transfer = false;   // the rung before ended in a JSR or RET
     for (std::size_t r = 0; r < f.rungs.size(); ++r) {
       const std::uint32_t sor = f.rungs[r].offset;
       const std::uint32_t end = r + 1 < f.rungs.size() ? f.rungs[r + 1].offset : f.end - 1;  // f.end - 1: EOF
@@ -459,6 +462,7 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
       const std::int64_t shape = b.add_rung(code, sor, end);
       if (shape < 0) {
         open = -1;
+        after_transfer = false;
         continue;
       }
       ++fused_rungs_;
@@ -470,23 +474,31 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
         open = static_cast<std::int32_t>(runs_.size());
         runs_.push_back({static_cast<std::uint32_t>(segments_.size()), 0, 0});
         run_of_rung_[base + r] = open;
+      } else if (after_transfer) {
+        // A JSR returns to this rung's SOR: it starts a run of its own (vm/fused.h), the rest of
+        // the run it is in, from the segment it starts; its end is the enclosing run's, set below.
+        run_of_rung_[base + r] = static_cast<std::int32_t>(runs_.size());
+        tails.push_back({static_cast<std::uint32_t>(runs_.size()), static_cast<std::uint32_t>(open)});
+        runs_.push_back({static_cast<std::uint32_t>(segments_.size()), 0, 0});
       }
       Run& run = runs_[static_cast<std::size_t>(open)];
       // Consecutive word rungs share one segment whatever their shapes (each record names its
-      // shape); consecutive contact networks share one only when their shape is the same.
+      // shape); consecutive contact networks share one only when their shape is the same. A rung
+      // after a transfer starts a segment, since a run may start there.
       const std::uint32_t key = word ? kWordSegment : static_cast<std::uint32_t>(shape);
-      if (run.last > run.first && segments_.back().shape == key)
+      if (run.last > run.first && segments_.back().shape == key && !after_transfer)
         ++segments_.back().rungs;
       else
         segments_.push_back({at, 1, key, rung_index});
       run.last = static_cast<std::uint32_t>(segments_.size());
       run.next = end;
-      // A JSR returns to the next rung's SOR, which must find a run of its own (vm/fused.h).
-      if (shapes_[static_cast<std::size_t>(shape)].transfer) {
-        ++transfer_rungs_;
-        open = -1;
-      }
+      after_transfer = shapes_[static_cast<std::size_t>(shape)].transfer;
+      if (after_transfer) ++transfer_rungs_;
     }
+  }
+  for (const auto& [tail, whole] : tails) {
+    runs_[tail].last = runs_[whole].last;
+    runs_[tail].next = runs_[whole].next;
   }
 }
 

@@ -59,7 +59,8 @@
 // and its call frame) or the RET exactly as the general path's handler would, with the rung's
 // charge and instruction count already added. A JSR returns to the next rung's SOR (after the
 // rung's closing BNDs, which cost and count nothing and whose rung condition the SOR replaces),
-// and a rung after a transfer starts a new run, so the run entered there is found. A timer may not
+// and the rung after a transfer starts a segment and a run of its own, the rest of the run it is
+// in, so the run entered there is found (an untaken transfer does not end its run). A timer may not
 // precede a transfer: it must see the scan time of the whole rung, which includes the JSR's charge.
 // COP is fused when the compiler resolved both spans (flag B: no fault is possible); the copy is
 // word_ops::copy_direct, the handler's code, and its per-word charge is added with the rung's.

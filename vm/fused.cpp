@@ -47,7 +47,7 @@ static_assert(row_is_no_op(Opcode::LBL) && row_is_no_op(Opcode::SBR) && row_is_n
 // (pre-decoded) for the kernel; literals and time bases are not (the handlers read the element).
 constexpr bool recorded(OperandKind k) {
   return k == OperandKind::Source || k == OperandKind::Dest || k == OperandKind::Timer ||
-         k == OperandKind::Counter || k == OperandKind::Resettable;
+         k == OperandKind::Counter || k == OperandKind::Resettable || k == OperandKind::File;
 }
 constexpr bool skipped(OperandKind k) { return k == OperandKind::Literal || k == OperandKind::TimeBase; }
 constexpr unsigned recorded_operands(Opcode op) {
@@ -73,6 +73,28 @@ static_assert(row_is_action(Opcode::CTU, 0, OperandKind::Counter) &&
 static_assert(row_is_action(Opcode::RES, 0, OperandKind::Resettable));
 static_assert(row_is_action(Opcode::MOV, 1, OperandKind::Dest));
 static_assert(row_is_action(Opcode::ADD, 2, OperandKind::Dest) && row_is_action(Opcode::SUB, 2, OperandKind::Dest));
+// A file instruction's row: an Output reading one File, writing another, with a length Literal,
+// which (unlike a timer's presets) its handler reads from the instruction, so it is recorded too.
+constexpr bool row_is_file_copy(Opcode op) {
+  const InstructionSpec& s = spec(op);
+  return s.role == Role::Output && s.operand_count == 3 && s.operands[0].kind == OperandKind::File &&
+         s.operands[0].access == OperandAccess::Read && s.operands[1].kind == OperandKind::File &&
+         s.operands[1].access == OperandAccess::Write && s.operands[2].kind == OperandKind::Literal;
+}
+static_assert(row_is_file_copy(Opcode::COP));
+constexpr bool row_has_file(const InstructionSpec& s) {
+  for (unsigned i = 0; i < s.operand_count; ++i)
+    if (s.operands[i].kind == OperandKind::File) return true;
+  return false;
+}
+// A transfer is an Output that writes no data: a program file it calls (JSR) or nothing (RET).
+constexpr bool row_is_transfer(Opcode op) {
+  const InstructionSpec& s = spec(op);
+  return s.role == Role::Output &&
+         (s.operand_count == 0 || (s.operand_count == 1 && s.operands[0].kind == OperandKind::ProgramFile &&
+                                   s.operands[0].access == OperandAccess::Read));
+}
+static_assert(row_is_transfer(Opcode::JSR) && row_is_transfer(Opcode::RET));
 
 constexpr bool is_contact(FusedRule r) { return r == FusedRule::Contact || r == FusedRule::OpenContact; }
 constexpr bool is_coil(FusedRule r) {
@@ -80,7 +102,9 @@ constexpr bool is_coil(FusedRule r) {
 }
 
 // The actions a word rung may end in, in the order of run_word_segment's cases.
-constexpr Op kActions[] = {Op::SOR, Op::TON, Op::TOF, Op::RTO, Op::CTU, Op::CTD, Op::RES, Op::MOV, Op::ADD, Op::SUB};
+constexpr Op kActions[] = {Op::SOR, Op::TON, Op::TOF, Op::RTO, Op::CTU, Op::CTD,
+                           Op::RES, Op::MOV, Op::ADD, Op::SUB, Op::COP};
+constexpr bool is_timer(Op a) { return a == Op::TON || a == Op::TOF || a == Op::RTO; }
 // Per action, run_word_segment has cases for 0-2 contacts and 0-1 compares with no coils (the
 // common rungs: straight-line code), then one for any counts (loops).
 constexpr unsigned kAnyCount = 0xFF;
@@ -122,7 +146,10 @@ FusedRule fused_rule(Opcode op) {
     case Opcode::RES:
     case Opcode::MOV:
     case Opcode::ADD:
-    case Opcode::SUB: return FusedRule::Action;
+    case Opcode::SUB:
+    case Opcode::COP: return FusedRule::Action;
+    case Opcode::JSR:
+    case Opcode::RET: return FusedRule::Transfer;
     default: return FusedRule::None;
   }
 }
@@ -142,12 +169,18 @@ class FusedProgram::Builder {
     compares_.clear();
     action_operands_.clear();
     action_ = Op::SOR;
+    transfer_ = Op::SOR;
     int depth = 0;
     for (std::uint32_t pc = sor + 1; pc < end;) {
       const std::uint32_t h = code[pc];
       const Op op = bc::op_of(h);
-      // The action is the rung's last instruction.
-      if (action_ != Op::SOR) return -1;
+      // Only BNDs follow a transfer: after a taken JSR the general path resumes at the next SOR.
+      if (transfer_ != Op::SOR && op != Op::BND) return -1;
+      // After the action only branch structure and a transfer: every condition and coil is
+      // evaluated before the action writes.
+      if (action_ != Op::SOR && op != Op::NXB && op != Op::BND &&
+          !(is_instruction(op) && fused_rule(to_opcode(op)) == FusedRule::Transfer))
+        return -1;
       switch (op) {
         case Op::BST: ++depth; break;
         case Op::NXB: break;
@@ -170,8 +203,15 @@ class FusedProgram::Builder {
             break;
           }
           if (rule == FusedRule::Action) {
-            if (depth != 0 || !take_action(op, o)) return -1;
+            if (!take_action(op, h, o)) return -1;
             action_ = op;
+            break;
+          }
+          if (rule == FusedRule::Transfer) {
+            // A timer sees the scan time of its whole rung, which a JSR's charge would change.
+            if (is_timer(action_)) return -1;
+            transfer_ = op;
+            transfer_at_ = pc;
             break;
           }
           if (bc::count_of(h) != 1 || bc::mode_of(o[0]) != bc::kBit) return -1;
@@ -195,6 +235,7 @@ class FusedProgram::Builder {
       pc += 1 + bc::count_of(h);
     }
     if (depth != 0) return -1;
+    rung_number_ = bc::aux_of(code[sor]);
     auto [it, inserted] = shape_index_.try_emplace(key_, static_cast<std::uint32_t>(out_.shapes_.size()));
     if (inserted) build_shape();
     const Shape& shape = out_.shapes_[it->second];
@@ -208,7 +249,7 @@ class FusedProgram::Builder {
 
  private:
   unsigned conditions() const { return static_cast<unsigned>(contacts_.size() + compares_.size() / 2); }
-  bool word_rung() const { return !compares_.empty() || action_ != Op::SOR; }
+  bool word_rung() const { return !compares_.empty() || action_ != Op::SOR || transfer_ != Op::SOR; }
 
   // A read operand the kernels take directly: a 16-bit word or an immediate.
   static bool readable(std::uint32_t o) { return bc::mode_of(o) == bc::kWord || bc::mode_of(o) == bc::kImm; }
@@ -220,12 +261,24 @@ class FusedProgram::Builder {
                                       : bc::payload_of(o);
   }
   // Records the action's operands, walking its instruction-table row: sources may be words or
-  // immediates, the element or destination must be a direct word; literals are skipped.
-  bool take_action(Op op, const std::uint32_t* o) {
+  // immediates, the element or destination must be a direct word; literals are skipped except in
+  // a file instruction (its length), whose files must be spans the compiler resolved (flag B).
+  bool take_action(Op op, std::uint32_t h, const std::uint32_t* o) {
     const InstructionSpec& row = spec(to_opcode(op));
+    const bool file_instruction = row_has_file(row);
+    if (file_instruction && !(row_is_file_copy(to_opcode(op)) && (bc::flags_of(h) & bc::kFlagB))) return false;
     for (unsigned i = 0; i < row.operand_count; ++i) {
       const OperandKind k = row.operands[i].kind;
+      if (file_instruction && k == OperandKind::Literal) {
+        if (bc::mode_of(o[i]) != bc::kImm) return false;
+        action_operands_.push_back(encode(o[i]));
+        continue;
+      }
       if (!recorded(k)) continue;
+      if (k == OperandKind::File) {
+        action_operands_.push_back(bc::payload_of(o[i]));
+        continue;
+      }
       const bool source = k == OperandKind::Source;
       if (source ? !readable(o[i]) : bc::mode_of(o[i]) != bc::kWord) return false;
       action_operands_.push_back(encode(o[i]));
@@ -240,6 +293,10 @@ class FusedProgram::Builder {
     for (std::uint32_t o : compares_) r.push_back(encode(o));
     r.insert(r.end(), coils_.begin(), coils_.end());
     r.insert(r.end(), action_operands_.begin(), action_operands_.end());
+    if (transfer_ != Op::SOR) {
+      r.push_back(transfer_at_);
+      r.push_back(rung_number_);
+    }
   }
 
   // The record layout in vm/fused.h: word indices, then bit numbers (bytes), then coils.
@@ -275,12 +332,14 @@ class FusedProgram::Builder {
     const unsigned k = out_.wide_ ? 2 : 1;
     const unsigned nc = static_cast<unsigned>(contacts_.size());
     const unsigned n = conditions();
-    const unsigned outputs = static_cast<unsigned>(coils_.size()) + (action_ != Op::SOR ? 1 : 0);
+    const unsigned outputs =
+        static_cast<unsigned>(coils_.size()) + (action_ != Op::SOR ? 1 : 0) + (transfer_ != Op::SOR ? 1 : 0);
     s.contacts = static_cast<std::uint8_t>(nc);
     s.compares = static_cast<std::uint8_t>(n - nc);
     s.coils = static_cast<std::uint8_t>(coils_.size());
     s.word = word_rung();
     s.action = action_;
+    s.transfer = transfer_ != Op::SOR;
     s.cost_at = static_cast<std::uint32_t>(out_.costs_.size());
     s.on_at = static_cast<std::uint32_t>(out_.on_.size());
     s.rules_at = static_cast<std::uint32_t>(out_.rules_.size());
@@ -299,10 +358,12 @@ class FusedProgram::Builder {
       if (is_instruction(bc::op_of(h)) && fused_rule(to_opcode(bc::op_of(h))) == FusedRule::Compare)
         out_.rules_.push_back(static_cast<std::uint8_t>(word_ops::compare_mask(bc::op_of(h))));
     if (s.word) {
-      s.stride = static_cast<std::uint16_t>(1 + n + (n - nc) + coils_.size() + action_operands_.size());
+      s.stride = static_cast<std::uint16_t>(1 + n + (n - nc) + coils_.size() + action_operands_.size() +
+                                            (s.transfer ? 2 : 0));
       unsigned a = 0;
       while (kActions[a] != action_) ++a;
-      s.kernel = static_cast<std::uint8_t>(a * kWordVariants + word_variant(nc, n - nc, s.coils));
+      s.kernel = static_cast<std::uint8_t>((a * 2 + (s.transfer ? 1 : 0)) * kWordVariants +
+                                           word_variant(nc, n - nc, s.coils));
     } else {
       s.stride = static_cast<std::uint16_t>(n * k + (n + 1) / 2 + coils_.size() * (k + 1));
       // A single coil has a kernel of its own per FusedRule (1 OTE, 2 OTL, 3 OTU); 0 is any count.
@@ -342,7 +403,7 @@ class FusedProgram::Builder {
               rung = rung && (rule == FusedRule::Contact ? bit : !bit);
             } else if (rule == FusedRule::Compare) {
               rung = rung && ((v >> compare++) & 1u) != 0;
-            } else if (is_coil(rule) || rule == FusedRule::Action) {
+            } else if (is_coil(rule) || rule == FusedRule::Action || rule == FusedRule::Transfer) {
               if (rung) out_.on_[s.on_at + (output << n) + v] = 0xFFFF;
               ++output;
             }
@@ -360,14 +421,20 @@ class FusedProgram::Builder {
   std::map<std::vector<std::uint32_t>, std::uint32_t> shape_index_;
   std::vector<std::uint32_t> key_, contacts_, coils_, compares_, action_operands_;
   Op action_ = Op::SOR;
+  Op transfer_ = Op::SOR;           // JSR or RET ending the rung, or SOR
+  std::uint32_t transfer_at_ = 0;   // its code offset
+  std::uint32_t rung_number_ = 0;   // the rung's number in its file
 };
 
-FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nanoseconds>& cost) {
+FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nanoseconds>& cost,
+                           const Nanoseconds* per_word) {
   // 16-bit word indices halve the records whenever the data table allows them.
   wide_ = program.layout->total_words > 0x10000;
   s0_ = program.layout->status_word(status::kArith);
   s2_ = program.layout->status_word(status::kControl);
   s5_ = program.layout->status_word(status::kMinor);
+  s24_ = program.layout->status_word(status::kIndex);
+  cop_per_word_ = per_word[static_cast<std::size_t>(Opcode::COP)];
   Builder b(*this, cost);
   file_first_rung_.assign(256, 0);
   std::uint32_t total = 0;
@@ -376,10 +443,16 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
     total += static_cast<std::uint32_t>(f.rungs.size());
   }
   run_of_rung_.assign(total, -1);
+  // execute() returns code offsets in 30 bits (kOffsetMask); a larger program (4 GB of code) is
+  // not fused.
+  if (program.code.size() > kOffsetMask) return;
   const std::uint32_t* code = program.code.data();
+  // Runs that start after a transfer inside another run, and that run: they end where it ends.
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> tails;
   for (const CompiledFile& f : program.files) {
     const std::uint32_t base = file_first_rung_[static_cast<std::size_t>(f.number)];
-    std::int32_t open = -1;  // the run being extended
+    std::int32_t open = -1;        // the run being extended
+    bool after_transfer = false;   // the rung before ended in a JSR or RET
     for (std::size_t r = 0; r < f.rungs.size(); ++r) {
       const std::uint32_t sor = f.rungs[r].offset;
       const std::uint32_t end = r + 1 < f.rungs.size() ? f.rungs[r + 1].offset : f.end - 1;  // f.end - 1: EOF
@@ -389,6 +462,7 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
       const std::int64_t shape = b.add_rung(code, sor, end);
       if (shape < 0) {
         open = -1;
+        after_transfer = false;
         continue;
       }
       ++fused_rungs_;
@@ -400,18 +474,31 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
         open = static_cast<std::int32_t>(runs_.size());
         runs_.push_back({static_cast<std::uint32_t>(segments_.size()), 0, 0});
         run_of_rung_[base + r] = open;
+      } else if (after_transfer) {
+        // A JSR returns to this rung's SOR: it starts a run of its own (vm/fused.h), the rest of
+        // the run it is in, from the segment it starts; its end is the enclosing run's, set below.
+        run_of_rung_[base + r] = static_cast<std::int32_t>(runs_.size());
+        tails.push_back({static_cast<std::uint32_t>(runs_.size()), static_cast<std::uint32_t>(open)});
+        runs_.push_back({static_cast<std::uint32_t>(segments_.size()), 0, 0});
       }
       Run& run = runs_[static_cast<std::size_t>(open)];
       // Consecutive word rungs share one segment whatever their shapes (each record names its
-      // shape); consecutive contact networks share one only when their shape is the same.
+      // shape); consecutive contact networks share one only when their shape is the same. A rung
+      // after a transfer starts a segment, since a run may start there.
       const std::uint32_t key = word ? kWordSegment : static_cast<std::uint32_t>(shape);
-      if (run.last > run.first && segments_.back().shape == key)
+      if (run.last > run.first && segments_.back().shape == key && !after_transfer)
         ++segments_.back().rungs;
       else
         segments_.push_back({at, 1, key, rung_index});
       run.last = static_cast<std::uint32_t>(segments_.size());
       run.next = end;
+      after_transfer = shapes_[static_cast<std::size_t>(shape)].transfer;
+      if (after_transfer) ++transfer_rungs_;
     }
+  }
+  for (const auto& [tail, whole] : tails) {
+    runs_[tail].last = runs_[whole].last;
+    runs_[tail].next = runs_[whole].next;
   }
 }
 
@@ -485,10 +572,11 @@ std::uint32_t FusedProgram::run_segment(const FusedProgram& p, const Segment& se
 }
 
 // One word rung whose record (after its shape word) is `rec`: its action is A (SOR: none), with
-// NC contacts, NM compares and no coils, or (NC = NM = kAnyCount) any counts. Adds its charge
-// to t; returns false, having changed nothing, when the general path must run it.
-template <Op A, unsigned NC, unsigned NM>
-inline bool FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
+// NC contacts, NM compares and no coils, or (NC = NM = kAnyCount) any counts, and when Transfer
+// a JSR or RET last. Adds its charge to t; returns kRungGeneral, having changed nothing, when the
+// general path must run it, kRungTransfer when its JSR or RET is taken.
+template <Op A, unsigned NC, unsigned NM, bool Transfer>
+[[gnu::always_inline]] inline unsigned FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
                                     std::uint16_t* w, Nanoseconds& t, const FusedScan& scan) {
   constexpr bool fixed = NC != kAnyCount;
   const Nanoseconds* const cost = p.costs_.data() + sh.cost_at;
@@ -511,7 +599,7 @@ inline bool FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, cons
   if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
     // Fault 0034h: the general path runs this rung and raises it (before anything is written).
     if (word_ops::timer_negative(w + act[0])) [[unlikely]]
-      return false;
+      return kRungGeneral;
   }
   t += cost[v];
   for (unsigned j = 0; j < coils; ++j, ++o)
@@ -546,13 +634,25 @@ inline bool FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, cons
       w[act[2]] = static_cast<std::uint16_t>(stored);
       word_ops::set_arith_flags(w, p.s0_, p.s5_, carry, overflow, stored == 0, stored < 0);
     }
+  } else if constexpr (A == Op::COP) {
+    // Interpreter::copy_file with both spans resolved (flag B): the words, S:24, and the
+    // per-word charge after the instruction's own.
+    if (rung) {
+      const std::uint32_t words = sh.action_aux;
+      word_ops::copy_direct(w, act[0], act[1], words, p.s24_, static_cast<std::int32_t>(act[2] << 1) >> 1);
+      t += p.cop_per_word_ * static_cast<Nanoseconds>(words);
+    }
   }
-  return true;
+  if constexpr (Transfer) {
+    constexpr unsigned kAction = A == Op::SOR ? 0 : 1;
+    if (on[((coils + kAction) << n) + v] != 0) return kRungTransfer;
+  }
+  return kRungDone;
 }
 
-std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
+[[gnu::always_inline]] inline std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
                                              Nanoseconds& elapsed, std::uint64_t& count, Nanoseconds limit,
-                                             const FusedScan& scan) {
+                                             const FusedScan& scan, Exit& exit) {
   const std::uint32_t* rec = p.wrecords_.data() + segment.rec;
   Nanoseconds t = elapsed;
   std::uint64_t n = count;
@@ -560,25 +660,38 @@ std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segmen
   const std::uint32_t rungs = segment.rungs;
   for (;;) {
     const Shape& sh = p.shapes_[rec[0]];
-    bool ok = true;
-    // One case per action and contact/compare count (Builder::build_shape numbers them).
+    unsigned result = kRungDone;
+    // One case per action, transfer or not, and contact/compare count (Builder::build_shape
+    // numbers them).
     switch (sh.kernel) {
-#define SOFTSLC_WORD_RUNG(A, V, NC, NM) \
-  case (A) * kWordVariants + (V): ok = word_rung<kActions[A], NC, NM>(p, sh, rec + 1, w, t, scan); break;
-#define SOFTSLC_WORD_RUNGS(A)                                                                                    \
-  SOFTSLC_WORD_RUNG(A, 0, 0, 0) SOFTSLC_WORD_RUNG(A, 1, 0, 1) SOFTSLC_WORD_RUNG(A, 2, 1, 0)                      \
-  SOFTSLC_WORD_RUNG(A, 3, 1, 1) SOFTSLC_WORD_RUNG(A, 4, 2, 0) SOFTSLC_WORD_RUNG(A, 5, 2, 1)                      \
-  SOFTSLC_WORD_RUNG(A, 6, kAnyCount, kAnyCount)
-      SOFTSLC_WORD_RUNGS(0) SOFTSLC_WORD_RUNGS(1) SOFTSLC_WORD_RUNGS(2) SOFTSLC_WORD_RUNGS(3) SOFTSLC_WORD_RUNGS(4)
-      SOFTSLC_WORD_RUNGS(5) SOFTSLC_WORD_RUNGS(6) SOFTSLC_WORD_RUNGS(7) SOFTSLC_WORD_RUNGS(8) SOFTSLC_WORD_RUNGS(9)
+#define SOFTSLC_WORD_RUNG(A, T, V, NC, NM)                                                         \
+  case ((A) * 2 + (T)) * kWordVariants + (V):                                                      \
+    result = word_rung<kActions[A], NC, NM, (T) != 0>(p, sh, rec + 1, w, t, scan); \
+    break;
+#define SOFTSLC_WORD_RUNGS_T(A, T)                                                                             \
+  SOFTSLC_WORD_RUNG(A, T, 0, 0, 0) SOFTSLC_WORD_RUNG(A, T, 1, 0, 1) SOFTSLC_WORD_RUNG(A, T, 2, 1, 0)           \
+  SOFTSLC_WORD_RUNG(A, T, 3, 1, 1) SOFTSLC_WORD_RUNG(A, T, 4, 2, 0) SOFTSLC_WORD_RUNG(A, T, 5, 2, 1)           \
+  SOFTSLC_WORD_RUNG(A, T, 6, kAnyCount, kAnyCount)
+#define SOFTSLC_WORD_RUNGS(A) SOFTSLC_WORD_RUNGS_T(A, 0) SOFTSLC_WORD_RUNGS_T(A, 1)
+      // A timer never precedes a transfer (Builder::add_rung): no such cases.
+      SOFTSLC_WORD_RUNGS(0) SOFTSLC_WORD_RUNGS_T(1, 0) SOFTSLC_WORD_RUNGS_T(2, 0) SOFTSLC_WORD_RUNGS_T(3, 0)
+      SOFTSLC_WORD_RUNGS(4) SOFTSLC_WORD_RUNGS(5) SOFTSLC_WORD_RUNGS(6) SOFTSLC_WORD_RUNGS(7) SOFTSLC_WORD_RUNGS(8)
+      SOFTSLC_WORD_RUNGS(9) SOFTSLC_WORD_RUNGS(10)
 #undef SOFTSLC_WORD_RUNGS
+#undef SOFTSLC_WORD_RUNGS_T
 #undef SOFTSLC_WORD_RUNG
-      default: break;
+      default: result = kRungGeneral; break;  // not built (a timer then a transfer): the general path
     }
-    if (!ok) [[unlikely]] {
+    if (result != kRungDone) [[unlikely]] {
+      if (result == kRungTransfer) {
+        // The rung ran to its JSR or RET: counted, and the interpreter takes the transfer.
+        n += sh.instructions;
+        ++done;
+        exit = {rec[sh.stride - 2] | kTransfer, rec[sh.stride - 1]};
+      }
       elapsed = t;
       count = n;
-      return done | kRunsGeneral;
+      return done | (result == kRungTransfer ? kTransfer : kRunsGeneral);
     }
     n += sh.instructions;
     rec += sh.stride;
@@ -600,12 +713,12 @@ const FusedProgram::Kernel FusedProgram::kKernels[] = {
     SOFTSLC_FUSED_KERNELS(6), SOFTSLC_FUSED_KERNELS(7), SOFTSLC_FUSED_KERNELS(8),
 #undef SOFTSLC_FUSED_KERNELS
 };
-static_assert(std::size(kActions) * kWordVariants <= 256, "a shape's kernel index is one byte");
-static_assert(std::size(kActions) == 10, "run_word_segment has a case for every action");
+static_assert(std::size(kActions) * 2 * kWordVariants <= 256, "a shape's kernel index is one byte");
+static_assert(std::size(kActions) == 11, "run_word_segment has a case for every action");
 static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every contact count");
 
-std::uint32_t FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
-                                    Nanoseconds limit, const FusedScan& scan) const {
+FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed,
+                                         std::uint64_t& count, Nanoseconds limit, const FusedScan& scan) const {
   const Run& r = runs_[static_cast<std::size_t>(run)];
   Nanoseconds t = elapsed;
   std::uint64_t n = 0;
@@ -613,7 +726,14 @@ std::uint32_t FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseco
     const Segment& sg = segments_[s];
     std::uint32_t result;
     if (sg.shape == kWordSegment) {
-      result = run_word_segment(*this, sg, w, t, n, limit, scan);
+      Exit exit;
+      result = run_word_segment(*this, sg, w, t, n, limit, scan, exit);
+      // A transfer is always its run's last rung.
+      if (result & kTransfer) [[unlikely]] {
+        elapsed = t;
+        count += n;
+        return exit;
+      }
     } else {
       const Shape& sh = shapes_[sg.shape];
       result = kKernels[sh.kernel](*this, sg, w, t, limit, scan);
@@ -623,19 +743,19 @@ std::uint32_t FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseco
     if (result & kRunsGeneral) [[unlikely]] {
       elapsed = t;
       count += n;
-      return sor_[sg.first_rung + done] | kRunsGeneral;
+      return {sor_[sg.first_rung + done] | kRunsGeneral, 0};
     }
     if (++s == r.last && done == sg.rungs) break;
     // The next rung's SOR: the general path raises the watchdog fault or runs the interrupt there.
     if (t >= limit) [[unlikely]] {
       elapsed = t;
       count += n;
-      return sor_[sg.first_rung + done];
+      return {sor_[sg.first_rung + done], 0};
     }
   }
   elapsed = t;
   count += n;
-  return r.next;
+  return {r.next, 0};
 }
 
 }  // namespace softslc

@@ -31,23 +31,39 @@
 // 10,000-rung program stay in the L2 cache beside its data table.
 //
 // Word rungs. The commonest non-bit rungs are fused the same way: a network of contacts and
-// integer compares (EQU NEQ LES LEQ GRT GEQ on direct words or immediates), optional coils, and as
-// the rung's last instruction, outside any branch, one action on direct words: TON TOF RTO, CTU
-// CTD, RES, MOV, ADD or SUB. A compare is a contact whose bit is computed (bit k of v for
-// contacts, then one bit per compare); the action is one more "coil" of the truth table, so its
-// rung-in and every instruction's charge still come from running the rung's ops for every v. The
+// integer compares (EQU NEQ LES LEQ GRT GEQ on direct words or immediates), optional coils, and
+// after them one action on direct words: TON TOF RTO, CTU CTD, RES, MOV, ADD, SUB or COP (only
+// branch structure, and a JSR or RET, may follow it). A compare is a contact whose bit is
+// computed (bit k of v for contacts, then one bit per compare); the action is one more "coil" of
+// the truth table, so its rung-in and every instruction's charge still come from running the
+// rung's ops for every v. The
 // action runs through the interpreter's own semantics (vm/word_ops.h) with pre-decoded word
 // indices (a read operand is a word index or an immediate; there is no operand-mode test), in code
 // instantiated per action and per small contact/compare count. Word rungs alternate shapes (TON,
 // then CTU, then MOV ...), so consecutive word rungs of any shapes form one segment whose records
 // each begin with their shape's index, and one loop runs them with a `switch` per rung on the
-// shape's kernel number (no call per rung). Because the action is the rung's last instruction, the
-// virtual time it sees (a timer's 10 ms tick) is the rung's start plus the rung's whole charge,
-// exactly the general path's. A timer element with a negative PRE or ACC (fault 0034h) is noticed
-// before the rung writes anything; the run then returns that rung's SOR marked kRunsGeneral and
-// the general path executes the rung and raises the fault. LBL, SBR and INT are no-ops (charged,
-// counted) in either kind of rung. Floats, longs, indexed, indirect and M-file operands, and
-// LIM/MEQ/MUL/DIV/... leave the rung to the general path.
+// shape's kernel number (no call per rung). Because a timer is its rung's last instruction (only
+// BNDs may follow it), the virtual time it sees (a timer's 10 ms tick) is the rung's start plus
+// the rung's whole charge, exactly the general path's. A timer element with a negative PRE or
+// ACC (fault 0034h) is noticed before the rung writes anything; the run then returns that rung's
+// SOR marked kRunsGeneral and the general path executes the rung and raises the fault. LBL, SBR
+// and INT are no-ops (charged, counted) in either kind of rung. Floats, longs, indexed, indirect
+// and M-file operands, and LIM/MEQ/MUL/DIV/... leave the rung to the general path. (A timer's
+// steps are functions in vm/word_ops.h, not lambdas capturing its words: GCC built those
+// closures on the stack on every call of the word-rung loop.)
+//
+// Transfers (issue 20). A word rung may end in a JSR or RET (followed by nothing but BNDs), after
+// its action if it has one (COP NXB JSR: a file copy and a subroutine call in parallel legs). The
+// transfer is one more output of the truth table; when its rung-in is true the run stops there and
+// returns it to the interpreter's run_routine, which takes the JSR (its nesting check, fault 0030h,
+// and its call frame) or the RET exactly as the general path's handler would, with the rung's
+// charge and instruction count already added. A JSR returns to the next rung's SOR (after the
+// rung's closing BNDs, which cost and count nothing and whose rung condition the SOR replaces),
+// and the rung after a transfer starts a segment and a run of its own, the rest of the run it is
+// in, so the run entered there is found (an untaken transfer does not end its run). A timer may not
+// precede a transfer: it must see the scan time of the whole rung, which includes the JSR's charge.
+// COP is fused when the compiler resolved both spans (flag B: no fault is possible); the copy is
+// word_ops::copy_direct, the handler's code, and its per-word charge is added with the rung's.
 //
 // Exactness. Gathering every contact before any coil writes is only correct when no contact
 // reads a bit that a coil earlier in the same rung writes; such rungs are left to the general
@@ -86,7 +102,8 @@ enum class FusedRule : std::uint8_t {
   Unlatch,       // if rung: bit := 0
   NoOp,          // LBL, SBR, INT: charged and counted, nothing else
   Compare,       // rung := rung and (a op b), integer, a and b direct words or immediates
-  Action,        // the rung's last instruction, on direct words (vm/word_ops.h)
+  Action,        // one action on direct words (vm/word_ops.h), after every condition and coil
+  Transfer,      // JSR or RET, the rung's last instruction: a true rung-in hands control to run_routine
 };
 
 // What a fused kernel needs of the scan beyond the data table: timers read the tick count at
@@ -106,7 +123,8 @@ class FusedProgram {
   static constexpr unsigned kMaxCoils = 16;
 
   // `cost` is the interpreter's table, indexed op * 2 + rung-in.
-  FusedProgram(const CompiledProgram& program, const std::vector<Nanoseconds>& cost);
+  // `per_word` is the interpreter's per-word charge by opcode (COP).
+  FusedProgram(const CompiledProgram& program, const std::vector<Nanoseconds>& cost, const Nanoseconds* per_word);
 
   // The run that starts at rung `rung` of program file `file`, or -1.
   std::int32_t run_at(int file, std::uint32_t rung) const {
@@ -117,13 +135,23 @@ class FusedProgram {
   // Set in execute()'s result when the rung at the returned SOR must run on the general path
   // (it would fault): the caller must not enter a fused run there.
   static constexpr std::uint32_t kRunsGeneral = 0x80000000u;
+  // Set in execute()'s result when the run stopped at a taken JSR or RET: `next` is that
+  // instruction's code offset and `rung` its rung number; its charge and count are added.
+  static constexpr std::uint32_t kTransfer = 0x40000000u;
+  static constexpr std::uint32_t kOffsetMask = 0x3FFFFFFFu;
+
+  // Where the general path continues after a run (two 32-bit halves, returned in one register).
+  struct Exit {
+    std::uint32_t next = 0;  // a code offset, with kRunsGeneral or kTransfer
+    std::uint32_t rung = 0;  // with kTransfer: the rung number of the JSR or RET
+  };
 
   // Executes run `run` whose first rung's SOR the caller has already executed (rung-in true).
   // Adds the scan time to `elapsed` and the instructions executed to `count`; returns the code
   // offset where the general path continues (the SOR of the next rung, the file's EOF, or the
   // SOR of a rung at which `limit`, the watchdog or an interrupt point, was reached, or, with
-  // kRunsGeneral, of a rung the general path must execute).
-  std::uint32_t execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
+  // kRunsGeneral, of a rung the general path must execute, or with kTransfer a taken JSR or RET).
+  Exit execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
                         Nanoseconds limit, const FusedScan& scan) const;
 
   std::size_t runs() const { return runs_.size(); }
@@ -132,6 +160,8 @@ class FusedProgram {
   std::size_t segments() const { return segments_.size(); }
   // Fused rungs with a compare or an action (word rungs).
   std::size_t word_rungs() const { return word_rungs_; }
+  // Fused rungs ending in a JSR or RET.
+  std::size_t transfer_rungs() const { return transfer_rungs_; }
   bool wide_indices() const { return wide_; }
 
  private:
@@ -143,6 +173,7 @@ class FusedProgram {
     std::uint8_t coils = 0;
     bool word = false;                // a word rung: records in wrecords_, run_word_segment
     Op action = Op::SOR;              // word rungs: the action, or SOR for none
+    bool transfer = false;            // word rungs: ends in a JSR or RET (kTransfer)
     std::uint8_t action_flags = 0;    // its header flags (a timer's time base)
     std::uint16_t action_aux = 0;     // its header aux (RES: the element's FileType)
     std::uint16_t instructions = 0;  // instruction-table instructions in the rung
@@ -176,11 +207,14 @@ class FusedProgram {
   // shape's kernel number, a case per action and small contact/compare count (word_rung), so
   // consecutive rungs of different shapes cost no call. Adds the instructions to `count`;
   // returns the rungs completed, with kRunsGeneral set when it stopped before a rung the
-  // general path must run.
+  // general path must run, or kTransfer (and `exit` set) after a rung whose JSR or RET is taken.
   static std::uint32_t run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
-                                        Nanoseconds& t, std::uint64_t& count, Nanoseconds limit, const FusedScan& scan);
-  template <Op A, unsigned NC, unsigned NM>
-  static bool word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
+                                        Nanoseconds& t, std::uint64_t& count, Nanoseconds limit, const FusedScan& scan,
+                                        Exit& exit);
+  // word_rung's results.
+  enum WordRungResult : unsigned { kRungDone = 0, kRungGeneral = 1, kRungTransfer = 2 };
+  template <Op A, unsigned NC, unsigned NM, bool Transfer>
+  static unsigned word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
                         Nanoseconds& t, const FusedScan& scan);
   // Segment::shape of a segment of word rungs (each record names its shape).
   static constexpr std::uint32_t kWordSegment = 0xFFFFFFFFu;
@@ -199,10 +233,13 @@ class FusedProgram {
   std::vector<std::uint16_t> records_;
   // Word-rung records, 32-bit units: the shape's index, each contact's and coil's bit operand word (vm/bytecode.h,
   // mode BIT), two read operands per compare, then the action's table operands other than
-  // literals and time bases, in instruction-box order. A read operand is a word index, or an
-  // immediate with bit 31 set and its value in bits 0-30 (kImmediate).
+  // literals and time bases (COP: its two file operands' word indices and its length as an
+  // immediate), in instruction-box order, then for a transfer its code offset and rung number.
+  // A read operand is a word index, or an immediate with bit 31 set and its value in bits 0-30
+  // (kImmediate).
   std::vector<std::uint32_t> wrecords_;
-  std::uint32_t s0_ = 0, s2_ = 0, s5_ = 0;  // S:0, S:2 and S:5 word indices
+  std::uint32_t s0_ = 0, s2_ = 0, s5_ = 0, s24_ = 0;  // S:0, S:2, S:5 and S:24 word indices
+  Nanoseconds cop_per_word_ = 0;                       // COP's per-word charge
   bool wide_ = false;
   std::vector<std::uint32_t> sor_;  // per fused rung, in record order: the code offset of its SOR
   std::vector<Shape> shapes_;
@@ -215,6 +252,7 @@ class FusedProgram {
   std::vector<std::uint32_t> file_first_rung_;    // file number -> index of its rung 0 in run_of_rung_
   std::size_t fused_rungs_ = 0;
   std::size_t word_rungs_ = 0;
+  std::size_t transfer_rungs_ = 0;
 };
 
 }  // namespace softslc

@@ -108,7 +108,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
   }
   if (dii_supported_) s46_ = L.status_word(status::kDiiFile);
   locate_sti_bits();
-  fused_ = std::make_shared<const FusedProgram>(program, cost_);
+  fused_ = std::make_shared<const FusedProgram>(program, cost_, per_word_.data());
 }
 
 std::string Interpreter::refused(MAccess a, int slot, MFile f, int word, bool write) const {
@@ -1363,10 +1363,10 @@ void Interpreter::move(Op op, const std::uint32_t* o, std::uint32_t h) {
 void Interpreter::copy_file(const std::uint32_t* o, std::uint32_t h) {
   if (bc::flags_of(h) & bc::kFlagB) {
     // Both spans were resolved by the compiler and lie inside their files (bytecode.h, COP).
+    // The fused rungs (vm/fused.cpp) run the same copy.
     const std::uint32_t words = bc::aux_of(h);
-    std::memmove(w_ + bc::payload_of(o[1]), w_ + bc::payload_of(o[0]), words * sizeof(std::uint16_t));
+    word_ops::copy_direct(w_, bc::payload_of(o[0]), bc::payload_of(o[1]), words, s24_, bc::imm_of(o[2]));
     charge_words(Op::COP, words);
-    w_[s24_] = static_cast<std::uint16_t>(std::max(bc::imm_of(o[2]), 1) - 1);
     return;
   }
   const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
@@ -1842,6 +1842,7 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
   const std::uint32_t* pc = code_ + prog_.file(file)->begin;
   const bool* const fast_op = coverage_ ? kNoFastPathOp.data() : kFastPathOp.data();
   const std::uint32_t* general_sor = nullptr;  // a SOR fused rungs handed back (FusedProgram::kRunsGeneral)
+  const std::uint32_t* call_ret = nullptr;     // call_subroutine: where the taken JSR at pc returns
 
   for (;;) {
   resume:
@@ -1938,11 +1939,21 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
           if (run >= 0) {
             Nanoseconds t = elapsed;
             std::uint64_t n = 0;
-            const std::uint32_t next = fused_->execute(run, w_, t, n, limit_, FusedScan{scan_start_, first_pass_});
-            pc = code_ + (next & ~FusedProgram::kRunsGeneral);
-            if (next & FusedProgram::kRunsGeneral) general_sor = pc;
+            const FusedProgram::Exit x = fused_->execute(run, w_, t, n, limit_, FusedScan{scan_start_, first_pass_});
+            pc = code_ + (x.next & FusedProgram::kOffsetMask);
+            if (x.next & FusedProgram::kRunsGeneral) general_sor = pc;
             elapsed = t;
             count_ += n;
+            if (x.next & FusedProgram::kTransfer) [[unlikely]] {
+              // The run's last rung took its JSR or RET (charged and counted): the handler's
+              // work without the charge. A JSR returns past the rung's closing BNDs, to the next
+              // SOR, which replaces their rung condition (vm/fused.h, "Transfers").
+              cur_rung = static_cast<int>(x.rung);
+              if (bc::op_of(*pc) == Op::RET) goto take_return;
+              call_ret = pc + 1 + bc::count_of(*pc);
+              while (bc::op_of(*call_ret) == Op::BND) ++call_ret;
+              goto call_subroutine;
+            }
             // The run ends at a SOR (or EOF): dispatched here directly, as after a handler.
             if (!fast_op[static_cast<std::size_t>(bc::op_of(*pc))]) goto dispatch;
             continue;
@@ -2187,24 +2198,8 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       case Op::INT: break;
       case Op::JSR:
         if (rung) {
-          if (fsp >= max_depth) {
-            raise(fault::kSubroutineNesting, "JSR " + std::to_string(bc::imm_of(o[0])) + " would nest subroutines " +
-                                                 std::to_string(fsp + 1) + " deep; " + prog_.processor.display_name +
-                                                 " allows " + std::to_string(max_depth) +
-                                                 (interrupt_level_ ? " inside an interrupt or fault routine" : "") +
-                                                 " (RM 6-4)");
-            goto fault;
-          }
-          frames[static_cast<std::size_t>(fsp++)] = {o + bc::count_of(h), cur_file, cur_rung, mcr_off, bsp, bsp_base};
-          if (coverage_) [[unlikely]] {
-            coverage_->record(static_cast<std::uint32_t>(pc - code_), op, rung_in, rung);
-            coverage_->called(bc::imm_of(o[0]));
-          }
-          cur_file = bc::imm_of(o[0]);
-          pc = code_ + bc::payload_of(o[1]);
-          mcr_off = false;
-          bsp_base = bsp;
-          continue;
+          call_ret = o + bc::count_of(h);
+          goto call_subroutine;
         }
         break;
       case Op::RET:
@@ -2212,8 +2207,7 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
         // Taken, RET leaves before the common coverage record below: record it here, or an
         // unconditional SOR RET EOR reads "never true".
         if (coverage_) [[unlikely]] coverage_->record(static_cast<std::uint32_t>(pc - code_), op, rung_in, rung);
-        if (fsp == 0) goto end_of_scan;
-        goto return_from_subroutine;
+        goto take_return;
       case Op::TND:
         if (rung) {
           if (coverage_) [[unlikely]] coverage_->record(static_cast<std::uint32_t>(pc - code_), op, rung_in, rung);
@@ -2343,6 +2337,34 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
     if (!fast_op[static_cast<std::size_t>(bc::op_of(*pc))]) goto dispatch;
     continue;
 
+  // A taken JSR at pc (from its handler or a fused rung; charged and counted), returning to call_ret.
+  call_subroutine: {
+    const std::uint32_t* const jo = pc + 1;
+    if (fsp >= max_depth) {
+      raise(fault::kSubroutineNesting, "JSR " + std::to_string(bc::imm_of(jo[0])) + " would nest subroutines " +
+                                           std::to_string(fsp + 1) + " deep; " + prog_.processor.display_name +
+                                           " allows " + std::to_string(max_depth) +
+                                           (interrupt_level_ ? " inside an interrupt or fault routine" : "") + " (RM 6-4)");
+      goto fault;
+    }
+    frames[static_cast<std::size_t>(fsp++)] = {call_ret, cur_file, cur_rung, mcr_off, bsp, bsp_base};
+    if (coverage_) [[unlikely]] {
+      coverage_->record(static_cast<std::uint32_t>(pc - code_), Op::JSR, true, true);
+      coverage_->called(bc::imm_of(jo[0]));
+    }
+    cur_file = bc::imm_of(jo[0]);
+    pc = code_ + bc::payload_of(jo[1]);
+    mcr_off = false;
+    bsp_base = bsp;
+    // The subroutine's first SOR: dispatched directly, as after a handler.
+    if (!fast_op[static_cast<std::size_t>(bc::op_of(*pc))]) goto dispatch;
+    continue;
+  }
+  // A taken RET (charged and counted): the end of the scan in the main file, else the return.
+  take_return:
+    if (fsp == 0) goto end_of_scan;
+    goto return_from_subroutine;
+
   return_from_subroutine: {
     const CallFrame& f = frames[static_cast<std::size_t>(--fsp)];
     pc = f.ret;
@@ -2352,6 +2374,8 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
     bsp = f.bsp;
     bsp_base = f.bsp_base;
     rung = true;  // the JSR's rung was true, and an output passes its rung on
+    // After a fused JSR rung the return is the next SOR: dispatched directly.
+    if (!fast_op[static_cast<std::size_t>(bc::op_of(*pc))]) goto dispatch;
     continue;
   }
   }

@@ -188,6 +188,8 @@ class Interpreter {
 
   // The cost table (ns) indexed by op * 2 + rung-in.
   const std::vector<Nanoseconds>& costs() const { return cost_; }
+  // Per-word charges of the file instructions, by opcode (ScanTimeModel::per_word_cost).
+  const Nanoseconds* per_word_costs() const { return per_word_.data(); }
 
   // Resolves a run-time operand for tools (Runtime::get/set of indexed/indirect addresses).
   // Returns false with `message` when it would leave the data table.

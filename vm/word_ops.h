@@ -2,7 +2,8 @@
 // handlers (vm/interpreter.cpp) and the fused rung kernels (vm/fused.cpp).
 //
 // Design. A fused rung must do exactly what the general path does; the surest way is for both to
-// run the same code. So what TON/TOF/RTO, CTU/CTD, RES, the integer compares, MOV and ADD/SUB do
+// run the same code. So what TON/TOF/RTO, CTU/CTD, RES, the integer compares, MOV, ADD/SUB and a
+// COP whose spans the compiler resolved do
 // to their words once their operands are resolved lives here, as inline functions of plain
 // pointers and values: the interpreter's handlers resolve operands (element(), rd_int(), DYN
 // faults) and call them; the fused kernels pass pre-resolved word pointers and call them with the
@@ -15,6 +16,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 
 #include "vm/bytecode.h"
 #include "vm/data_table.h"
@@ -102,36 +104,47 @@ inline std::uint8_t timer_tick(VirtualTime at, std::uint32_t flags) {
   return static_cast<std::uint8_t>(at / unit);
 }
 
+// The timer's steps, as functions of the control word and ACC held in locals (lambdas capturing
+// them by reference made GCC build closure objects on the stack in the fused word-rung loop, a
+// cost on every call of it; docs/performance.md).
+namespace timer_steps {
+// Restarts the 8-bit stamp at `now8`.
+[[gnu::always_inline]] inline void restart(std::uint16_t& ctl, std::uint8_t now8) {
+  ctl = static_cast<std::uint16_t>((ctl & ~bits::kStampMask) | now8);
+}
+// Whole time-base units since the stamp; the remainder of a 1.0 s unit stays in the stamp.
+[[gnu::always_inline]] inline int advance(std::uint16_t& ctl, std::uint8_t now8, bool base1s) {
+  const auto stamp = static_cast<std::uint8_t>(ctl & bits::kStampMask);
+  const unsigned delta = static_cast<std::uint8_t>(now8 - stamp);
+  const unsigned units = base1s ? delta / 100 : delta;
+  const unsigned used = base1s ? units * 100 : delta;
+  ctl = static_cast<std::uint16_t>((ctl & ~bits::kStampMask) | static_cast<std::uint8_t>(stamp + used));
+  return static_cast<int>(units);
+}
+[[gnu::always_inline]] inline void set_done(std::uint16_t& ctl, bool done) {
+  ctl = static_cast<std::uint16_t>(done ? ((ctl | bits::kDN) & ~bits::kTT) : ((ctl | bits::kTT) & ~bits::kDN));
+}
+// TON and RTO with a true rung: the stamp restarts when timing starts (or on the first pass),
+// else ACC advances up to PRE; EN is set, and DN or TT from ACC against PRE.
+[[gnu::always_inline]] inline void time_while_true(std::uint16_t& ctl, int& acc, int pre, bool first_pass,
+                                                   std::uint8_t now8, bool base1s) {
+  if (first_pass || !(ctl & bits::kEN))
+    restart(ctl, now8);
+  else if (acc < pre)
+    acc = std::min<int>(pre, acc + advance(ctl, now8, base1s));
+  ctl |= bits::kEN;
+  set_done(ctl, acc >= pre);
+}
+}  // namespace timer_steps
+
 // TON, TOF or RTO on element t (control word, PRE, ACC; neither negative) at tick `now8`.
 // `base1s`: the 1.0 s time base (header flag A).
 [[gnu::always_inline]] inline void timer(Op op, std::uint16_t* t, bool rung, bool first_pass, std::uint8_t now8,
                                         bool base1s) {
+  using namespace timer_steps;
   const auto pre = static_cast<std::int16_t>(t[1]);
   int acc = static_cast<std::int16_t>(t[2]);
   std::uint16_t ctl = t[0];
-  const auto restart = [&] { ctl = static_cast<std::uint16_t>((ctl & ~bits::kStampMask) | now8); };
-  // Whole time-base units since the stamp; the remainder of a 1.0 s unit stays in the stamp.
-  const auto advance = [&] {
-    const auto stamp = static_cast<std::uint8_t>(ctl & bits::kStampMask);
-    const unsigned delta = static_cast<std::uint8_t>(now8 - stamp);
-    const unsigned units = base1s ? delta / 100 : delta;
-    const unsigned used = base1s ? units * 100 : delta;
-    ctl = static_cast<std::uint16_t>((ctl & ~bits::kStampMask) | static_cast<std::uint8_t>(stamp + used));
-    return static_cast<int>(units);
-  };
-  const auto set_done = [&](bool done) {
-    ctl = static_cast<std::uint16_t>(done ? ((ctl | bits::kDN) & ~bits::kTT) : ((ctl | bits::kTT) & ~bits::kDN));
-  };
-  // TON and RTO with a true rung: the stamp restarts when timing starts (or on the first pass),
-  // else ACC advances up to PRE; EN is set, and DN or TT from ACC against PRE.
-  const auto time_while_true = [&] {
-    if (first_pass || !(ctl & bits::kEN))
-      restart();
-    else if (acc < pre)
-      acc = std::min<int>(pre, acc + advance());
-    ctl |= bits::kEN;
-    set_done(acc >= pre);
-  };
   switch (op) {
     case Op::TON:
       // RM 2-9: EN follows the rung; TT while timing; DN at ACC >= PRE; a false rung resets all.
@@ -143,7 +156,7 @@ inline std::uint8_t timer_tick(VirtualTime at, std::uint32_t flags) {
       // Starting to time, or the first scan after entering Run: RM 2-9 resets ACC on return
       // to Run with the rung true.
       if (first_pass) acc = 0;
-      time_while_true();
+      time_while_true(ctl, acc, pre, first_pass, now8, base1s);
       break;
     case Op::TOF:
       // RM 2-10: DN while the rung is true; after it goes false ACC counts, DN clears at PRE.
@@ -159,10 +172,10 @@ inline std::uint8_t timer_tick(VirtualTime at, std::uint32_t flags) {
       }
       if (ctl & bits::kEN) {
         ctl &= static_cast<std::uint16_t>(~bits::kEN);
-        restart();
+        restart(ctl, now8);
         if (ctl & bits::kDN) ctl |= bits::kTT;
       } else if (ctl & bits::kTT) {
-        acc = std::min<int>(pre, acc + advance());
+        acc = std::min<int>(pre, acc + advance(ctl, now8, base1s));
       }
       if ((ctl & bits::kTT) && acc >= pre) ctl &= static_cast<std::uint16_t>(~(bits::kTT | bits::kDN));
       break;
@@ -172,7 +185,7 @@ inline std::uint8_t timer_tick(VirtualTime at, std::uint32_t flags) {
         ctl &= static_cast<std::uint16_t>(~(bits::kEN | bits::kTT));
         break;
       }
-      time_while_true();
+      time_while_true(ctl, acc, pre, first_pass, now8, base1s);
       break;
     default: break;
   }
@@ -233,6 +246,17 @@ inline void reset(FileType type, std::uint16_t* e) {
       e[2] = 0;
       break;
   }
+}
+
+// ---- COP (RM 7-5) with both spans resolved by the compiler (bytecode.h, COP flag B) ----
+
+// Moves `words` raw words from src to dst as one block (overlapping ranges behave as memmove:
+// docs/semantics.md), then S:24 (word s24) holds the last offset used, length - 1 [U]. The
+// per-word scan-time charge is the caller's.
+[[gnu::always_inline]] inline void copy_direct(std::uint16_t* w, std::uint32_t src, std::uint32_t dst,
+                                               std::uint32_t words, std::uint32_t s24, std::int32_t length) {
+  std::memmove(w + dst, w + src, words * sizeof(std::uint16_t));
+  w[s24] = static_cast<std::uint16_t>(std::max(length, 1) - 1);
 }
 
 }  // namespace softslc::word_ops

@@ -8,6 +8,7 @@
 // documented constants (vm/scan_time_model.h).
 #include <gtest/gtest.h>
 
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -163,6 +164,10 @@ struct Machine {
   }
 };
 
+FusedProgram fused_program(const CompiledProgram& p, const Machine& m) {
+  return FusedProgram(p, m.interp.costs(), m.interp.per_word_costs());
+}
+
 void expect_same(const ProgramScanResult& a, const ProgramScanResult& b, const std::string& where) {
   EXPECT_EQ(a.faulted, b.faulted) << where;
   EXPECT_EQ(a.fault.code, b.fault.code) << where;
@@ -205,7 +210,7 @@ TEST(Fused, RandomProgramsMatchTheGeneralPath) {
     Rng rng(seed);
     const std::string text = random_program(rng);
     const CompiledProgram p = build(text);
-    const FusedProgram fp(p, Machine(p, model, true).interp.costs());
+    const FusedProgram fp = fused_program(p, Machine(p, model, true));
     fused_total += fp.fused_rungs();
     for (const auto& f : p.files) rungs_total += f.rungs.size();
     // A watchdog that some seeds reach mid-scan, so the fused path's watchdog exit is compared too.
@@ -268,7 +273,7 @@ TEST(Fused, RepeatedRungShapesMatchTheGeneralPath) {
     rng.words = 2;
     const std::string text = random_segmented_program(rng, false);
     const CompiledProgram p = build(text);
-    const FusedProgram fp(p, Machine(p, model, true).interp.costs());
+    const FusedProgram fp = fused_program(p, Machine(p, model, true));
     EXPECT_FALSE(fp.wide_indices());
     fused_total += fp.fused_rungs();
     segments_total += fp.segments();
@@ -295,7 +300,7 @@ TEST(Fused, WideWordIndicesMatchTheGeneralPath) {
     const std::string text = random_segmented_program(rng, true);
     const CompiledProgram p = build(text);
     ASSERT_GT(p.layout->files[20].base, 0xFFFFu);
-    const FusedProgram fp(p, Machine(p, model, true).interp.costs());
+    const FusedProgram fp = fused_program(p, Machine(p, model, true));
     EXPECT_TRUE(fp.wide_indices());
     EXPECT_GT(fp.fused_rungs(), 0u);
     expect_fusion_changes_nothing(p, text, seed, seed % 2 ? INT64_MAX : 60'000, rng);
@@ -313,6 +318,8 @@ class SlowDistinctCosts final : public ScanTimeModel {
   Nanoseconds instruction_cost(Opcode op, bool rung_in) const override {
     return 40'000 + 1'700 * static_cast<Nanoseconds>(op) + (rung_in ? 90'000 : 0);
   }
+  // COP and the other file instructions charge per word too (a fused COP adds it with its rung).
+  Nanoseconds per_word_cost(Opcode op) const override { return 300 + static_cast<Nanoseconds>(op); }
   Nanoseconds input_scan_cost(const Module&) const override { return 0; }
   Nanoseconds output_scan_cost(const Module&) const override { return 0; }
   Nanoseconds housekeeping_cost() const override { return 0; }
@@ -423,7 +430,7 @@ TEST(Fused, WordRungShapesMatchTheGeneralPath) {
     const std::string text = random_word_program(rng);
     const CompiledProgram p = build(text);
     Machine fused(p, model, true), general(p, model, false);
-    word_total += FusedProgram(p, fused.interp.costs()).word_rungs();
+    word_total += fused_program(p, fused).word_rungs();
     for (const auto& f : p.files) rungs_total += f.rungs.size();
     const auto& L = *p.layout;
     // Counters near +32767 and -32768 (CTU/CTD wrap, OV and UN), S:2/14 on for some seeds
@@ -466,6 +473,126 @@ TEST(Fused, WordRungShapesMatchTheGeneralPath) {
   EXPECT_GT(tick_crossings, 500u);
 }
 
+// ---- Transfers and COP: JSR and RET ending a fused rung, COP on resolved spans ----
+
+// A COP on N7 (twelve elements): overlapping ranges in either direction, lengths 1-6, and now and
+// then an indirect source (not fused: resolved at run time) that N10:0 sometimes sends past the
+// file's end (fault 002Ah), or a COP into the status file's S:24.
+std::string random_copy(Rng& rng) {
+  const unsigned pick = rng() % 10;
+  const std::string len = std::to_string(1 + rng() % 6);
+  if (pick == 0) return "COP #N7:[N10:0] #N7:" + std::to_string(rng() % 6) + " " + len;
+  if (pick == 1) return "COP #N7:" + std::to_string(rng() % 6) + " #N9:" + std::to_string(rng() % 4) + " " + len;
+  return "COP #N7:" + std::to_string(rng() % 6) + " #N7:" + std::to_string(rng() % 6) + " " + len;
+}
+
+// A rung ending in a JSR to `file` or in a RET, with conditions (contacts and compares from
+// random_word_rung's pools) and, in a parallel leg before the transfer, a COP, an ADD, a MOV or a
+// coil, or nothing (the transfer alone).
+std::string random_transfer_rung(Rng& rng, const std::string& transfer) {
+  static const char* const kCompares[] = {"EQU", "NEQ", "LES", "LEQ", "GRT", "GEQ"};
+  std::string s;
+  const int contacts = static_cast<int>(rng() % 3);
+  for (int i = 0; i < contacts; ++i) s += random_word_contact(rng);
+  if (rng() % 3 == 0) s += std::string(kCompares[rng() % 6]) + " " + random_source(rng) + " " + random_source(rng) + " ";
+  switch (rng() % 6) {
+    case 0:
+    case 1: return s + "BST " + random_copy(rng) + " NXB " + transfer + " BND";
+    case 2: return s + "BST ADD " + random_source(rng) + " " + random_source(rng) + " " + random_dest(rng) + " NXB " +
+                   transfer + " BND";
+    case 3:
+      // A timer before the transfer keeps the rung general (it must see the rung's whole time).
+      if (rng() % 4 == 0) return s + "BST TON T4:" + std::to_string(rng() % 3) + " 0.01 5 0 NXB " + transfer + " BND";
+      return s + "BST " + random_coil(rng) + "NXB " + transfer + " BND";
+    case 4: return s + "BST MOV " + random_source(rng) + " " + random_dest(rng) + " NXB XIC " + random_bit(rng) + " " + transfer + " BND";
+    default: return s + transfer;
+  }
+}
+
+// Word rungs with COPs, and JSR/RET rungs: file 2 calls 3 and 4, 3 and 4 call each other (so the
+// nesting limit, fault 0030h, is reached when their conditions stay true), and conditional RETs
+// part-way through each subroutine (`check` refuses a RET in file 2).
+std::string random_transfer_program(Rng& rng) {
+  std::string s = "START 1747-L532\nLADDER 2\n"
+                  "SOR XIO B3:1/15 BST MOV 7 T4:0.PRE NXB MOV 7 T4:1.PRE NXB MOV 7 T4:2.PRE NXB LES T4:0.ACC 0 "
+                  "MOV 0 T4:0.ACC NXB LES T4:1.ACC 0 MOV 0 T4:1.ACC NXB LES T4:2.ACC 0 MOV 0 T4:2.ACC BND EOR\n"
+                  // Sizes N7 (twelve elements) and N9; N10:0 is the indirect COP's element.
+                  "SOR XIC B3:1/14 EQU N7:11 N9:9 MOV N10:0 N10:1 EOR\n";
+  // In the subroutines (`guard`) a call also needs B3:0/13, so not every scan nests to the limit.
+  auto body = [&](int rungs, const std::string& calls, const std::string& guard = "") {
+    std::string b;
+    for (int r = 0; r < rungs; ++r) {
+      const unsigned kind = rng() % 8;
+      if (kind < 3)
+        b += "SOR " + guard + random_transfer_rung(rng, calls[rng() % calls.size()] == '3' ? "JSR 3" : "JSR 4") + " EOR\n";
+      else if (kind == 3) b += "SOR XIC " + random_bit(rng) + " " + random_copy(rng) + " EOR\n";
+      else b += "SOR " + random_word_rung(rng) + " EOR\n";
+    }
+    return b;
+  };
+  s += body(20 + static_cast<int>(rng() % 20), "34");
+  s += body(5, "3");
+  s += "SOR XIC B3:0/0 OTU S:5/0 EOR\n";
+  s += "LADDER 3\nSOR SBR " + random_word_contact(rng) + "OTE B3:1/3 EOR\n" + body(4, "4", "XIC B3:0/13 ") +
+       "SOR " + random_transfer_rung(rng, "RET") + " EOR\n" + body(3, "4", "XIC B3:0/13 ") + "SOR RET EOR\n";
+  s += "LADDER 4\nSOR SBR " + random_word_rung(rng) + " EOR\n" + body(3, "3", "XIC B3:0/13 ") + "SOR " +
+       random_transfer_rung(rng, "RET") + " EOR\n" + body(2, "3", "XIC B3:0/13 ") + "SOR RET EOR\n";
+  return s;
+}
+
+TEST(Fused, TransferAndCopyRungsMatchTheGeneralPath) {
+  const SlowDistinctCosts model;
+  std::size_t transfer_total = 0, word_total = 0, rungs_total = 0, scans = 0;
+  std::map<std::uint16_t, std::size_t> faults;
+  for (unsigned seed = 1; seed <= 80; ++seed) {
+    Rng rng(seed);
+    rng.words = 2;
+    const std::string text = random_transfer_program(rng);
+    const CompiledProgram p = build(text);
+    Machine fused(p, model, true), general(p, model, false);
+    const FusedProgram fp = fused_program(p, fused);
+    transfer_total += fp.transfer_rungs();
+    word_total += fp.word_rungs();
+    for (const auto& f : p.files) rungs_total += f.rungs.size();
+    const auto& L = *p.layout;
+    auto set_both = [&](std::uint32_t at, std::uint16_t v) {
+      fused.table.set_word(at, v);
+      general.table.set_word(at, v);
+    };
+    for (std::uint32_t e = 0; e < 12; ++e) set_both(L.files[7].base + e, static_cast<std::uint16_t>(rng() % 64 - 8));
+    // S:2/14 on for some seeds (ADD keeps the low bits instead of clamping).
+    if (seed % 3 == 0) {
+      const std::uint32_t s2 = L.status_word(status::kControl);
+      set_both(s2, static_cast<std::uint16_t>(fused.table.word(s2) | status::kOverflowSelect));
+    }
+    const Nanoseconds watchdog = seed % 4 == 0 ? 9'000'000 + static_cast<Nanoseconds>(seed) * 77'777 : INT64_MAX;
+    VirtualTime start = static_cast<VirtualTime>(rng() % 10'000'000);
+    for (int scan = 0; scan < 30; ++scan, ++scans) {
+      if (scan % 2 == 0) {
+        for (std::uint32_t w = 0; w < 2; ++w) set_both(L.files[3].base + w, static_cast<std::uint16_t>(rng()));
+        // The indirect COP's source element: past N7's end (002Ah) now and then.
+        set_both(L.files[10].base, static_cast<std::uint16_t>(rng() % 4 == 0 ? 9 + rng() % 3 : rng() % 6));
+      }
+      const auto a = fused.interp.program_scan(start, 0, scan == 0, watchdog);
+      const auto b = general.interp.program_scan(start, 0, scan == 0, watchdog);
+      const std::string where = "seed " + std::to_string(seed) + " scan " + std::to_string(scan) + "\n" + text;
+      expect_same(a, b, where);
+      EXPECT_EQ(a.fault.file, b.fault.file) << where;
+      EXPECT_EQ(a.fault.message, b.fault.message) << where;
+      if (a.faulted) ++faults[a.fault.code];
+      for (std::uint32_t w = 0; w < L.total_words; ++w)
+        ASSERT_EQ(fused.table.word(w), general.table.word(w)) << "word " << L.describe(w) << ", " << where;
+      start += a.elapsed + static_cast<VirtualTime>(rng() % 3'000'000);
+    }
+  }
+  // Many transfer rungs were fused, and the scans met each fault the brief names: the nesting
+  // limit (0030h), a COP past its file (002Ah), the watchdog (0022h), the overflow trap (0020h).
+  EXPECT_GT(transfer_total, 80u * 10);
+  EXPECT_GT(word_total * 2, rungs_total);
+  for (std::uint16_t code : {std::uint16_t{0x0030}, std::uint16_t{0x002A}, std::uint16_t{0x0022}, std::uint16_t{0x0020}})
+    EXPECT_GT(faults[code], 5u) << std::hex << code;
+}
+
 // docs/bytecode.md "Rung logic": each leg starts from the condition at BST, and an output acts on
 // the rung condition where it stands, so the second leg's XIC sees the bit the first leg's OTE
 // has just written. Fused rungs gather contacts first, so this rung must not be fused.
@@ -473,7 +600,7 @@ TEST(Fused, ContactReadingACoilOfTheSameRungSeesTheNewValue) {
   const DefaultScanTimeModel model;
   const CompiledProgram p = build("START 1747-L532\nLADDER 2\nSOR BST OTE B3:0/1 NXB XIC B3:0/1 OTE B3:0/2 BND EOR\n");
   Machine m(p, model, true);
-  EXPECT_EQ(FusedProgram(p, m.interp.costs()).fused_rungs(), 0u);
+  EXPECT_EQ(fused_program(p, m).fused_rungs(), 0u);
   m.interp.program_scan(0, 0, false, INT64_MAX);
   EXPECT_EQ(m.table.word(p.layout->files[3].base), 0b110);
 }
@@ -486,7 +613,7 @@ TEST(Fused, ScanTimeIsEachInstructionsTrueOrFalseCharge) {
   const CompiledProgram p =
       build("START 1747-L532\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\nSOR XIO B3:0/0 OTL B3:0/2 EOR\n");
   Machine m(p, model, true);
-  ASSERT_EQ(FusedProgram(p, m.interp.costs()).fused_rungs(), 2u);
+  ASSERT_EQ(fused_program(p, m).fused_rungs(), 2u);
   const std::uint32_t b3 = p.layout->files[3].base;
   auto r = m.interp.program_scan(0, 0, false, INT64_MAX);
   EXPECT_EQ(r.elapsed, 2'000 + 3'000);

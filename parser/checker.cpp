@@ -351,8 +351,13 @@ class Checker {
       return error(op.pos, where + ": the " + name + " function file is written one sub-element at a time (MOV, OTE, "
                                    "...); a file instruction would also write its read-only words");
     if (a.word >= 0 && !function_sub_element_writable(a.file, a.word, a.bit))
-      error(op.pos, where + ": " + to_string(a) + " is read only to the user program (1762-RM001C pp. 6-9..6-12; "
-                                                 "docs/semantics.md \"The PTO function file\")");
+      return error(op.pos, where + ": " + to_string(a) + " is read only to the user program (1762-RM001C pp. 6-9..6-12; "
+                                                        "docs/semantics.md \"The PTO function file\")");
+    // Jog (JP, JC, JF) is accepted but does nothing in softslc: say so where the program asks for it.
+    const auto sub = a.bit >= 0 ? function_bit_name(a.file, a.word, a.bit) : function_word_name(a.file, a.word);
+    if (sub == "JP" || sub == "JC" || sub == "JF")
+      warning(op.pos, where + ": " + to_string(a) + ": softslc does not simulate the PTO's jog; no pulses come of it "
+                                                   "(docs/semantics.md \"The PTO function file\")");
   }
 
   // Checks an address on its own. `kind` and `mfile` say where it stands (for M-file rules).

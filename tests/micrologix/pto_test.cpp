@@ -81,6 +81,11 @@ TEST(MicroLogixPto, CheckerRefusesWritesToReadOnlySubElements) {
     EXPECT_NE(errors(rung).find("is read only to the user program"), std::string::npos) << errors(rung);
   }
   EXPECT_NE(errors("SOR COP #N7:0 #PTO:0.OF 2 EOR").find("written one sub-element at a time"), std::string::npos);
+  // Jog is not simulated: a program that uses it loads, with a warning naming it.
+  LoadResult jog = load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 OTE PTO:0/JC MOV 100 PTO:0.JF EOR\n", "t.slc");
+  EXPECT_TRUE(jog.ok()) << jog.render_diagnostics();
+  EXPECT_EQ(jog.diagnostics.warning_count(), 2u) << jog.render_diagnostics();
+  EXPECT_NE(jog.render_diagnostics().find("does not simulate the PTO's jog"), std::string::npos);
   EXPECT_NE(errors("SOR XIC PTO:2/DN OTE B3:0/0 EOR").find("PTO has elements 0-1"), std::string::npos);
 }
 

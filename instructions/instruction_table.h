@@ -118,6 +118,11 @@ enum class Requirement : std::uint8_t {
   SlcMessage502,
   SlcMessage,
   SlcCommService,  // SVC: SLC 5/02-5/05
+  // PTO drives the pulse train output function file PTO:0-1: the MicroLogix 1100, 1200 and 1500
+  // (1763-RM001C p. 128 on, 1762-RM001C ch. 6). The MicroLogix 1400's is PTOX on PTOX:0-2 (1766-RM001A
+  // p. 146 on).
+  MicroLogixPto,
+  MicroLogixPtox,
 };
 
 struct OperandSpec {

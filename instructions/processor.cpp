@@ -105,6 +105,8 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::SlcMessage502: return family == ProcessorFamily::Slc502;
     case Requirement::SlcMessage: return is_modular_503_or_later(family);
     case Requirement::SlcCommService: return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
+    case Requirement::MicroLogixPto: return is_micrologix_1100_class() && micrologix != MicroLogixModel::ML1400;
+    case Requirement::MicroLogixPtox: return micrologix == MicroLogixModel::ML1400;
   }
   return false;
 }
@@ -185,6 +187,13 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
                "device block 7 data size node target, RM 12-5) and SVC none; this program's processor is " + have;
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001G p. 12-5)";
+    case Requirement::MicroLogixPto:
+    case Requirement::MicroLogixPtox:
+      return "drives the pulse train output of the " + std::string(requirement_processors(r)) +
+             (micrologix == MicroLogixModel::ML1400 ? " (the MicroLogix 1400's is PTOX, 1766-RM001A p. 146)"
+              : is_micrologix_1100_class()          ? " (the " + display_name + "'s is PTO, 1763-RM001C p. 128)"
+                                                    : "") +
+             "; this program's processor is " + have;
   }
   return {};
 }
@@ -210,6 +219,8 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::SlcMessage502: return "SLC 5/02 (the 5/03-5/05 form has 11 operands)";
     case Requirement::SlcMessage: return "SLC 5/03, 5/04, 5/05";
     case Requirement::SlcCommService: return "SLC 5/02, 5/03, 5/04, 5/05";
+    case Requirement::MicroLogixPto: return "MicroLogix 1100, 1200, 1500";
+    case Requirement::MicroLogixPtox: return "MicroLogix 1400";
   }
   return {};
 }

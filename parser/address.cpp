@@ -38,7 +38,7 @@ constexpr std::array kNamedWords{
 };
 
 constexpr std::array<std::string_view, kFunctionFileCount> kFunctionFileNames{
-    "RTC", "HSC", "PTOX", "PWMX", "STI", "EII", "BHI", "MMI", "DAT", "TPI", "CS", "IOS", "LCD"};
+    "RTC", "HSC", "PTOX", "PWMX", "STI", "EII", "BHI", "MMI", "DAT", "TPI", "CS", "IOS", "LCD", "PTO"};
 
 // The RTC element's named words and bits (1762-RM001C p. 3-3 Table 3.2; see rtc:: in address.h).
 constexpr std::array<std::string_view, rtc::kDayOfWeek + 1> kRtcWords{"YR", "MON", "DAY", "HR", "MIN", "SEC", "DOW"};
@@ -72,6 +72,68 @@ constexpr std::array kStiSubElements{
 
 bool is_sti(int id) { return id == static_cast<int>(FunctionFile::STI); }
 
+// The PTO/PTOX element's named words and bits (see pto:: in address.h). `writable` is the manual's
+// "User Program Access": read on pages for DN, DS, RS, AS, RP, IS, ED, NS, OFS, TOP, OPP
+// (1762-RM001C pp. 6-9..6-12, 1763-RM001C pp. 136-140, 1766-RM001A p. 146); the others [U]
+// (docs/semantics.md "The PTO function file"; CS is written by an OTE in 2080-MOT-HSC.RSS).
+bool is_pulse_train(int id) { return id == static_cast<int>(FunctionFile::PTO) || id == static_cast<int>(FunctionFile::PTOX); }
+const pto::Layout& pulse_train_layout(int id) { return id == static_cast<int>(FunctionFile::PTOX) ? pto::kPtox : pto::kPto; }
+struct PulseTrainSubElement {
+  std::string_view name;
+  int word;  // pto::kOutput..kErrorCode, or -1 - n for the layout's n-th frequency/count word
+  int bit;
+  bool writable;
+};
+constexpr std::array kPulseTrainSubElements{
+    PulseTrainSubElement{"OUT", pto::kOutput, -1, false},
+    PulseTrainSubElement{"ER", pto::kErrorCode, -1, false},
+    PulseTrainSubElement{"OF", -1, -1, true},
+    PulseTrainSubElement{"OFS", -2, -1, false},
+    PulseTrainSubElement{"JF", -3, -1, true},
+    PulseTrainSubElement{"TOP", -4, -1, true},
+    PulseTrainSubElement{"OPP", -5, -1, false},
+    PulseTrainSubElement{"ADP", -6, -1, true},
+    PulseTrainSubElement{"DN", pto::kBits, pto::kDoneBit, false},
+    PulseTrainSubElement{"DS", pto::kBits, pto::kDecelBit, false},
+    PulseTrainSubElement{"RS", pto::kBits, pto::kRunBit, false},
+    PulseTrainSubElement{"AS", pto::kBits, pto::kAccelBit, false},
+    PulseTrainSubElement{"RP", pto::kBits, pto::kRampBit, true},
+    PulseTrainSubElement{"IS", pto::kBits, pto::kIdleBit, false},
+    PulseTrainSubElement{"ED", pto::kBits, pto::kErrorBit, false},
+    PulseTrainSubElement{"NS", pto::kBits, pto::kNormalBit, false},
+    PulseTrainSubElement{"EH", pto::kBits, pto::kHardStopBit, true},
+    PulseTrainSubElement{"EN", pto::kBits, pto::kEnableBit, false},
+    PulseTrainSubElement{"CS", pto::kBits, pto::kControlStopBit, true},
+    PulseTrainSubElement{"JP", pto::kBits, pto::kJogPulseBit, true},
+    PulseTrainSubElement{"JPS", pto::kBits, pto::kJogPulseStatusBit, false},
+    PulseTrainSubElement{"JC", pto::kBits, pto::kJogContinuousBit, true},
+    PulseTrainSubElement{"JCS", pto::kBits, pto::kJogContinuousStatusBit, false},
+};
+// A named bit of a sub-element table (STI, PTO): sets `word` and `bit`.
+template <typename Table>
+bool named_bit(const Table& table, std::string_view name, int& word, int& bit) {
+  for (const auto& e : table)
+    if (e.bit >= 0 && e.name == name) {
+      word = e.word;
+      bit = e.bit;
+      return true;
+    }
+  return false;
+}
+
+// The word a sub-element starts at, in the file's layout.
+int pulse_train_word(int id, const PulseTrainSubElement& e) {
+  if (e.word >= 0) return e.word;
+  const pto::Layout& l = pulse_train_layout(id);
+  const int words[] = {l.frequency, l.frequency_status, l.jog_frequency, l.total, l.produced, l.accel_decel};
+  return words[-e.word - 1];
+}
+// How many words a word sub-element takes: TOP, OPP, ADP 2; OF, OFS, JF 2 on the PTOX; else 1.
+int pulse_train_width(int id, const PulseTrainSubElement& e) {
+  if (e.word >= 0) return 1;
+  return e.word <= -4 || pulse_train_layout(id).long_frequencies ? 2 : 1;
+}
+
 }  // namespace
 
 std::string_view function_file_name(int id) {
@@ -84,11 +146,31 @@ int function_file_id(std::string_view name) {
   return -1;
 }
 
-bool function_file_simulated(int id) { return is_rtc(id) || is_sti(id); }
-int function_file_elements(int id) { return is_rtc(id) || is_sti(id) ? 1 : 0; }
-int function_file_words_per_element(int id) { return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : 0; }
+bool function_file_simulated(int id) { return is_rtc(id) || is_sti(id) || is_pulse_train(id); }
+int function_file_elements(int id) {
+  if (is_pulse_train(id)) return id == static_cast<int>(FunctionFile::PTOX) ? pto::kPtoxElements : pto::kPtoElements;
+  return is_rtc(id) || is_sti(id) ? 1 : 0;
+}
+int function_file_words_per_element(int id) {
+  if (is_pulse_train(id)) return pulse_train_layout(id).words;
+  return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : 0;
+}
+
+bool is_pulse_train_file(int id) { return is_pulse_train(id); }
+
+bool function_word_is_long(int id, int word) {
+  if (!is_pulse_train(id)) return false;
+  for (const auto& e : kPulseTrainSubElements)
+    if (e.bit < 0 && pulse_train_word(id, e) == word) return pulse_train_width(id, e) == 2;
+  return false;
+}
 
 int function_word_number(int id, std::string_view name) {
+  if (is_pulse_train(id)) {
+    for (const auto& e : kPulseTrainSubElements)
+      if (e.bit < 0 && e.name == name) return pulse_train_word(id, e);
+    return -1;
+  }
   if (is_sti(id)) {
     for (const auto& e : kStiSubElements)
       if (e.bit < 0 && e.name == name) return e.word;
@@ -101,6 +183,11 @@ int function_word_number(int id, std::string_view name) {
 }
 
 std::string_view function_word_name(int id, int word) {
+  if (is_pulse_train(id)) {
+    for (const auto& e : kPulseTrainSubElements)
+      if (e.bit < 0 && pulse_train_word(id, e) == word) return e.name;
+    return {};
+  }
   if (is_sti(id)) {
     for (const auto& e : kStiSubElements)
       if (e.bit < 0 && e.word == word) return e.name;
@@ -111,15 +198,8 @@ std::string_view function_word_name(int id, int word) {
 }
 
 bool function_bit_number(int id, std::string_view name, int& word, int& bit) {
-  if (is_sti(id)) {
-    for (const auto& e : kStiSubElements)
-      if (e.bit >= 0 && e.name == name) {
-        word = e.word;
-        bit = e.bit;
-        return true;
-      }
-    return false;
-  }
+  if (is_pulse_train(id)) return named_bit(kPulseTrainSubElements, name, word, bit);
+  if (is_sti(id)) return named_bit(kStiSubElements, name, word, bit);
   if (!is_rtc(id)) return false;
   for (const auto& b : kRtcBits)
     if (b.name == name) {
@@ -131,6 +211,11 @@ bool function_bit_number(int id, std::string_view name, int& word, int& bit) {
 }
 
 std::string_view function_bit_name(int id, int word, int bit) {
+  if (is_pulse_train(id)) {
+    for (const auto& e : kPulseTrainSubElements)
+      if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
+    return {};
+  }
   if (is_sti(id)) {
     for (const auto& e : kStiSubElements)
       if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
@@ -143,6 +228,18 @@ std::string_view function_bit_name(int id, int word, int bit) {
 }
 
 bool function_sub_element_writable(int id, int word, int bit) {
+  if (is_pulse_train(id)) {
+    // A word (or either word of a long) is writable when every sub-element in it is.
+    bool any = false;
+    for (const auto& e : kPulseTrainSubElements) {
+      const int first = pulse_train_word(id, e);
+      if (word < first || word >= first + pulse_train_width(id, e)) continue;
+      if (bit >= 0 && e.bit >= 0 && e.bit != bit) continue;
+      any = true;
+      if (!e.writable) return false;
+    }
+    return any;  // bit 15 of the bit word is nobody's to write
+  }
   // The RTC words are written by programs (CPW into RTC:0.YR, slc_adjust_clock.RSS).
   if (!is_sti(id)) return true;
   bool any = false;
@@ -157,6 +254,14 @@ bool function_sub_element_writable(int id, int word, int bit) {
 
 std::string function_sub_element_names(int id) {
   if (is_rtc(id)) return "words YR, MON, DAY, HR, MIN, SEC, DOW and bits DS, BL";
+  if (is_pulse_train(id)) {
+    std::string words, bits;
+    for (const auto& e : kPulseTrainSubElements) {
+      std::string& list = e.bit < 0 ? words : bits;
+      list += (list.empty() ? "" : ", ") + std::string(e.name);
+    }
+    return "words " + words + " and bits " + bits;
+  }
   if (!is_sti(id)) return {};
   std::string words, bits;
   for (const auto& e : kStiSubElements) {

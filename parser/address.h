@@ -48,8 +48,10 @@ enum class FileType : std::uint8_t {
 // 1766-RM001 "Function Files"). The real-time clock and the selectable timed interrupt are
 // simulated; the others are recognised so that a program naming them gets a clear diagnostic
 // instead of a syntax error.
-enum class FunctionFile : std::uint8_t { RTC, HSC, PTOX, PWMX, STI, EII, BHI, MMI, DAT, TPI, CS, IOS, LCD };
-inline constexpr int kFunctionFileCount = 13;
+// PTO is the MicroLogix 1100/1200/1500 pulse train output file, PTOX the MicroLogix 1400's
+// (1766-RM001A p. 146); both are simulated (docs/semantics.md "The PTO function file").
+enum class FunctionFile : std::uint8_t { RTC, HSC, PTOX, PWMX, STI, EII, BHI, MMI, DAT, TPI, CS, IOS, LCD, PTO };
+inline constexpr int kFunctionFileCount = 14;
 // "RTC", "HSC", ... for a FunctionFile number; "?" when out of range.
 std::string_view function_file_name(int id);
 // The FunctionFile number of a name ("RTC" -> 0), or -1.
@@ -106,6 +108,39 @@ inline constexpr std::uint16_t kDefaultBits = 1u << kEnableBit;
 // STI:0.ER 1: "Invalid Program File Number" (1763-RM001C p. 270).
 inline constexpr std::uint16_t kErrorInvalidFile = 1;
 }  // namespace sti
+
+// The pulse train output function files: PTO:0-1 on the MicroLogix 1100, 1200 and 1500, PTOX:0-2
+// on the MicroLogix 1400. Layout (docs/micrologix-function-files-sources.md section 6.3): the
+// words RSLogix stores in a project (the .RSS function-file record of type 0x12: two elements of 12
+// words) and exports (PTOX0:n in 59-BSGS.SLC: three words and six long words). Read from the
+// fixtures: word 0 OUT (2 in 2080-MOT-HSC.RSS, whose comments say "PTO:0.OUT = 2"; -1 when unset),
+// word 1 the bit word (the export writes it in hex), word 3 OF (2000: "2000 for 2kHz"), words 6-7
+// TOP (2147483647, low word first). The rest by the manual's sub-element order [U]: word 2 ER,
+// 4 OFS, 5 JF, 8-9 OPP, 10-11 ADP. The PTOX widens OF, OFS and JF to long words [U] (its frequency
+// reaches 100 kHz). TOP, OPP and ADP are long words (32-bit INT, 1762-RM001C p. 6-12). The bit
+// positions are softslc's decision [U], the manual's order from bit 0 (as the STI's):
+// DN DS RS AS RP IS ED NS EH EN CS JP JPS JC JCS.
+namespace pto {
+inline constexpr int kOutput = 0, kBits = 1, kErrorCode = 2;
+// Word offsets of the frequency and count sub-elements: PTO (16-bit OF/OFS/JF) and PTOX (32-bit).
+struct Layout {
+  int frequency, frequency_status, jog_frequency, total, produced, accel_decel, words;
+  bool long_frequencies;
+};
+inline constexpr Layout kPto{3, 4, 5, 6, 8, 10, 12, false};
+inline constexpr Layout kPtox{3, 5, 7, 9, 11, 13, 15, true};
+inline constexpr int kPtoElements = 2, kPtoxElements = 3;
+inline constexpr int kDoneBit = 0, kDecelBit = 1, kRunBit = 2, kAccelBit = 3, kRampBit = 4, kIdleBit = 5, kErrorBit = 6,
+                     kNormalBit = 7, kHardStopBit = 8, kEnableBit = 9, kControlStopBit = 10, kJogPulseBit = 11,
+                     kJogPulseStatusBit = 12, kJogContinuousBit = 13, kJogContinuousStatusBit = 14;
+// The values a DATA PTO0:0 row gives per element, as the export writes a PTOX element: OUT, the bit
+// word, ER, then OF, OFS, JF, TOP, OPP, ADP (one value each, 16 or 32 bits by the layout).
+inline constexpr int kValuesPerElement = 9;
+}  // namespace pto
+// Whether `id` is PTO or PTOX.
+bool is_pulse_train_file(int id);
+// Whether word `word` of function file `id` begins a 32-bit sub-element (PTO:0.TOP, ...).
+bool function_word_is_long(int id, int word);
 
 // The letter(s) of a file type as written in addresses: "O", "I", "S", "B", ..., "ST", "M0".
 std::string_view file_letter(FileType t);

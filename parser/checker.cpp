@@ -302,14 +302,28 @@ class Checker {
       return;
     }
     if (!function_file_simulated(a.file)) {
-      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC and STI are");
+      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC, STI and PTO/PTOX are");
       return;
     }
+    if (is_pulse_train_file(a.file) && !check_pulse_train_name(a.file, pos)) return;
     if (a.element >= function_file_elements(a.file))
-      error(pos, to_string(a) + ": " + name + " has element 0 only");
+      error(pos, to_string(a) + ": " + name + (function_file_elements(a.file) == 1
+                                                   ? " has element 0 only"
+                                                   : " has elements 0-" + std::to_string(function_file_elements(a.file) - 1)));
     if (a.word >= function_file_words_per_element(a.file))
       error(pos, to_string(a) + ": " + name + " elements have words 0-" +
                      std::to_string(function_file_words_per_element(a.file) - 1));
+  }
+
+  // The pulse train output file is PTO on the MicroLogix 1100, 1200 and 1500 and PTOX on the 1400
+  // (1763-RM001C p. 136, 1762-RM001C p. 6-9, 1766-RM001A p. 146): the other name is refused.
+  bool check_pulse_train_name(int file, SourcePos pos) {
+    const bool ml1400 = program_.processor.micrologix == MicroLogixModel::ML1400;
+    if (ml1400 == (file == static_cast<int>(FunctionFile::PTOX))) return true;
+    error(pos, std::string(ml1400 ? "the MicroLogix 1400's pulse train output file is PTOX (1766-RM001A p. 146), not PTO"
+                                  : "PTOX is the MicroLogix 1400's pulse train output file; the " + program_.processor.display_name +
+                                        "'s is PTO (1763-RM001C p. 136, 1762-RM001C p. 6-9)"));
+    return false;
   }
 
   // A program write into a function file: the manuals' "read only" sub-elements (STI:0.PFN, /UIX, ...;
@@ -318,6 +332,7 @@ class Checker {
   // time (docs/semantics.md "MicroLogix").
   void check_function_file_write(const Operand& op, const OperandSpec& os, const std::string& where) {
     const Address& a = op.address;
+    if (is_pulse_train_file(a.file)) return check_pulse_train_write(op, os, where);
     if (a.file != static_cast<int>(FunctionFile::STI)) return;
     if (os.kind == OperandKind::File)
       return error(op.pos, where + ": the STI function file is written one sub-element at a time (MOV, OTL, "
@@ -325,6 +340,24 @@ class Checker {
     if (a.word >= 0 && !function_sub_element_writable(a.file, a.word, a.bit))
       error(op.pos, where + ": " + to_string(a) + " is read only to the user program (1763-RM001C pp. 270-272; "
                                                  "docs/semantics.md \"MicroLogix\")");
+  }
+
+  // PTO:0/DN, .OPP, .OUT ... are the PTO sub-system's (read only); OF, TOP, ADP, JF, RP, EH, CS, JP, JC
+  // are the program's (1762-RM001C pp. 6-9..6-12; the rest [U], docs/semantics.md "The PTO function file").
+  void check_pulse_train_write(const Operand& op, const OperandSpec& os, const std::string& where) {
+    const Address& a = op.address;
+    const std::string name(function_file_name(a.file));
+    if (os.kind == OperandKind::File)
+      return error(op.pos, where + ": the " + name + " function file is written one sub-element at a time (MOV, OTE, "
+                                   "...); a file instruction would also write its read-only words");
+    if (a.word >= 0 && !function_sub_element_writable(a.file, a.word, a.bit))
+      return error(op.pos, where + ": " + to_string(a) + " is read only to the user program (1762-RM001C pp. 6-9..6-12; "
+                                                        "docs/semantics.md \"The PTO function file\")");
+    // Jog (JP, JC, JF) is accepted but does nothing in softslc: say so where the program asks for it.
+    const auto sub = a.bit >= 0 ? function_bit_name(a.file, a.word, a.bit) : function_word_name(a.file, a.word);
+    if (sub == "JP" || sub == "JC" || sub == "JF")
+      warning(op.pos, where + ": " + to_string(a) + ": softslc does not simulate the PTO's jog; no pulses come of it "
+                                                   "(docs/semantics.md \"The PTO function file\")");
   }
 
   // Checks an address on its own. `kind` and `mfile` say where it stands (for M-file rules).
@@ -1170,11 +1203,41 @@ class Checker {
     if (!program_.processor.is_micrologix_1100_class())
       return error(d.pos, "function file data (" + d.file_name + ") belongs to a MicroLogix 1100, 1200, 1400 or "
                           "1500; this program's processor is " + program_.processor.display_name);
+    if (is_pulse_train_file(d.file)) return check_pulse_train_data(d);
     if (d.start_element != 0 || d.words.size() != static_cast<std::size_t>(sti::kWords))
       return error(d.pos, "DATA " + d.file_name + ": the STI function file has one element of four words, "
                           "PFN ER bits SPM, as RSLogix exports it (for example 3 0 0X0032 1000)");
     for (auto w : d.words)
       if (w < -32768 || w > 65535) return error(d.pos, "value " + std::to_string(w) + " does not fit a 16-bit word");
+  }
+
+  // DATA PTO0:0 / PTOX0:0: nine values per element from element 0 (OUT, bits, ER, OF, OFS, JF, TOP,
+  // OPP, ADP, the order RSLogix exports a PTOX element in), each within its word's width.
+  void check_pulse_train_data(const DataBlock& d) {
+    // Another MicroLogix's block (a 1400 export's PTOX0:0 retargeted to an 1100) configures nothing
+    // here: kept, unused, with a warning, as the function files softslc does not model.
+    const bool ml1400 = program_.processor.micrologix == MicroLogixModel::ML1400;
+    if (ml1400 != (d.file == static_cast<int>(FunctionFile::PTOX)))
+      return warning(d.pos, "DATA " + d.file_name + " configures the pulse train output of " +
+                                (ml1400 ? "a MicroLogix 1100, 1200 or 1500 (PTO)" : "a MicroLogix 1400 (PTOX)") + "; the " +
+                                program_.processor.display_name + "'s is " + (ml1400 ? "PTOX" : "PTO") + ": not used");
+    const int elements = function_file_elements(d.file);
+    const std::string name(function_file_name(d.file));
+    if (d.start_element != 0 || d.words.empty() || d.words.size() % pto::kValuesPerElement != 0 ||
+        d.words.size() / pto::kValuesPerElement > static_cast<std::size_t>(elements))
+      return error(d.pos, "DATA " + d.file_name + ": each " + name + " element takes nine values, OUT bits ER OF OFS JF TOP OPP "
+                          "ADP, as RSLogix exports them (for example -1 0X0000 0 0 0 0 0 0 0), for elements 0-" +
+                          std::to_string(elements - 1));
+    const bool wide = d.file == static_cast<int>(FunctionFile::PTOX);
+    for (std::size_t i = 0; i < d.words.size(); ++i) {
+      const std::size_t k = i % pto::kValuesPerElement;
+      const bool is_long = k >= 6 || (wide && k >= 3);
+      const std::int64_t lo = is_long ? INT32_MIN : -32768, hi = is_long ? INT32_MAX : 65535;
+      if (d.words[i] < lo || d.words[i] > hi)
+        return error(d.pos, "value " + std::to_string(d.words[i]) + " does not fit " + name + " " +
+                                (is_long ? "long word" : "word") + " (value " + std::to_string(k + 1) + " of element " +
+                                std::to_string(i / pto::kValuesPerElement) + ")");
+    }
   }
 
   // The STI's program file (STI:0.PFN) must be a ladder file of the program when it is set, and when
@@ -1275,7 +1338,7 @@ std::span<const std::string_view> real_mnemonics_without_rows() {
   // reaches unknown_instruction_message).
   static constexpr std::string_view kReal[] = {
       // MicroLogix only: high-speed counter and outputs, real-time clock adjust, data logging, LCD.
-      "DLG", "GCD", "HSC", "HSD", "HSE", "HSL", "LCD", "PTO", "PWM", "RAC", "RPC"};
+      "DLG", "GCD", "HSC", "HSD", "HSE", "HSL", "LCD", "PWM", "RAC", "RPC"};
   return kReal;
 }
 

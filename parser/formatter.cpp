@@ -78,6 +78,18 @@ void format_data(const DataBlock& d, std::string& out) {
     return;
   }
   const FileType t = *d.type;
+  if (is_function_file(t) && is_pulse_train_file(d.file)) {
+    // PTO/PTOX: one row of nine values per element (OUT bits ER OF OFS JF TOP OPP ADP), the bit word in hex.
+    const std::string name(function_file_name(d.file));
+    for (std::size_t i = 0; i < d.words.size(); ++i) {
+      const std::size_t k = i % pto::kValuesPerElement;
+      if (k == 0) out += "% " + name + "0:" + std::to_string(i / pto::kValuesPerElement) + " %";
+      out += " " + (k == 1 ? hex_word(static_cast<std::uint16_t>(d.words[i])) : std::to_string(d.words[i]));
+      if (k + 1 == pto::kValuesPerElement) out += "\n";
+    }
+    out += "\n";
+    return;
+  }
   if (is_function_file(t)) {
     // The STI: one row of PFN ER bits SPM as RSLogix exports it (SPM is 0-65,535).
     out += "% .PFN    .ER  bits   .SPM  %\n";

@@ -79,7 +79,8 @@ struct file_type_letter : one<'O', 'I', 'S', 'B', 'T', 'C', 'R', 'N', 'F', 'L', 
 // MicroLogix function files (RTC:0.YR, HSC:0/FE): a name and no file number, so the name must
 // be followed by ':' (that keeps STI from swallowing ST9:0 and CS from C5:0).
 struct file_type_function
-    : seq<sor<TAO_PEGTL_STRING("RTC"), TAO_PEGTL_STRING("HSC"), TAO_PEGTL_STRING("PTOX"), TAO_PEGTL_STRING("PWMX"),
+    : seq<sor<TAO_PEGTL_STRING("RTC"), TAO_PEGTL_STRING("HSC"), TAO_PEGTL_STRING("PTOX"), TAO_PEGTL_STRING("PTO"),
+              TAO_PEGTL_STRING("PWMX"),
               TAO_PEGTL_STRING("STI"), TAO_PEGTL_STRING("EII"), TAO_PEGTL_STRING("BHI"), TAO_PEGTL_STRING("MMI"),
               TAO_PEGTL_STRING("DAT"), TAO_PEGTL_STRING("TPI"), TAO_PEGTL_STRING("CS"), TAO_PEGTL_STRING("IOS"),
               TAO_PEGTL_STRING("LCD")>,

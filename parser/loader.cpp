@@ -868,10 +868,17 @@ template <> struct action<data_header> {
     // The STI function file's block gives its configuration (docs/program-format.md); the other
     // function files' blocks are kept as written.
     const bool sti = type && is_function_file(*type) && function_file_id(letters) == static_cast<int>(FunctionFile::STI);
-    s.data_opaque = !type || is_mfile(*type) || (is_function_file(*type) && !sti);
+    // So does a pulse train output file's (DATA PTO0:0 / PTOX0:0, as RSLogix exports PTOX0:0).
+    const bool pulse_train = type && is_function_file(*type) && is_pulse_train_file(function_file_id(letters));
+    s.data_opaque = !type || is_mfile(*type) || (is_function_file(*type) && !sti && !pulse_train);
     if (!s.data_opaque) {
       s.data.type = type;
-      if (sti) {
+      if (pulse_train) {
+        if (!number.empty() && number != "0")
+          s.diags.error(s.data.pos.line, s.data.pos.column, "the " + letters + " function file has no file number: DATA " + letters +
+                                                                ":0 or, as RSLogix exports it, DATA " + letters + "0:0");
+        s.data.file = function_file_id(letters);
+      } else if (sti) {
         // RSLogix exports it as STI0:0; softslc's addresses write STI:0. Either names the one element.
         if (!number.empty() && number != "0")
           s.diags.error(s.data.pos.line, s.data.pos.column, "the STI function file has no file number: DATA STI:0 or, as RSLogix exports it, DATA STI0:0");
@@ -911,7 +918,9 @@ template <> struct action<data_number> {
     }
     // A 16-bit word is a bit pattern: 0XA200 and -24064 are the same word. Keep the signed form
     // so a value written either way loads the same (fmt prints control words in hex).
-    if (s.data.type != FileType::Long && v.integer > 32767 && v.integer <= 65535) v.integer -= 65536;
+    // A pulse train file's block mixes words and long words (TOP ...): its values stay as written.
+    const bool mixed = is_function_file(*s.data.type) && is_pulse_train_file(s.data.file);
+    if (s.data.type != FileType::Long && !mixed && v.integer > 32767 && v.integer <= 65535) v.integer -= 65536;
     s.data.words.push_back(v.integer);
   }
 };

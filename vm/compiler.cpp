@@ -361,8 +361,10 @@ class Compiler {
     // "Real-time clock") and runs in virtual time (Runtime::advance_rtc).
     // The STI function file (1763-RM001C pp. 269-272) follows it on the same four controllers; the
     // interpreter runs the selectable timed interrupt from it (vm/interrupts.cpp).
+    // The pulse train output file follows: PTO on the 1100, 1200 and 1500, PTOX on the 1400 (vm/ml_pto.h).
     if (proc_.is_micrologix_1100_class()) {
-      for (const FunctionFile kind : {FunctionFile::RTC, FunctionFile::STI}) {
+      const FunctionFile pulse_train = proc_.micrologix == MicroLogixModel::ML1400 ? FunctionFile::PTOX : FunctionFile::PTO;
+      for (const FunctionFile kind : {FunctionFile::RTC, FunctionFile::STI, pulse_train}) {
         FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(kind)];
         f.present = true;
         f.type = FileType::Function;
@@ -384,6 +386,25 @@ class Compiler {
     initialised_[word] = true;
   }
 
+  // DATA PTO0:0 / PTOX0:0: nine values per element (OUT bits ER OF OFS JF TOP OPP ADP, as RSLogix
+  // exports a PTOX element), spread over the element's words; the long ones low word first.
+  void load_pulse_train_data(const DataBlock& d) {
+    const FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(d.file)];
+    if (!f.present) return;
+    const pto::Layout& l = d.file == static_cast<int>(FunctionFile::PTOX) ? pto::kPtox : pto::kPto;
+    const int words[pto::kValuesPerElement] = {pto::kOutput, pto::kBits, pto::kErrorCode, l.frequency, l.frequency_status,
+                                               l.jog_frequency, l.total, l.produced, l.accel_decel};
+    for (std::size_t i = 0; i < d.words.size(); ++i) {
+      const std::uint32_t element = static_cast<std::uint32_t>(i / pto::kValuesPerElement);
+      const int word = words[i % pto::kValuesPerElement];
+      if (element >= f.elements) break;
+      const std::uint32_t at = f.base + element * f.words_per_element + static_cast<std::uint32_t>(word);
+      const auto v = static_cast<std::uint32_t>(static_cast<std::int64_t>(d.words[i]));
+      set_init(at, static_cast<std::uint16_t>(v & 0xFFFF));
+      if (function_word_is_long(d.file, word)) set_init(at + 1, static_cast<std::uint16_t>(v >> 16));
+    }
+  }
+
   void load_data() {
     init_.assign(layout_.total_words, 0);
     initialised_.assign(layout_.total_words, false);
@@ -399,9 +420,18 @@ class Compiler {
     // otherwise (every saved project without an STI has 0 0 0X0002 0; docs/semantics.md "MicroLogix").
     if (const FileLayout& timed = layout_.function_file(FunctionFile::STI); timed.present)
       set_init(timed.base + sti::kBits, sti::kDefaultBits);
+    // Every PTO/PTOX element's OUT is -1 (no output) until configured: the .RSS record and the export
+    // hold -1 in every unused element (docs/micrologix-function-files-sources.md section 6.3).
+    for (const FunctionFile pulse_train : {FunctionFile::PTO, FunctionFile::PTOX})
+      if (const FileLayout& f = layout_.function_file(pulse_train); f.present)
+        for (std::uint32_t e = 0; e < f.elements; ++e) set_init(f.base + e * f.words_per_element + pto::kOutput, 0xFFFF);
     for (const auto& d : prog_.data) {
       if (!d.type || is_mfile(*d.type)) continue;
       const FileType t = *d.type;
+      if (is_function_file(t) && is_pulse_train_file(d.file)) {
+        load_pulse_train_data(d);
+        continue;
+      }
       if (is_function_file(t)) {
         const FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(d.file)];
         for (std::size_t i = 0; f.present && i < d.words.size() && i < f.words(); ++i)

@@ -68,6 +68,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
     per_word_[i] = std::max<Nanoseconds>(0, model.per_word_cost(op));
   }
   max_depth_ = std::clamp(program.processor.max_subroutine_depth(), 1, kMaxCallDepth);
+  pulse_trains_.attach(program);
   const auto& L = *program.layout;
   s0_ = L.status_word(status::kArith);
   s2_ = L.status_word(status::kControl);
@@ -1747,6 +1748,7 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
   // the DII's S:46-S:50 too (RM 11-24).
   if (ok && first_pass && !configure_dii(true)) ok = false;
   if (first_pass) scan_toggle(prog_, w_, true);
+  if (first_pass) pulse_trains_.enter_run(w_);  // every PTO idle on entering Run [U]
   update_limit(elapsed);
   if (ok) ok = run_routine(2, elapsed, max_depth_);
   if (ok) scan_toggle(prog_, w_, false);  // END or TND
@@ -2266,6 +2268,10 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       case Op::STS_ML:
         if (rung) function_file_sti_start(o, elapsed);
         if (faulted_) goto fault;
+        break;
+      case Op::PTO:
+      case Op::PTOX:
+        pulse_trains_.scan(static_cast<int>(bc::imm_of(o[0])), rung, scan_start_ + elapsed, w_);
         break;
 
       // ---- I/O interrupts and diagnostics (issue 15) ----

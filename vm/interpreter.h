@@ -50,6 +50,7 @@
 #include "vm/bytecode.h"
 #include "vm/data_table.h"
 #include "vm/faults.h"
+#include "vm/ml_pto.h"
 #include "vm/module.h"
 #include "vm/scan_time_model.h"
 
@@ -373,6 +374,8 @@ class Interpreter {
   std::array<Nanoseconds, kInstructionCount> per_word_{};
   Nanoseconds extra_ns_ = 0;
   std::uint16_t* w_;
+  // The MicroLogix pulse train outputs (PTO/PTOX function file), scanned by the PTO/PTOX handler.
+  PulseTrainOutputs pulse_trains_;
   const std::uint32_t* code_;
   std::vector<Nanoseconds> cost_;
   std::array<std::uint8_t, kOpCount> countable_{};

@@ -684,6 +684,8 @@ enum DataType : std::uint16_t { DtOutput = 0, DtInput = 1, DtStatus = 2, DtBinar
 
 // The type code of the STI function file's record among the function files.
 constexpr std::uint16_t kStiFunctionFile = 0x14;
+// The PTO's (MicroLogix 1100: two elements of 12 words; docs/micrologix-function-files-sources.md 6.3).
+constexpr std::uint16_t kPtoFunctionFile = 0x12;
 
 struct DataFileRecord {
   std::uint16_t type = 0;
@@ -825,6 +827,28 @@ void write_data_file(const DataFileRecord& r, const ProcessorCode& processor, Ar
   out += "\n";
 }
 
+// The PTO record (type 0x12): per element OUT, bits, ER, OF, OFS, JF and the long words TOP, OPP, ADP
+// (low word first). 20230719_MicroLogix_1100_driver_of_Micro8xx_2080-MOT-HSC.RSS holds 2 0 0 2000 0 0
+// 2147483647 0 0 in PTO:0 (its comments: OUT 2, OF 2000, TOP 2147483647), every other project -1 and
+// zeros. Written as RSLogix exports a PTOX element (59-BSGS.SLC): nine values, the bit word in hex.
+void write_pto_function_file(const DataFileRecord& r, Archive& a, std::size_t at, std::string& out) {
+  if (r.words_per_element != 12 || r.elements < 1 || r.elements > 2)
+    a.fail("the PTO function file has " + std::to_string(r.elements) + " elements of " + std::to_string(r.words_per_element) +
+               " words (one or two of 12 expected)",
+           at);
+  out += "\nDATA PTO0:0\n";
+  for (int e = 0; e < r.elements; ++e) {
+    const std::size_t b = static_cast<std::size_t>(e) * 12;
+    auto word = [&](std::size_t w) { return std::to_string(static_cast<std::int16_t>(word_at(r.values, b + w))); };
+    auto uword = [&](std::size_t w) { return std::to_string(word_at(r.values, b + w)); };
+    auto long_word = [&](std::size_t w) {
+      return std::to_string(static_cast<std::int32_t>(word_at(r.values, b + w) | static_cast<std::uint32_t>(word_at(r.values, b + w + 1)) << 16));
+    };
+    out += "% PTO0:" + std::to_string(e) + " %\n" + word(0) + " " + hex_word(word_at(r.values, b + 1)) + " " + word(2) + " " + uword(3) +
+           " " + uword(4) + " " + uword(5) + " " + long_word(6) + " " + long_word(8) + " " + long_word(10) + "\n";
+  }
+}
+
 void decode_data_files(std::string_view data, const ProcessorCode& processor, std::string& out) {
   Archive a(data, "DATA FILES");
   a.expect("CDataHolder");
@@ -849,6 +873,10 @@ void decode_data_files(std::string_view data, const ProcessorCode& processor, st
     a.expect("CDataFile");
     const std::size_t at = a.offset();
     DataFileRecord r = data_file_record(a);
+    if (r.type == kPtoFunctionFile) {
+      write_pto_function_file(r, a, at, out);
+      continue;
+    }
     if (r.type != kStiFunctionFile) continue;
     if (r.elements != 1 || r.words_per_element != 4)
       a.fail("the STI function file has " + std::to_string(r.elements) + " elements of " + std::to_string(r.words_per_element) +

@@ -946,8 +946,8 @@ const std::vector<RssFixture> kRssFixtures = {
     {"drbitboy-PLC_SLC_adjust_clock/slc_adjust_clock.RSS", nullptr},
     {"drbitboy-PLC_lowpass/training_bubble_sort_running.RSS", nullptr},
     {"drbitboy-PLC_lowpass/training_two_setpoints_running_0.965.RSS", nullptr},
-    // PTO:0/CS: the 1100/1200/1500 name of the pulse-train function file, not parsed yet.
-    {"drbitboy-PLC_reject_timing/20230719_MicroLogix_1100_driver_of_Micro8xx_2080-MOT-HSC.RSS", "expected an operand"},
+    // PTO:0 drives O:0/2 at PTO:0.OF = 2000 Hz (tests/micrologix/pto_test.cpp).
+    {"drbitboy-PLC_reject_timing/20230719_MicroLogix_1100_driver_of_Micro8xx_2080-MOT-HSC.RSS", nullptr},
     {"drbitboy-PLC_reject_timing/TVZ_1100_REV02.RSS", "of function file HSC"},
     {"drbitboy-PLC_reject_timing/TVZ_1100_REV02_LatchmoorAnnotations.RSS", "of function file HSC"},
     {"drbitboy-PLC_reject_timing/lecky_demo.RSS", nullptr},

@@ -1,6 +1,7 @@
 #include "parser/address.h"
 
 #include <array>
+#include <span>
 
 namespace softslc {
 
@@ -72,6 +73,51 @@ constexpr std::array kStiSubElements{
 
 bool is_sti(int id) { return id == static_cast<int>(FunctionFile::STI); }
 
+// The HSC element's named words and bits (see hsc:: in address.h). `writable` as read on
+// 1762-RM001C pp. 5-10, 5-13, 5-23, 5-24 for LPI, LPR, UFI, OF, OVF, OMB; the others [U].
+constexpr std::array kHscSubElements{
+    FunctionSubElement{"PFN", hsc::kProgramFile, -1, false}, FunctionSubElement{"ER", hsc::kErrorCode, -1, false},
+    FunctionSubElement{"MOD", hsc::kMode, -1, false},        FunctionSubElement{"ACC", hsc::kAccumulator, -1, true},
+    FunctionSubElement{"HIP", hsc::kHighPreset, -1, true},   FunctionSubElement{"LOP", hsc::kLowPreset, -1, true},
+    FunctionSubElement{"OVF", hsc::kOverflow, -1, true},     FunctionSubElement{"UNF", hsc::kUnderflow, -1, true},
+    FunctionSubElement{"OMB", hsc::kOutputMask, -1, false},  FunctionSubElement{"HPO", hsc::kHighOutput, -1, true},
+    FunctionSubElement{"LPO", hsc::kLowOutput, -1, true},
+    FunctionSubElement{"UIX", hsc::kBits, hsc::kExecutingBit, false},
+    FunctionSubElement{"UIE", hsc::kBits, hsc::kEnableBit, true},
+    FunctionSubElement{"UIL", hsc::kBits, hsc::kLostBit, true},
+    FunctionSubElement{"UIP", hsc::kBits, hsc::kPendingBit, false},
+    FunctionSubElement{"FE", hsc::kBits, hsc::kFunctionEnabledBit, true},
+    FunctionSubElement{"AS", hsc::kBits, hsc::kAutoStartBit, false},
+    FunctionSubElement{"ED", hsc::kBits, hsc::kErrorBit, false},
+    FunctionSubElement{"SP", hsc::kBits, hsc::kSetParametersBit, true},
+    FunctionSubElement{"CE", hsc::kBits, hsc::kCountingEnabledBit, true},
+    FunctionSubElement{"LPI", hsc::kBits, hsc::kLowInterruptBit, true},
+    FunctionSubElement{"UFI", hsc::kBits, hsc::kUnderflowInterruptBit, true},
+    FunctionSubElement{"HPI", hsc::kBits, hsc::kHighInterruptBit, true},
+    FunctionSubElement{"OFI", hsc::kBits, hsc::kOverflowInterruptBit, true},
+    FunctionSubElement{"LPM", hsc::kStatus, hsc::kLowMaskBit, true},
+    FunctionSubElement{"HPM", hsc::kStatus, hsc::kHighMaskBit, true},
+    FunctionSubElement{"UFM", hsc::kStatus, hsc::kUnderflowMaskBit, true},
+    FunctionSubElement{"OFM", hsc::kStatus, hsc::kOverflowMaskBit, true},
+    FunctionSubElement{"LPR", hsc::kStatus, hsc::kLowReachedBit, false},
+    FunctionSubElement{"HPR", hsc::kStatus, hsc::kHighReachedBit, false},
+    FunctionSubElement{"UF", hsc::kStatus, hsc::kUnderflowBit, true},
+    FunctionSubElement{"OF", hsc::kStatus, hsc::kOverflowBit, true},
+    FunctionSubElement{"DIR", hsc::kStatus, hsc::kDirectionBit, false},
+    FunctionSubElement{"MD", hsc::kStatus, hsc::kModeDoneBit, true},
+    FunctionSubElement{"CD", hsc::kStatus, hsc::kCountDownBit, false},
+    FunctionSubElement{"CU", hsc::kStatus, hsc::kCountUpBit, false},
+};
+
+bool is_hsc(int id) { return id == static_cast<int>(FunctionFile::HSC); }
+
+// The table of named sub-elements of the STI or the HSC; empty for the others.
+std::span<const FunctionSubElement> sub_elements(int id) {
+  if (is_sti(id)) return kStiSubElements;
+  if (is_hsc(id)) return kHscSubElements;
+  return {};
+}
+
 }  // namespace
 
 std::string_view function_file_name(int id) {
@@ -84,13 +130,17 @@ int function_file_id(std::string_view name) {
   return -1;
 }
 
-bool function_file_simulated(int id) { return is_rtc(id) || is_sti(id); }
-int function_file_elements(int id) { return is_rtc(id) || is_sti(id) ? 1 : 0; }
-int function_file_words_per_element(int id) { return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : 0; }
+bool function_file_simulated(int id) { return is_rtc(id) || is_sti(id) || is_hsc(id); }
+int function_file_elements(int id) { return is_rtc(id) || is_sti(id) ? 1 : is_hsc(id) ? 6 : 0; }
+int function_file_words_per_element(int id) {
+  return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : is_hsc(id) ? hsc::kWords : 0;
+}
+
+bool function_word_is_long(int id, int word) { return is_hsc(id) && hsc::is_long_word(word); }
 
 int function_word_number(int id, std::string_view name) {
-  if (is_sti(id)) {
-    for (const auto& e : kStiSubElements)
+  if (is_sti(id) || is_hsc(id)) {
+    for (const auto& e : sub_elements(id))
       if (e.bit < 0 && e.name == name) return e.word;
     return -1;
   }
@@ -101,8 +151,8 @@ int function_word_number(int id, std::string_view name) {
 }
 
 std::string_view function_word_name(int id, int word) {
-  if (is_sti(id)) {
-    for (const auto& e : kStiSubElements)
+  if (is_sti(id) || is_hsc(id)) {
+    for (const auto& e : sub_elements(id))
       if (e.bit < 0 && e.word == word) return e.name;
     return {};
   }
@@ -111,8 +161,8 @@ std::string_view function_word_name(int id, int word) {
 }
 
 bool function_bit_number(int id, std::string_view name, int& word, int& bit) {
-  if (is_sti(id)) {
-    for (const auto& e : kStiSubElements)
+  if (is_sti(id) || is_hsc(id)) {
+    for (const auto& e : sub_elements(id))
       if (e.bit >= 0 && e.name == name) {
         word = e.word;
         bit = e.bit;
@@ -131,8 +181,8 @@ bool function_bit_number(int id, std::string_view name, int& word, int& bit) {
 }
 
 std::string_view function_bit_name(int id, int word, int bit) {
-  if (is_sti(id)) {
-    for (const auto& e : kStiSubElements)
+  if (is_sti(id) || is_hsc(id)) {
+    for (const auto& e : sub_elements(id))
       if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
     return {};
   }
@@ -144,9 +194,9 @@ std::string_view function_bit_name(int id, int word, int bit) {
 
 bool function_sub_element_writable(int id, int word, int bit) {
   // The RTC words are written by programs (CPW into RTC:0.YR, slc_adjust_clock.RSS).
-  if (!is_sti(id)) return true;
+  if (!is_sti(id) && !is_hsc(id)) return true;
   bool any = false;
-  for (const auto& e : kStiSubElements) {
+  for (const auto& e : sub_elements(id)) {
     if (e.word != word) continue;
     if (bit >= 0 && e.bit >= 0 && e.bit != bit) continue;
     any = true;
@@ -157,9 +207,9 @@ bool function_sub_element_writable(int id, int word, int bit) {
 
 std::string function_sub_element_names(int id) {
   if (is_rtc(id)) return "words YR, MON, DAY, HR, MIN, SEC, DOW and bits DS, BL";
-  if (!is_sti(id)) return {};
+  if (!is_sti(id) && !is_hsc(id)) return {};
   std::string words, bits;
-  for (const auto& e : kStiSubElements) {
+  for (const auto& e : sub_elements(id)) {
     std::string& list = e.bit < 0 ? words : bits;
     list += (list.empty() ? "" : ", ") + std::string(e.name);
   }

@@ -302,10 +302,15 @@ class Checker {
       return;
     }
     if (!function_file_simulated(a.file)) {
-      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC and STI are");
+      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC, STI and HSC are");
       return;
     }
-    if (a.element >= function_file_elements(a.file))
+    if (a.file == static_cast<int>(FunctionFile::HSC)) {
+      if (a.element >= proc.hsc_count())
+        error(pos, to_string(a) + ": the " + proc.display_name + " has " + std::to_string(proc.hsc_count()) +
+                       " high-speed counter(s), HSC:0" + (proc.hsc_count() > 1 ? " to HSC:" + std::to_string(proc.hsc_count() - 1) : "") +
+                       " (docs/semantics.md \"The HSC function file\")");
+    } else if (a.element >= function_file_elements(a.file))
       error(pos, to_string(a) + ": " + name + " has element 0 only");
     if (a.word >= function_file_words_per_element(a.file))
       error(pos, to_string(a) + ": " + name + " elements have words 0-" +
@@ -318,13 +323,16 @@ class Checker {
   // time (docs/semantics.md "MicroLogix").
   void check_function_file_write(const Operand& op, const OperandSpec& os, const std::string& where) {
     const Address& a = op.address;
-    if (a.file != static_cast<int>(FunctionFile::STI)) return;
+    const bool hsc = a.file == static_cast<int>(FunctionFile::HSC);
+    if (a.file != static_cast<int>(FunctionFile::STI) && !hsc) return;
+    const std::string name(function_file_name(a.file));
     if (os.kind == OperandKind::File)
-      return error(op.pos, where + ": the STI function file is written one sub-element at a time (MOV, OTL, "
+      return error(op.pos, where + ": the " + name + " function file is written one sub-element at a time (MOV, OTL, "
                                    "...); a file instruction would also write its read-only words");
     if (a.word >= 0 && !function_sub_element_writable(a.file, a.word, a.bit))
-      error(op.pos, where + ": " + to_string(a) + " is read only to the user program (1763-RM001C pp. 270-272; "
-                                                 "docs/semantics.md \"MicroLogix\")");
+      error(op.pos, where + ": " + to_string(a) + " is read only to the user program (" +
+                        (hsc ? "1762-RM001C ch. 5; docs/semantics.md \"The HSC function file\")"
+                             : "1763-RM001C pp. 270-272; docs/semantics.md \"MicroLogix\")"));
   }
 
   // Checks an address on its own. `kind` and `mfile` say where it stands (for M-file rules).
@@ -588,6 +596,16 @@ class Checker {
     if (op.is_address()) check_address(op.address, op.pos, os.kind, os.mfile);
   }
 
+  // HSL and RAC name their counter as RSLogix shows it, HSC0 to HSC5 (1762-RM001C p. 5-27: "Counter
+  // HSC0"), or by its number: the name is read as the number, its spelling kept for the listing.
+  static void name_hsc_counter(Operand& op) {
+    if (op.kind != Operand::Kind::Symbol || op.symbol.size() != 4 || op.symbol.compare(0, 3, "HSC") != 0 ||
+        op.symbol[3] < '0' || op.symbol[3] > '9')
+      return;
+    op.kind = Operand::Kind::Integer;
+    op.integer = op.symbol[3] - '0';
+  }
+
   void check_instruction(Instruction& in, bool first_in_rung, int file_number, int rung_index) {
     const auto& s = spec(in.opcode);
     auto& proc = program_.processor;
@@ -609,7 +627,14 @@ class Checker {
                         std::to_string(in.operands.size()));
       return;
     }
+    if (in.opcode == Opcode::HSL || in.opcode == Opcode::RAC) name_hsc_counter(in.operands[0]);
     for (std::size_t i = 0; i < in.operands.size(); ++i) check_operand(in, in.operands[i], s.operands[i]);
+    if ((in.opcode == Opcode::HSL || in.opcode == Opcode::RAC) && in.operands[0].kind == Operand::Kind::Integer &&
+        in.operands[0].integer >= 0 && in.operands[0].integer < 6 && in.operands[0].integer >= proc.hsc_count() &&
+        proc.supports(s.requires_))
+      error(in.operands[0].pos, mnemonic_of(in) + " counter " + in.operands[0].spelling + ": the " + proc.display_name +
+                                    " has " + std::to_string(proc.hsc_count()) + " high-speed counter(s) (1762-RM001C p. 5-27; "
+                                    "docs/semantics.md \"The HSC function file\")");
     if (s.role == Role::Leading && !first_in_rung)
       error(in.pos, mnemonic_of(in) + " must be the first instruction of its rung");
     if (in.opcode == Opcode::SBR && (file_number < 3 || rung_index != 0))
@@ -1170,11 +1195,49 @@ class Checker {
     if (!program_.processor.is_micrologix_1100_class())
       return error(d.pos, "function file data (" + d.file_name + ") belongs to a MicroLogix 1100, 1200, 1400 or "
                           "1500; this program's processor is " + program_.processor.display_name);
+    if (d.file == static_cast<int>(FunctionFile::HSC)) return check_hsc_data(d);
     if (d.start_element != 0 || d.words.size() != static_cast<std::size_t>(sti::kWords))
       return error(d.pos, "DATA " + d.file_name + ": the STI function file has one element of four words, "
                           "PFN ER bits SPM, as RSLogix exports it (for example 3 0 0X0032 1000)");
     for (auto w : d.words)
       if (w < -32768 || w > 65535) return error(d.pos, "value " + std::to_string(w) + " does not fit a 16-bit word");
+  }
+
+  // DATA HSC0:0: each element's 13 values as RSLogix exports them (hsc:: in parser/address.h), one
+  // element per high-speed counter of the processor. The HSC sub-system refuses a configuration whose
+  // OVF is not above HIP (1762-RM001C p. 5-23) or whose UNF is above LOP (1766-RM001A p. 127), and
+  // softslc runs mode 0 only (docs/semantics.md "The HSC function file"): both are found here.
+  void check_hsc_data(const DataBlock& d) {
+    const int count = program_.processor.hsc_count();
+    if (d.start_element != 0 || d.words.empty() || d.words.size() % hsc::kExportValues != 0)
+      return error(d.pos, "DATA " + d.file_name + ": each HSC element is 13 values as RSLogix exports it: PFN ER bits "
+                          "bits MOD, then ACC HIP LOP OVF UNF, then OMB HPO LPO");
+    const std::size_t elements = d.words.size() / hsc::kExportValues;
+    if (elements > static_cast<std::size_t>(count))
+      return error(d.pos, "DATA " + d.file_name + " gives " + std::to_string(elements) + " HSC elements; the " +
+                              program_.processor.display_name + " has " + std::to_string(count));
+    for (std::size_t e = 0; e < elements; ++e) {
+      const auto v = [&](std::size_t k) { return d.words[e * hsc::kExportValues + k]; };
+      const std::string at = "HSC:" + std::to_string(e);
+      for (std::size_t k = 0; k < hsc::kExportValues; ++k)
+        if (!hsc::export_value_is_long(k) && (v(k) < -32768 || v(k) > 65535))
+          return error(d.pos, "value " + std::to_string(v(k)) + " does not fit a 16-bit word");
+      const int pfn = static_cast<int>(static_cast<std::uint16_t>(v(hsc::kProgramFile)));
+      if (pfn != 0 && (pfn < 3 || pfn > 255 || !program_.find_file(pfn)))
+        error(d.pos, at + ".PFN " + std::to_string(pfn) + " is not a subroutine file of this program (3-255, no LADDER " +
+                         std::to_string(pfn) + ")");
+      if (const auto mode = v(hsc::kMode); mode != 0)
+        error(d.pos, at + ".MOD " + std::to_string(mode) + ": softslc simulates HSC mode 0 (up counter) only; the "
+                          "description of mode " + std::to_string(mode) + " (1762-RM001C p. 5-16) was not found, so it "
+                          "is not guessed (docs/semantics.md \"The HSC function file\")");
+      const auto hip = v(6), lop = v(7), ovf = v(8), unf = v(9);
+      if (ovf <= hip)
+        error(d.pos, at + ": OVF " + std::to_string(ovf) + " must be greater than HIP " + std::to_string(hip) +
+                         " or the HSC sub-system gives an error (1762-RM001C p. 5-23)");
+      if (unf > lop)
+        error(d.pos, at + ": UNF " + std::to_string(unf) + " must be less than or equal to LOP " + std::to_string(lop) +
+                         " or the HSC sub-system gives an error (1766-RM001A p. 127)");
+    }
   }
 
   // The STI's program file (STI:0.PFN) must be a ladder file of the program when it is set, and when

@@ -868,13 +868,19 @@ template <> struct action<data_header> {
     // The STI function file's block gives its configuration (docs/program-format.md); the other
     // function files' blocks are kept as written.
     const bool sti = type && is_function_file(*type) && function_file_id(letters) == static_cast<int>(FunctionFile::STI);
-    s.data_opaque = !type || is_mfile(*type) || (is_function_file(*type) && !sti);
+    // So does the HSC function file's, in RSLogix's export form (DATA HSC0:0, 13 values an element).
+    const bool hsc = type && is_function_file(*type) && function_file_id(letters) == static_cast<int>(FunctionFile::HSC);
+    s.data_opaque = !type || is_mfile(*type) || (is_function_file(*type) && !sti && !hsc);
     if (!s.data_opaque) {
       s.data.type = type;
       if (sti) {
         // RSLogix exports it as STI0:0; softslc's addresses write STI:0. Either names the one element.
         if (!number.empty() && number != "0")
           s.diags.error(s.data.pos.line, s.data.pos.column, "the STI function file has no file number: DATA STI:0 or, as RSLogix exports it, DATA STI0:0");
+        s.data.file = function_file_id(letters);
+      } else if (hsc) {
+        if (!number.empty() && number != "0")
+          s.diags.error(s.data.pos.line, s.data.pos.column, "the HSC function file has no file number: DATA HSC:0 or, as RSLogix exports it, DATA HSC0:0");
         s.data.file = function_file_id(letters);
       } else if (fixed >= 0) {
         if (!number.empty() && std::stoi(number.substr(0, 9)) != fixed) s.data_opaque = true;
@@ -911,6 +917,14 @@ template <> struct action<data_number> {
     }
     // A 16-bit word is a bit pattern: 0XA200 and -24064 are the same word. Keep the signed form
     // so a value written either way loads the same (fmt prints control words in hex).
+    if (is_function_file(*s.data.type) && s.data.file == static_cast<int>(FunctionFile::HSC) &&
+        hsc::export_value_is_long(s.data.words.size() % hsc::kExportValues)) {
+      // HSC:e.ACC, .HIP, .LOP, .OVF, .UNF: 32-bit values.
+      if (v.integer < INT32_MIN || v.integer > INT32_MAX)
+        s.diags.error(p.line, p.column, "value " + in.string() + " does not fit the HSC's 32-bit long word");
+      s.data.words.push_back(v.integer);
+      return;
+    }
     if (s.data.type != FileType::Long && v.integer > 32767 && v.integer <= 65535) v.integer -= 65536;
     s.data.words.push_back(v.integer);
   }

@@ -371,6 +371,15 @@ class Compiler {
         f.words_per_element = static_cast<std::uint8_t>(function_file_words_per_element(static_cast<int>(kind)));
         next += f.words();
       }
+      // The HSC function file: as many elements as the processor has high-speed counters
+      // (ProcessorModel::hsc_count); vm/ml_hsc.h runs them.
+      FileLayout& counters = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(FunctionFile::HSC)];
+      counters.present = proc_.hsc_count() > 0;
+      counters.type = FileType::Function;
+      counters.base = next;
+      counters.elements = static_cast<std::uint32_t>(proc_.hsc_count());
+      counters.words_per_element = static_cast<std::uint8_t>(hsc::kWords);
+      next += counters.words();
     }
     layout_.total_words = next;
     if (next > bc::kMaxWordIndex) error({}, "the data table is too large to address");
@@ -399,13 +408,44 @@ class Compiler {
     // otherwise (every saved project without an STI has 0 0 0X0002 0; docs/semantics.md "MicroLogix").
     if (const FileLayout& timed = layout_.function_file(FunctionFile::STI); timed.present)
       set_init(timed.base + sti::kBits, sti::kDefaultBits);
+    // Each HSC as RSLogix creates it: the two bit words 0X0002 0X000F, HIP and OVF 2147483647, LOP
+    // and UNF -2147483648 (59-BSGS.SLC and every .RSS fixture without an HSC; docs/semantics.md).
+    if (const FileLayout& counters = layout_.function_file(FunctionFile::HSC); counters.present)
+      for (std::uint32_t e = 0; e < counters.elements; ++e) {
+        const std::uint32_t base = counters.base + e * hsc::kWords;
+        set_init(base + hsc::kBits, hsc::kDefaultBits);
+        set_init(base + hsc::kStatus, hsc::kDefaultStatus);
+        for (int w : {hsc::kHighPreset, hsc::kOverflow}) {
+          set_init(base + static_cast<std::uint32_t>(w), 0xFFFF);
+          set_init(base + static_cast<std::uint32_t>(w) + 1, 0x7FFF);
+        }
+        for (int w : {hsc::kLowPreset, hsc::kUnderflow}) {
+          set_init(base + static_cast<std::uint32_t>(w), 0x0000);
+          set_init(base + static_cast<std::uint32_t>(w) + 1, 0x8000);
+        }
+      }
     for (const auto& d : prog_.data) {
       if (!d.type || is_mfile(*d.type)) continue;
       const FileType t = *d.type;
       if (is_function_file(t)) {
         const FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(d.file)];
-        for (std::size_t i = 0; f.present && i < d.words.size() && i < f.words(); ++i)
-          set_init(f.base + static_cast<std::uint32_t>(i), static_cast<std::uint16_t>(d.words[i]));
+        if (d.file == static_cast<int>(FunctionFile::HSC)) {
+          // RSLogix's export form: 13 values an element, five of them 32-bit (low word first).
+          for (std::size_t i = 0; f.present && i < d.words.size(); ++i) {
+            const std::size_t e = static_cast<std::size_t>(std::max(d.start_element, 0)) + i / hsc::kExportValues;
+            if (e >= f.elements) break;
+            const std::size_t k = i % hsc::kExportValues;
+            const std::uint32_t at = f.base + static_cast<std::uint32_t>(e * hsc::kWords) +
+                                     static_cast<std::uint32_t>(hsc::export_value_word(k));
+            const auto bits = static_cast<std::uint32_t>(d.words[i]);
+            set_init(at, static_cast<std::uint16_t>(bits));
+            if (hsc::export_value_is_long(k)) set_init(at + 1, static_cast<std::uint16_t>(bits >> 16));
+          }
+          continue;
+        }
+        const std::size_t first = static_cast<std::size_t>(std::max(d.start_element, 0)) * f.words_per_element;
+        for (std::size_t i = 0; f.present && i < d.words.size() && first + i < f.words(); ++i)
+          set_init(f.base + static_cast<std::uint32_t>(first + i), static_cast<std::uint16_t>(d.words[i]));
         continue;
       }
       if (is_io(t)) {

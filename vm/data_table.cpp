@@ -51,7 +51,8 @@ std::optional<Location> DataTableLayout::locate(const Address& a, std::string* e
     loc.file = static_cast<int>(index);
     loc.word = f.base + static_cast<std::uint32_t>(a.element) * f.words_per_element + static_cast<std::uint32_t>(word);
     loc.bit = a.bit;
-    loc.vtype = ValueType::Int16;
+    // HSC:0.ACC, .HIP, .LOP, .OVF, .UNF are 32-bit long words (1762-RM001C p. 5-23).
+    loc.vtype = a.bit < 0 && function_word_is_long(a.file, word) ? ValueType::Int32 : ValueType::Int16;
     return loc;
   }
   if (is_io(a.type)) {

@@ -107,6 +107,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
   }
   if (dii_supported_) s46_ = L.status_word(status::kDiiFile);
   locate_sti_bits();
+  hsc_.attach(L.function_file(FunctionFile::HSC), L.files[0].base);
   fused_ = std::make_shared<const FusedProgram>(program, cost_);
 }
 
@@ -2255,6 +2256,10 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       case Op::STS_ML:
         if (rung) function_file_sti_start(o, elapsed);
         if (faulted_) goto fault;
+        break;
+      case Op::HSL:
+      case Op::RAC:
+        if (rung) high_speed_counter(op, o, elapsed);
         break;
 
       // ---- I/O interrupts and diagnostics (issue 15) ----

@@ -27,6 +27,8 @@ std::string format_operand(const Operand& op) {
       const auto& sp = op.spelling;
       bool hex = sp.find("0x") != std::string::npos || sp.find("0X") != std::string::npos ||
                  (!sp.empty() && (sp.back() == 'h' || sp.back() == 'H'));
+      // HSL/RAC's counter written as RSLogix shows it (HSC0): the checker reads it as its number.
+      if (sp.size() == 4 && sp.compare(0, 3, "HSC") == 0 && sp[3] - '0' == op.integer) return sp;
       if (hex && op.integer >= 0) {
         char buf[32];
         std::snprintf(buf, sizeof buf, "0x%04llX", static_cast<unsigned long long>(op.integer));

@@ -897,8 +897,8 @@ const std::vector<RssFixture> kRssFixtures = {
     {"drbitboy-PLC_lowpass/training_two_setpoints_running_0.965.RSS", nullptr},
     // PTO:0/CS: the 1100/1200/1500 name of the pulse-train function file, not parsed yet.
     {"drbitboy-PLC_reject_timing/20230719_MicroLogix_1100_driver_of_Micro8xx_2080-MOT-HSC.RSS", "expected an operand"},
-    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02.RSS", "of function file HSC"},
-    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02_LatchmoorAnnotations.RSS", "of function file HSC"},
+    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02.RSS", nullptr},
+    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02_LatchmoorAnnotations.RSS", nullptr},
     {"drbitboy-PLC_reject_timing/lecky_demo.RSS", nullptr},
     {"drbitboy-PLC_reject_timing/lecky_demo_tof.RSS", nullptr},
     // B103:10/[N7:0] with N7:0 up to 111: the program walks bits past the element's 16, which

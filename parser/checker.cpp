@@ -1205,17 +1205,30 @@ class Checker {
 
   // DATA HSC0:0: each element's 13 values as RSLogix exports them (hsc:: in parser/address.h), one
   // element per high-speed counter of the processor. The HSC sub-system refuses a configuration whose
-  // OVF is not above HIP (1762-RM001C p. 5-23) or whose UNF is above LOP (1766-RM001A p. 127), and
+  // OVF is below HIP (1762-RM001C p. 5-23 says "greater than", but RSLogix's own default has both at
+  // 2147483647, so equal is accepted) or whose UNF is above LOP (1766-RM001A p. 127), and
   // softslc runs mode 0 only (docs/semantics.md "The HSC function file"): both are found here.
   void check_hsc_data(const DataBlock& d) {
     const int count = program_.processor.hsc_count();
     if (d.start_element != 0 || d.words.empty() || d.words.size() % hsc::kExportValues != 0)
       return error(d.pos, "DATA " + d.file_name + ": each HSC element is 13 values as RSLogix exports it: PFN ER bits "
                           "bits MOD, then ACC HIP LOP OVF UNF, then OMB HPO LPO");
-    const std::size_t elements = d.words.size() / hsc::kExportValues;
-    if (elements > static_cast<std::size_t>(count))
-      return error(d.pos, "DATA " + d.file_name + " gives " + std::to_string(elements) + " HSC elements; the " +
-                              program_.processor.display_name + " has " + std::to_string(count));
+    std::size_t elements = d.words.size() / hsc::kExportValues;
+    if (elements > static_cast<std::size_t>(count)) {
+      // A program moved to a processor with fewer counters (the MicroLogix 1400's six to an 1100's
+      // one): counters left as RSLogix created them are dropped with a warning, configured ones refused.
+      static constexpr std::array<std::int64_t, hsc::kExportValues> kDefault{
+          0, 0, hsc::kDefaultBits, hsc::kDefaultStatus, 0, 0, INT32_MAX, INT32_MIN, INT32_MAX, INT32_MIN, 0, 0, 0};
+      for (std::size_t e = static_cast<std::size_t>(count); e < elements; ++e)
+        for (std::size_t k = 0; k < hsc::kExportValues; ++k)
+          if (d.words[e * hsc::kExportValues + k] != kDefault[k])
+            return error(d.pos, "DATA " + d.file_name + " configures HSC:" + std::to_string(e) + "; the " +
+                                    program_.processor.display_name + " has " + std::to_string(count) + " high-speed counter(s)");
+      warning(d.pos, "DATA " + d.file_name + " gives " + std::to_string(elements) + " HSC elements; the " +
+                         program_.processor.display_name + " has " + std::to_string(count) +
+                         ": the others hold RSLogix's defaults and are dropped");
+      elements = static_cast<std::size_t>(count);
+    }
     for (std::size_t e = 0; e < elements; ++e) {
       const auto v = [&](std::size_t k) { return d.words[e * hsc::kExportValues + k]; };
       const std::string at = "HSC:" + std::to_string(e);
@@ -1231,9 +1244,9 @@ class Checker {
                           "description of mode " + std::to_string(mode) + " (1762-RM001C p. 5-16) was not found, so it "
                           "is not guessed (docs/semantics.md \"The HSC function file\")");
       const auto hip = v(6), lop = v(7), ovf = v(8), unf = v(9);
-      if (ovf <= hip)
-        error(d.pos, at + ": OVF " + std::to_string(ovf) + " must be greater than HIP " + std::to_string(hip) +
-                         " or the HSC sub-system gives an error (1762-RM001C p. 5-23)");
+      if (ovf < hip)
+        error(d.pos, at + ": OVF " + std::to_string(ovf) + " must not be less than HIP " + std::to_string(hip) +
+                         " or the HSC sub-system gives an error (1762-RM001C p. 5-23; equal is RSLogix's own default)");
       if (unf > lop)
         error(d.pos, at + ": UNF " + std::to_string(unf) + " must be less than or equal to LOP " + std::to_string(lop) +
                          " or the HSC sub-system gives an error (1766-RM001A p. 127)");
@@ -1338,7 +1351,7 @@ std::span<const std::string_view> real_mnemonics_without_rows() {
   // reaches unknown_instruction_message).
   static constexpr std::string_view kReal[] = {
       // MicroLogix only: high-speed counter and outputs, real-time clock adjust, data logging, LCD.
-      "DLG", "GCD", "HSC", "HSD", "HSE", "HSL", "LCD", "PTO", "PWM", "RAC", "RPC"};
+      "DLG", "GCD", "HSC", "HSD", "HSE", "LCD", "PTO", "PWM", "RPC"};
   return kReal;
 }
 

@@ -619,7 +619,7 @@ void Interpreter::function_file_sti_start(const std::uint32_t* o, Nanoseconds no
 }
 
 // HSL (counter, high preset, low preset, output high source, output low source) and RAC (counter,
-// source): vm/ml_hsc.h brings the counter up to now and loads it. A preset that breaks OVF > HIP or
+// source): vm/ml_hsc.h brings the counter up to now and loads it. A preset that breaks OVF >= HIP or
 // UNF <= LOP sets the counter's ED and loads nothing [U].
 void Interpreter::high_speed_counter(Op op, const std::uint32_t* o, Nanoseconds now_in_scan) {
   const int counter = static_cast<int>(bc::imm_of(o[0]));

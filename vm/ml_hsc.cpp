@@ -138,11 +138,12 @@ bool MicroLogixHsc::load_from_file(std::uint16_t* w, int counter) {
   c.high_out = w[at + hsc::kHighOutput];
   c.low_out = w[at + hsc::kLowOutput];
   c.loaded = true;
-  // OVF > HIP (1762-RM001C p. 5-23), UNF <= LOP (1766-RM001A p. 127); a mode other than 0 is not run
+  // OVF >= HIP (1762-RM001C p. 5-23 writes "greater than"; RSLogix's default has them equal), UNF <=
+  // LOP (1766-RM001A p. 127); a mode other than 0 is not run
   // (`check` refuses it in a DATA block, and MOD is read only). A refused load sets ED and keeps what
   // was loaded before [U: the HSC error codes were not found, so ER is left as it is].
   std::uint16_t& bits = w[at + hsc::kBits];
-  if (c.mode != 0 || c.overflow <= c.high || c.underflow > c.low) {
+  if (c.mode != 0 || c.overflow < c.high || c.underflow > c.low) {
     set_bit(bits, hsc::kErrorBit, true);
     return false;
   }
@@ -162,7 +163,7 @@ bool MicroLogixHsc::load(std::uint16_t* w, int counter, std::int64_t high, std::
   const std::uint32_t at = base(counter);
   const std::int64_t overflow = k.config.loaded ? k.config.overflow : read_long(w, at + hsc::kOverflow);
   const std::int64_t underflow = k.config.loaded ? k.config.underflow : read_long(w, at + hsc::kUnderflow);
-  if (overflow <= high || underflow > low) {
+  if (overflow < high || underflow > low) {
     set_bit(w[at + hsc::kBits], hsc::kErrorBit, true);
     return false;
   }

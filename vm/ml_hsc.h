@@ -47,7 +47,7 @@ class MicroLogixHsc {
   // whose SP has risen since the last update.
   void advance(std::uint16_t* w, std::int64_t now);
   // HSL: the counter's HIP, LOP, HPO and LPO := the sources, in the file and the sub-system. Returns
-  // false (and sets ED) when the presets break OVF > HIP or UNF <= LOP; nothing is loaded then.
+  // false (and sets ED) when the presets break OVF >= HIP or UNF <= LOP; nothing is loaded then.
   bool load(std::uint16_t* w, int counter, std::int64_t high, std::int64_t low, std::uint16_t high_out,
             std::uint16_t low_out, std::int64_t now);
   // RAC: the counter's accumulator := value (1762-RM001C p. 5-27).

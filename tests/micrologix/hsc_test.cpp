@@ -112,8 +112,10 @@ TEST(MicroLogixHsc, DataBlockConfiguresItAndIsChecked) {
   ASSERT_TRUE(again.ok()) << again.render_diagnostics() << formatted;
   std::string diff;
   EXPECT_TRUE(same_program(*r.program, *again.program, &diff)) << diff;
-  // OVF must be greater than HIP (1762-RM001C p. 5-23), UNF less than or equal to LOP (1766-RM001A p. 127).
-  EXPECT_NE(load_errors(hsc_program(config(0, 100, 0, 100, -5))).find("OVF 100 must be greater than HIP 100"), std::string::npos);
+  // OVF must be greater than HIP (1762-RM001C p. 5-23; equal is RSLogix's own default, 2147483647 both,
+  // and is accepted), UNF less than or equal to LOP (1766-RM001A p. 127).
+  EXPECT_NE(load_errors(hsc_program(config(0, 100, 0, 99, -5))).find("OVF 99 must not be less than HIP 100"), std::string::npos);
+  EXPECT_EQ(load_errors(hsc_program(config(0, 2147483647, 0, 2147483647, -5))), "");
   EXPECT_NE(load_errors(hsc_program(config(0, 100, -6, 1000, -5))).find("UNF -5 must be less than or equal to LOP -6"),
             std::string::npos);
   // A mode without a source is refused by name, not guessed.

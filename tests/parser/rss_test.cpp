@@ -259,22 +259,23 @@ TEST(RssReader, HeaderSectorCountsBeyondTheFileAreRefused) {
 
 // A known RSLogix mnemonic softslc lacks is named as not supported; a typo stays unknown.
 TEST(RssReader, InstructionsSoftslcLacksAreNamedNotSupported) {
-  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 HSL N7:0 EOR\n", "t.slc");
+  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 DLG N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("instruction HSL is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
+  EXPECT_NE(r.render_diagnostics().find("instruction DLG is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
   auto typo = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 QQQ N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(typo.ok());
   EXPECT_NE(typo.render_diagnostics().find("unknown instruction 'QQQ'"), std::string::npos) << typo.render_diagnostics();
 }
 
-// Diagnostics about a converted project name the program file and rung (TVZ_1100_REV02_LatchmoorAnnotations.pdf,
-// LAD 2 rung 0002 drives HSC:0/FE, a bit of the HSC function file softslc does not simulate yet).
+// Diagnostics about a converted project name the program file and rung (the 2080-MOT-HSC driver's
+// LAD 2 rung 1 runs PTO, which softslc does not have yet; TVZ_1100_REV02, used here before, now
+// loads with its HSC function file).
 TEST(RssReader, DiagnosticsNameTheProgramFileAndRung) {
-  fs::path f = kFixtures / "drbitboy-PLC_reject_timing" / "TVZ_1100_REV02.RSS";
+  fs::path f = kFixtures / "drbitboy-PLC_reject_timing" / "20230719_MicroLogix_1100_driver_of_Micro8xx_2080-MOT-HSC.RSS";
   if (!fs::exists(f)) GTEST_SKIP() << "no fixture " << f;
   auto r = softslc::load_program_file(f);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 2: unknown bit name 'FE' of function file HSC"), std::string::npos)
+  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 1: instruction PTO is not supported by softslc yet"), std::string::npos)
       << r.render_diagnostics();
 }
 

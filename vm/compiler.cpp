@@ -362,24 +362,20 @@ class Compiler {
     // The STI function file (1763-RM001C pp. 269-272) follows it on the same four controllers; the
     // interpreter runs the selectable timed interrupt from it (vm/interrupts.cpp).
     if (proc_.is_micrologix_1100_class()) {
-      for (const FunctionFile kind : {FunctionFile::RTC, FunctionFile::STI}) {
+      // So does the HSC function file, with as many elements as the processor has high-speed
+      // counters (ProcessorModel::hsc_count; vm/ml_hsc.h runs them). In FunctionFile order, which
+      // DataTableLayout::file_containing relies on.
+      for (const FunctionFile kind : {FunctionFile::RTC, FunctionFile::HSC, FunctionFile::STI}) {
+        const bool counters = kind == FunctionFile::HSC;
+        if (counters && proc_.hsc_count() == 0) continue;
         FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(kind)];
         f.present = true;
         f.type = FileType::Function;
         f.base = next;
-        f.elements = static_cast<std::uint32_t>(function_file_elements(static_cast<int>(kind)));
+        f.elements = static_cast<std::uint32_t>(counters ? proc_.hsc_count() : function_file_elements(static_cast<int>(kind)));
         f.words_per_element = static_cast<std::uint8_t>(function_file_words_per_element(static_cast<int>(kind)));
         next += f.words();
       }
-      // The HSC function file: as many elements as the processor has high-speed counters
-      // (ProcessorModel::hsc_count); vm/ml_hsc.h runs them.
-      FileLayout& counters = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(FunctionFile::HSC)];
-      counters.present = proc_.hsc_count() > 0;
-      counters.type = FileType::Function;
-      counters.base = next;
-      counters.elements = static_cast<std::uint32_t>(proc_.hsc_count());
-      counters.words_per_element = static_cast<std::uint8_t>(hsc::kWords);
-      next += counters.words();
     }
     layout_.total_words = next;
     if (next > bc::kMaxWordIndex) error({}, "the data table is too large to address");

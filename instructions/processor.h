@@ -44,6 +44,19 @@ struct ProcessorModel {
   // MicroLogix 1100, 1200, 1400 and 1500: the controllers whose instruction set has ONS, the
   // two-operand OSR/OSF, the 0.001 s time base, L files and the function files (RTC, HSC, ...).
   bool is_micrologix_1100_class() const { return is_micrologix() && micrologix != MicroLogixModel::ML1000; }
+  // The HSC function file's elements (high-speed counters): 1 on the MicroLogix 1100 (its .RSS
+  // function-file record is one element of 18 words in every fixture), 1 on the 1200 and 2 on the
+  // 1500 (RAC's counter number, 1762-RM001C p. 5-27: HSC1 "MicroLogix 1500 only"), 6 on the 1400
+  // (its RSLogix export writes HSC0:0 to HSC0:5, 59-BSGS.SLC); 0 elsewhere (the MicroLogix 1000's
+  // HSC is the C5:0 counter, not simulated).
+  int hsc_count() const {
+    switch (micrologix) {
+      case MicroLogixModel::ML1100: case MicroLogixModel::ML1200: return 1;
+      case MicroLogixModel::ML1400: return 6;
+      case MicroLogixModel::ML1500LSP: case MicroLogixModel::ML1500LRP: return 2;
+      default: return 0;
+    }
+  }
   // L (32-bit long integer) files: MicroLogix 1100, 1200, 1400, 1500 (not the 1000, not SLC).
   bool has_long_files() const { return is_micrologix_1100_class(); }
   // The 0.001 s timer time base: MicroLogix 1100/1200/1400/1500 (the SLC and the MicroLogix

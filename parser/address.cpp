@@ -1,6 +1,7 @@
 #include "parser/address.h"
 
 #include <array>
+#include <span>
 
 namespace softslc {
 
@@ -109,7 +110,7 @@ constexpr std::array kPulseTrainSubElements{
     PulseTrainSubElement{"JC", pto::kBits, pto::kJogContinuousBit, true},
     PulseTrainSubElement{"JCS", pto::kBits, pto::kJogContinuousStatusBit, false},
 };
-// A named bit of a sub-element table (STI, PTO): sets `word` and `bit`.
+// A named bit of a sub-element table (STI, HSC, PTO): sets `word` and `bit`.
 template <typename Table>
 bool named_bit(const Table& table, std::string_view name, int& word, int& bit) {
   for (const auto& e : table)
@@ -134,6 +135,51 @@ int pulse_train_width(int id, const PulseTrainSubElement& e) {
   return e.word <= -4 || pulse_train_layout(id).long_frequencies ? 2 : 1;
 }
 
+// The HSC element's named words and bits (see hsc:: in address.h). `writable` as read on
+// 1762-RM001C pp. 5-10, 5-13, 5-23, 5-24 for LPI, LPR, UFI, OF, OVF, OMB; the others [U].
+constexpr std::array kHscSubElements{
+    FunctionSubElement{"PFN", hsc::kProgramFile, -1, false}, FunctionSubElement{"ER", hsc::kErrorCode, -1, false},
+    FunctionSubElement{"MOD", hsc::kMode, -1, false},        FunctionSubElement{"ACC", hsc::kAccumulator, -1, true},
+    FunctionSubElement{"HIP", hsc::kHighPreset, -1, true},   FunctionSubElement{"LOP", hsc::kLowPreset, -1, true},
+    FunctionSubElement{"OVF", hsc::kOverflow, -1, true},     FunctionSubElement{"UNF", hsc::kUnderflow, -1, true},
+    FunctionSubElement{"OMB", hsc::kOutputMask, -1, false},  FunctionSubElement{"HPO", hsc::kHighOutput, -1, true},
+    FunctionSubElement{"LPO", hsc::kLowOutput, -1, true},
+    FunctionSubElement{"UIX", hsc::kBits, hsc::kExecutingBit, false},
+    FunctionSubElement{"UIE", hsc::kBits, hsc::kEnableBit, true},
+    FunctionSubElement{"UIL", hsc::kBits, hsc::kLostBit, true},
+    FunctionSubElement{"UIP", hsc::kBits, hsc::kPendingBit, false},
+    FunctionSubElement{"FE", hsc::kBits, hsc::kFunctionEnabledBit, true},
+    FunctionSubElement{"AS", hsc::kBits, hsc::kAutoStartBit, false},
+    FunctionSubElement{"ED", hsc::kBits, hsc::kErrorBit, false},
+    FunctionSubElement{"SP", hsc::kBits, hsc::kSetParametersBit, true},
+    FunctionSubElement{"CE", hsc::kBits, hsc::kCountingEnabledBit, true},
+    FunctionSubElement{"LPI", hsc::kBits, hsc::kLowInterruptBit, true},
+    FunctionSubElement{"UFI", hsc::kBits, hsc::kUnderflowInterruptBit, true},
+    FunctionSubElement{"HPI", hsc::kBits, hsc::kHighInterruptBit, true},
+    FunctionSubElement{"OFI", hsc::kBits, hsc::kOverflowInterruptBit, true},
+    FunctionSubElement{"LPM", hsc::kStatus, hsc::kLowMaskBit, true},
+    FunctionSubElement{"HPM", hsc::kStatus, hsc::kHighMaskBit, true},
+    FunctionSubElement{"UFM", hsc::kStatus, hsc::kUnderflowMaskBit, true},
+    FunctionSubElement{"OFM", hsc::kStatus, hsc::kOverflowMaskBit, true},
+    FunctionSubElement{"LPR", hsc::kStatus, hsc::kLowReachedBit, false},
+    FunctionSubElement{"HPR", hsc::kStatus, hsc::kHighReachedBit, false},
+    FunctionSubElement{"UF", hsc::kStatus, hsc::kUnderflowBit, true},
+    FunctionSubElement{"OF", hsc::kStatus, hsc::kOverflowBit, true},
+    FunctionSubElement{"DIR", hsc::kStatus, hsc::kDirectionBit, false},
+    FunctionSubElement{"MD", hsc::kStatus, hsc::kModeDoneBit, true},
+    FunctionSubElement{"CD", hsc::kStatus, hsc::kCountDownBit, false},
+    FunctionSubElement{"CU", hsc::kStatus, hsc::kCountUpBit, false},
+};
+
+bool is_hsc(int id) { return id == static_cast<int>(FunctionFile::HSC); }
+
+// The table of named sub-elements of the STI or the HSC; empty for the others.
+std::span<const FunctionSubElement> sub_elements(int id) {
+  if (is_sti(id)) return kStiSubElements;
+  if (is_hsc(id)) return kHscSubElements;
+  return {};
+}
+
 }  // namespace
 
 std::string_view function_file_name(int id) {
@@ -146,19 +192,20 @@ int function_file_id(std::string_view name) {
   return -1;
 }
 
-bool function_file_simulated(int id) { return is_rtc(id) || is_sti(id) || is_pulse_train(id); }
+bool function_file_simulated(int id) { return is_rtc(id) || is_sti(id) || is_hsc(id) || is_pulse_train(id); }
 int function_file_elements(int id) {
   if (is_pulse_train(id)) return id == static_cast<int>(FunctionFile::PTOX) ? pto::kPtoxElements : pto::kPtoElements;
-  return is_rtc(id) || is_sti(id) ? 1 : 0;
+  return is_rtc(id) || is_sti(id) ? 1 : is_hsc(id) ? 6 : 0;
 }
 int function_file_words_per_element(int id) {
   if (is_pulse_train(id)) return pulse_train_layout(id).words;
-  return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : 0;
+  return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : is_hsc(id) ? hsc::kWords : 0;
 }
 
 bool is_pulse_train_file(int id) { return is_pulse_train(id); }
 
 bool function_word_is_long(int id, int word) {
+  if (is_hsc(id)) return hsc::is_long_word(word);
   if (!is_pulse_train(id)) return false;
   for (const auto& e : kPulseTrainSubElements)
     if (e.bit < 0 && pulse_train_word(id, e) == word) return pulse_train_width(id, e) == 2;
@@ -171,8 +218,8 @@ int function_word_number(int id, std::string_view name) {
       if (e.bit < 0 && e.name == name) return pulse_train_word(id, e);
     return -1;
   }
-  if (is_sti(id)) {
-    for (const auto& e : kStiSubElements)
+  if (is_sti(id) || is_hsc(id)) {
+    for (const auto& e : sub_elements(id))
       if (e.bit < 0 && e.name == name) return e.word;
     return -1;
   }
@@ -188,8 +235,8 @@ std::string_view function_word_name(int id, int word) {
       if (e.bit < 0 && pulse_train_word(id, e) == word) return e.name;
     return {};
   }
-  if (is_sti(id)) {
-    for (const auto& e : kStiSubElements)
+  if (is_sti(id) || is_hsc(id)) {
+    for (const auto& e : sub_elements(id))
       if (e.bit < 0 && e.word == word) return e.name;
     return {};
   }
@@ -199,7 +246,7 @@ std::string_view function_word_name(int id, int word) {
 
 bool function_bit_number(int id, std::string_view name, int& word, int& bit) {
   if (is_pulse_train(id)) return named_bit(kPulseTrainSubElements, name, word, bit);
-  if (is_sti(id)) return named_bit(kStiSubElements, name, word, bit);
+  if (is_sti(id) || is_hsc(id)) return named_bit(sub_elements(id), name, word, bit);
   if (!is_rtc(id)) return false;
   for (const auto& b : kRtcBits)
     if (b.name == name) {
@@ -216,8 +263,8 @@ std::string_view function_bit_name(int id, int word, int bit) {
       if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
     return {};
   }
-  if (is_sti(id)) {
-    for (const auto& e : kStiSubElements)
+  if (is_sti(id) || is_hsc(id)) {
+    for (const auto& e : sub_elements(id))
       if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
     return {};
   }
@@ -241,9 +288,9 @@ bool function_sub_element_writable(int id, int word, int bit) {
     return any;  // bit 15 of the bit word is nobody's to write
   }
   // The RTC words are written by programs (CPW into RTC:0.YR, slc_adjust_clock.RSS).
-  if (!is_sti(id)) return true;
+  if (!is_sti(id) && !is_hsc(id)) return true;
   bool any = false;
-  for (const auto& e : kStiSubElements) {
+  for (const auto& e : sub_elements(id)) {
     if (e.word != word) continue;
     if (bit >= 0 && e.bit >= 0 && e.bit != bit) continue;
     any = true;
@@ -252,23 +299,24 @@ bool function_sub_element_writable(int id, int word, int bit) {
   return any;  // an unnamed bit of the bit word (7-15) is nobody's to write
 }
 
-std::string function_sub_element_names(int id) {
-  if (is_rtc(id)) return "words YR, MON, DAY, HR, MIN, SEC, DOW and bits DS, BL";
-  if (is_pulse_train(id)) {
-    std::string words, bits;
-    for (const auto& e : kPulseTrainSubElements) {
-      std::string& list = e.bit < 0 ? words : bits;
-      list += (list.empty() ? "" : ", ") + std::string(e.name);
-    }
-    return "words " + words + " and bits " + bits;
-  }
-  if (!is_sti(id)) return {};
+namespace {
+// "words PFN, ER, ... and bits UIX, ..." of a sub-element table.
+template <typename Table>
+std::string listed_names(const Table& table) {
   std::string words, bits;
-  for (const auto& e : kStiSubElements) {
+  for (const auto& e : table) {
     std::string& list = e.bit < 0 ? words : bits;
     list += (list.empty() ? "" : ", ") + std::string(e.name);
   }
   return "words " + words + " and bits " + bits;
+}
+}  // namespace
+
+std::string function_sub_element_names(int id) {
+  if (is_rtc(id)) return "words YR, MON, DAY, HR, MIN, SEC, DOW and bits DS, BL";
+  if (is_pulse_train(id)) return listed_names(kPulseTrainSubElements);
+  if (is_sti(id) || is_hsc(id)) return listed_names(sub_elements(id));
+  return {};
 }
 
 std::string_view file_letter(FileType t) {

@@ -19,6 +19,7 @@
 //                RTC9:0 (1762-RM001C ch. 3 "Function Files").
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -56,10 +57,10 @@ inline constexpr int kFunctionFileCount = 14;
 std::string_view function_file_name(int id);
 // The FunctionFile number of a name ("RTC" -> 0), or -1.
 int function_file_id(std::string_view name);
-// Whether softslc simulates the function file (has its layout and behaviour): RTC and STI.
+// Whether softslc simulates the function file (has its layout and behaviour): RTC, STI, HSC, PTO/PTOX.
 bool function_file_simulated(int id);
 // Elements and words per element of a simulated function file (RTC: 1 element of 8 words, STI: 1
-// of 4).
+// of 4, HSC: up to 6 of 18; how many HSCs a processor has is ProcessorModel::hsc_count()).
 int function_file_elements(int id);
 int function_file_words_per_element(int id);
 // Named sub-elements of a function file element: word number, or -1 when unknown.
@@ -139,7 +140,45 @@ inline constexpr int kValuesPerElement = 9;
 }  // namespace pto
 // Whether `id` is PTO or PTOX.
 bool is_pulse_train_file(int id);
-// Whether word `word` of function file `id` begins a 32-bit sub-element (PTO:0.TOP, ...).
+// The high-speed counter function file HSC:0.. (1762-RM001C ch. 5, 1763-RM001C and 1766-RM001A
+// "Using the High-Speed Counter"). Each element is 18 words in the order RSLogix writes it in a
+// library export (`DATA HSC0:0`: five words, five long words, three words; 59-BSGS.SLC) and stores
+// it in a project's DATA FILES stream (type 0x11; docs/micrologix-function-files-sources.md
+// section 6): PFN, ER, two bit words, MOD; the long words ACC, HIP, LOP, OVF, UNF (low word first,
+// as the .RSS stores 30 as 001E 0000); OMB, HPO, LPO. Which word is which name is inferred from the
+// defaults and TVZ_1100_REV02.RSS (PFN 11 = its HSC0 file, HIP 30 = its N17:11), and the bit
+// positions are softslc's decision [U] that fits every saved project (docs/semantics.md "The HSC
+// function file"). Access: LPR, OMB read only and LPI, UFI, OF, OVF read/write as read on
+// 1762-RM001C pp. 5-10, 5-13, 5-23, 5-24; the rest [U].
+namespace hsc {
+inline constexpr int kProgramFile = 0, kErrorCode = 1, kBits = 2, kStatus = 3, kMode = 4;
+inline constexpr int kAccumulator = 5, kHighPreset = 7, kLowPreset = 9, kOverflow = 11, kUnderflow = 13;
+inline constexpr int kOutputMask = 15, kHighOutput = 16, kLowOutput = 17;
+inline constexpr int kWords = 18;
+// Word 2 (kBits).
+inline constexpr int kExecutingBit = 0, kEnableBit = 1, kLostBit = 2, kPendingBit = 3, kFunctionEnabledBit = 4,
+                     kAutoStartBit = 5, kErrorBit = 6, kSetParametersBit = 7, kCountingEnabledBit = 8,
+                     kLowInterruptBit = 9, kUnderflowInterruptBit = 10, kHighInterruptBit = 11,
+                     kOverflowInterruptBit = 12;
+// Word 3 (kStatus).
+inline constexpr int kLowMaskBit = 0, kHighMaskBit = 1, kUnderflowMaskBit = 2, kOverflowMaskBit = 3,
+                     kLowReachedBit = 4, kHighReachedBit = 5, kUnderflowBit = 6, kOverflowBit = 7,
+                     kDirectionBit = 12, kModeDoneBit = 13, kCountDownBit = 14, kCountUpBit = 15;
+// RSLogix's defaults for an unconfigured counter (59-BSGS.SLC, every .RSS fixture but TVZ's).
+inline constexpr std::uint16_t kDefaultBits = 0x0002, kDefaultStatus = 0x000F;
+// An element as RSLogix's export writes it: 13 values (5 words, 5 long words, 3 words).
+inline constexpr std::size_t kExportValues = 13;
+// Whether export value `k` (0-12) of an element is a long word, and the word it starts at.
+inline constexpr bool export_value_is_long(std::size_t k) { return k >= 5 && k < 10; }
+inline constexpr int export_value_word(std::size_t k) {
+  return k < 5 ? static_cast<int>(k) : k < 10 ? 5 + 2 * static_cast<int>(k - 5) : 15 + static_cast<int>(k - 10);
+}
+// Whether word `word` of an element starts one of the five long words.
+inline constexpr bool is_long_word(int word) {
+  return word == kAccumulator || word == kHighPreset || word == kLowPreset || word == kOverflow || word == kUnderflow;
+}
+}  // namespace hsc
+// Whether word `word` of function file `id` begins a 32-bit long word (PTO:0.TOP, HSC:0.ACC ...).
 bool function_word_is_long(int id, int word);
 
 // The letter(s) of a file type as written in addresses: "O", "I", "S", "B", ..., "ST", "M0".

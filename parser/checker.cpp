@@ -302,11 +302,16 @@ class Checker {
       return;
     }
     if (!function_file_simulated(a.file)) {
-      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC, STI and PTO/PTOX are");
+      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC, STI, HSC and PTO/PTOX are");
       return;
     }
     if (is_pulse_train_file(a.file) && !check_pulse_train_name(a.file, pos)) return;
-    if (a.element >= function_file_elements(a.file))
+    if (a.file == static_cast<int>(FunctionFile::HSC)) {
+      if (a.element >= proc.hsc_count())
+        error(pos, to_string(a) + ": the " + proc.display_name + " has " + std::to_string(proc.hsc_count()) +
+                       " high-speed counter(s), HSC:0" + (proc.hsc_count() > 1 ? " to HSC:" + std::to_string(proc.hsc_count() - 1) : "") +
+                       " (docs/semantics.md \"The HSC function file\")");
+    } else if (a.element >= function_file_elements(a.file))
       error(pos, to_string(a) + ": " + name + (function_file_elements(a.file) == 1
                                                    ? " has element 0 only"
                                                    : " has elements 0-" + std::to_string(function_file_elements(a.file) - 1)));
@@ -333,13 +338,16 @@ class Checker {
   void check_function_file_write(const Operand& op, const OperandSpec& os, const std::string& where) {
     const Address& a = op.address;
     if (is_pulse_train_file(a.file)) return check_pulse_train_write(op, os, where);
-    if (a.file != static_cast<int>(FunctionFile::STI)) return;
+    const bool hsc = a.file == static_cast<int>(FunctionFile::HSC);
+    if (a.file != static_cast<int>(FunctionFile::STI) && !hsc) return;
+    const std::string name(function_file_name(a.file));
     if (os.kind == OperandKind::File)
-      return error(op.pos, where + ": the STI function file is written one sub-element at a time (MOV, OTL, "
+      return error(op.pos, where + ": the " + name + " function file is written one sub-element at a time (MOV, OTL, "
                                    "...); a file instruction would also write its read-only words");
     if (a.word >= 0 && !function_sub_element_writable(a.file, a.word, a.bit))
-      error(op.pos, where + ": " + to_string(a) + " is read only to the user program (1763-RM001C pp. 270-272; "
-                                                 "docs/semantics.md \"MicroLogix\")");
+      error(op.pos, where + ": " + to_string(a) + " is read only to the user program (" +
+                        (hsc ? "1762-RM001C ch. 5; docs/semantics.md \"The HSC function file\")"
+                             : "1763-RM001C pp. 270-272; docs/semantics.md \"MicroLogix\")"));
   }
 
   // PTO:0/DN, .OPP, .OUT ... are the PTO sub-system's (read only); OF, TOP, ADP, JF, RP, EH, CS, JP, JC
@@ -621,6 +629,16 @@ class Checker {
     if (op.is_address()) check_address(op.address, op.pos, os.kind, os.mfile);
   }
 
+  // HSL and RAC name their counter as RSLogix shows it, HSC0 to HSC5 (1762-RM001C p. 5-27: "Counter
+  // HSC0"), or by its number: the name is read as the number, its spelling kept for the listing.
+  static void name_hsc_counter(Operand& op) {
+    if (op.kind != Operand::Kind::Symbol || op.symbol.size() != 4 || op.symbol.compare(0, 3, "HSC") != 0 ||
+        op.symbol[3] < '0' || op.symbol[3] > '9')
+      return;
+    op.kind = Operand::Kind::Integer;
+    op.integer = op.symbol[3] - '0';
+  }
+
   void check_instruction(Instruction& in, bool first_in_rung, int file_number, int rung_index) {
     const auto& s = spec(in.opcode);
     auto& proc = program_.processor;
@@ -642,7 +660,14 @@ class Checker {
                         std::to_string(in.operands.size()));
       return;
     }
+    if (in.opcode == Opcode::HSL || in.opcode == Opcode::RAC) name_hsc_counter(in.operands[0]);
     for (std::size_t i = 0; i < in.operands.size(); ++i) check_operand(in, in.operands[i], s.operands[i]);
+    if ((in.opcode == Opcode::HSL || in.opcode == Opcode::RAC) && in.operands[0].kind == Operand::Kind::Integer &&
+        in.operands[0].integer >= 0 && in.operands[0].integer < 6 && in.operands[0].integer >= proc.hsc_count() &&
+        proc.supports(s.requires_))
+      error(in.operands[0].pos, mnemonic_of(in) + " counter " + in.operands[0].spelling + ": the " + proc.display_name +
+                                    " has " + std::to_string(proc.hsc_count()) + " high-speed counter(s) (1762-RM001C p. 5-27; "
+                                    "docs/semantics.md \"The HSC function file\")");
     if (s.role == Role::Leading && !first_in_rung)
       error(in.pos, mnemonic_of(in) + " must be the first instruction of its rung");
     if (in.opcode == Opcode::SBR && (file_number < 3 || rung_index != 0))
@@ -1204,6 +1229,7 @@ class Checker {
       return error(d.pos, "function file data (" + d.file_name + ") belongs to a MicroLogix 1100, 1200, 1400 or "
                           "1500; this program's processor is " + program_.processor.display_name);
     if (is_pulse_train_file(d.file)) return check_pulse_train_data(d);
+    if (d.file == static_cast<int>(FunctionFile::HSC)) return check_hsc_data(d);
     if (d.start_element != 0 || d.words.size() != static_cast<std::size_t>(sti::kWords))
       return error(d.pos, "DATA " + d.file_name + ": the STI function file has one element of four words, "
                           "PFN ER bits SPM, as RSLogix exports it (for example 3 0 0X0032 1000)");
@@ -1237,6 +1263,56 @@ class Checker {
         return error(d.pos, "value " + std::to_string(d.words[i]) + " does not fit " + name + " " +
                                 (is_long ? "long word" : "word") + " (value " + std::to_string(k + 1) + " of element " +
                                 std::to_string(i / pto::kValuesPerElement) + ")");
+    }
+  }
+
+  // DATA HSC0:0: each element's 13 values as RSLogix exports them (hsc:: in parser/address.h), one
+  // element per high-speed counter of the processor. The HSC sub-system refuses a configuration whose
+  // OVF is below HIP (1762-RM001C p. 5-23 says "greater than", but RSLogix's own default has both at
+  // 2147483647, so equal is accepted) or whose UNF is above LOP (1766-RM001A p. 127), and
+  // softslc runs mode 0 only (docs/semantics.md "The HSC function file"): both are found here.
+  void check_hsc_data(const DataBlock& d) {
+    const int count = program_.processor.hsc_count();
+    if (d.start_element != 0 || d.words.empty() || d.words.size() % hsc::kExportValues != 0)
+      return error(d.pos, "DATA " + d.file_name + ": each HSC element is 13 values as RSLogix exports it: PFN ER bits "
+                          "bits MOD, then ACC HIP LOP OVF UNF, then OMB HPO LPO");
+    std::size_t elements = d.words.size() / hsc::kExportValues;
+    if (elements > static_cast<std::size_t>(count)) {
+      // A program moved to a processor with fewer counters (the MicroLogix 1400's six to an 1100's
+      // one): counters left as RSLogix created them are dropped with a warning, configured ones refused.
+      static constexpr std::array<std::int64_t, hsc::kExportValues> kDefault{
+          0, 0, hsc::kDefaultBits, hsc::kDefaultStatus, 0, 0, INT32_MAX, INT32_MIN, INT32_MAX, INT32_MIN, 0, 0, 0};
+      for (std::size_t e = static_cast<std::size_t>(count); e < elements; ++e)
+        for (std::size_t k = 0; k < hsc::kExportValues; ++k)
+          if (d.words[e * hsc::kExportValues + k] != kDefault[k])
+            return error(d.pos, "DATA " + d.file_name + " configures HSC:" + std::to_string(e) + "; the " +
+                                    program_.processor.display_name + " has " + std::to_string(count) + " high-speed counter(s)");
+      warning(d.pos, "DATA " + d.file_name + " gives " + std::to_string(elements) + " HSC elements; the " +
+                         program_.processor.display_name + " has " + std::to_string(count) +
+                         ": the others hold RSLogix's defaults and are dropped");
+      elements = static_cast<std::size_t>(count);
+    }
+    for (std::size_t e = 0; e < elements; ++e) {
+      const auto v = [&](std::size_t k) { return d.words[e * hsc::kExportValues + k]; };
+      const std::string at = "HSC:" + std::to_string(e);
+      for (std::size_t k = 0; k < hsc::kExportValues; ++k)
+        if (!hsc::export_value_is_long(k) && (v(k) < -32768 || v(k) > 65535))
+          return error(d.pos, "value " + std::to_string(v(k)) + " does not fit a 16-bit word");
+      const int pfn = static_cast<int>(static_cast<std::uint16_t>(v(hsc::kProgramFile)));
+      if (pfn != 0 && (pfn < 3 || pfn > 255 || !program_.find_file(pfn)))
+        error(d.pos, at + ".PFN " + std::to_string(pfn) + " is not a subroutine file of this program (3-255, no LADDER " +
+                         std::to_string(pfn) + ")");
+      if (const auto mode = v(hsc::kMode); mode != 0)
+        error(d.pos, at + ".MOD " + std::to_string(mode) + ": softslc simulates HSC mode 0 (up counter) only; the "
+                          "description of mode " + std::to_string(mode) + " (1762-RM001C p. 5-16) was not found, so it "
+                          "is not guessed (docs/semantics.md \"The HSC function file\")");
+      const auto hip = v(6), lop = v(7), ovf = v(8), unf = v(9);
+      if (ovf < hip)
+        error(d.pos, at + ": OVF " + std::to_string(ovf) + " must not be less than HIP " + std::to_string(hip) +
+                         " or the HSC sub-system gives an error (1762-RM001C p. 5-23; equal is RSLogix's own default)");
+      if (unf > lop)
+        error(d.pos, at + ": UNF " + std::to_string(unf) + " must be less than or equal to LOP " + std::to_string(lop) +
+                         " or the HSC sub-system gives an error (1766-RM001A p. 127)");
     }
   }
 
@@ -1338,7 +1414,7 @@ std::span<const std::string_view> real_mnemonics_without_rows() {
   // reaches unknown_instruction_message).
   static constexpr std::string_view kReal[] = {
       // MicroLogix only: high-speed counter and outputs, real-time clock adjust, data logging, LCD.
-      "DLG", "GCD", "HSC", "HSD", "HSE", "HSL", "LCD", "PWM", "RAC", "RPC"};
+      "DLG", "GCD", "HSC", "HSD", "HSE", "LCD", "PWM", "RPC"};
   return kReal;
 }
 

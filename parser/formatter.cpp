@@ -27,6 +27,8 @@ std::string format_operand(const Operand& op) {
       const auto& sp = op.spelling;
       bool hex = sp.find("0x") != std::string::npos || sp.find("0X") != std::string::npos ||
                  (!sp.empty() && (sp.back() == 'h' || sp.back() == 'H'));
+      // HSL/RAC's counter written as RSLogix shows it (HSC0): the checker reads it as its number.
+      if (sp.size() == 4 && sp.compare(0, 3, "HSC") == 0 && sp[3] - '0' == op.integer) return sp;
       if (hex && op.integer >= 0) {
         char buf[32];
         std::snprintf(buf, sizeof buf, "0x%04llX", static_cast<unsigned long long>(op.integer));
@@ -71,6 +73,24 @@ std::string file_prefix(const DataBlock& d) {
   return s;
 }
 
+// The HSC: each element on three rows as RSLogix exports it (59-BSGS.SLC): PFN ER bits bits MOD;
+// the long words ACC HIP LOP OVF UNF; OMB HPO LPO (hsc::kExportValues values an element).
+void format_hsc_data(const DataBlock& d, std::string& out) {
+  for (std::size_t i = 0; i + hsc::kExportValues <= d.words.size(); i += hsc::kExportValues) {
+    const int element = d.start_element + static_cast<int>(i / hsc::kExportValues);
+    out += "% " + d.file_name.substr(0, d.file_name.find(':')) + ":" + std::to_string(element) + " %\n";
+    const auto v = [&](std::size_t k) { return d.words[i + k]; };
+    out += pad_left(std::to_string(static_cast<std::uint16_t>(v(0))), 6) + " " +
+           pad_left(std::to_string(static_cast<std::uint16_t>(v(1))), 6) + " " + hex_word(v(2)) + " " + hex_word(v(3)) + " " +
+           pad_left(std::to_string(static_cast<std::uint16_t>(v(4))), 6) + "\n";
+    for (std::size_t k = 5; k < 10; ++k) out += " " + pad_left(std::to_string(v(k)), 12);
+    out += "\n";
+    for (std::size_t k = 10; k < 13; ++k) out += (k > 10 ? " " : "") + pad_left(std::to_string(static_cast<std::uint16_t>(v(k))), 6);
+    out += "\n";
+  }
+  out += "\n";
+}
+
 void format_data(const DataBlock& d, std::string& out) {
   out += "DATA " + d.file_name + " \n";
   if (!d.type) {
@@ -90,6 +110,7 @@ void format_data(const DataBlock& d, std::string& out) {
     out += "\n";
     return;
   }
+  if (is_function_file(t) && d.file == static_cast<int>(FunctionFile::HSC)) return format_hsc_data(d, out);
   if (is_function_file(t)) {
     // The STI: one row of PFN ER bits SPM as RSLogix exports it (SPM is 0-65,535).
     out += "% .PFN    .ER  bits   .SPM  %\n";

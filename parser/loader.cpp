@@ -868,9 +868,11 @@ template <> struct action<data_header> {
     // The STI function file's block gives its configuration (docs/program-format.md); the other
     // function files' blocks are kept as written.
     const bool sti = type && is_function_file(*type) && function_file_id(letters) == static_cast<int>(FunctionFile::STI);
-    // So does a pulse train output file's (DATA PTO0:0 / PTOX0:0, as RSLogix exports PTOX0:0).
+    // So does a pulse train output file's (DATA PTO0:0 / PTOX0:0, as RSLogix exports PTOX0:0) and the
+    // HSC function file's, in RSLogix's export form (DATA HSC0:0, 13 values an element).
     const bool pulse_train = type && is_function_file(*type) && is_pulse_train_file(function_file_id(letters));
-    s.data_opaque = !type || is_mfile(*type) || (is_function_file(*type) && !sti && !pulse_train);
+    const bool hsc = type && is_function_file(*type) && function_file_id(letters) == static_cast<int>(FunctionFile::HSC);
+    s.data_opaque = !type || is_mfile(*type) || (is_function_file(*type) && !sti && !pulse_train && !hsc);
     if (!s.data_opaque) {
       s.data.type = type;
       if (pulse_train) {
@@ -882,6 +884,10 @@ template <> struct action<data_header> {
         // RSLogix exports it as STI0:0; softslc's addresses write STI:0. Either names the one element.
         if (!number.empty() && number != "0")
           s.diags.error(s.data.pos.line, s.data.pos.column, "the STI function file has no file number: DATA STI:0 or, as RSLogix exports it, DATA STI0:0");
+        s.data.file = function_file_id(letters);
+      } else if (hsc) {
+        if (!number.empty() && number != "0")
+          s.diags.error(s.data.pos.line, s.data.pos.column, "the HSC function file has no file number: DATA HSC:0 or, as RSLogix exports it, DATA HSC0:0");
         s.data.file = function_file_id(letters);
       } else if (fixed >= 0) {
         if (!number.empty() && std::stoi(number.substr(0, 9)) != fixed) s.data_opaque = true;
@@ -916,9 +922,17 @@ template <> struct action<data_number> {
       s.diags.error(p.line, p.column, file + " holds integers, not '" + in.string() + "'");
       return;
     }
+    if (is_function_file(*s.data.type) && s.data.file == static_cast<int>(FunctionFile::HSC) &&
+        hsc::export_value_is_long(s.data.words.size() % hsc::kExportValues)) {
+      // HSC:e.ACC, .HIP, .LOP, .OVF, .UNF: 32-bit values.
+      if (v.integer < INT32_MIN || v.integer > INT32_MAX)
+        s.diags.error(p.line, p.column, "value " + in.string() + " does not fit the HSC's 32-bit long word");
+      s.data.words.push_back(v.integer);
+      return;
+    }
     // A 16-bit word is a bit pattern: 0XA200 and -24064 are the same word. Keep the signed form
-    // so a value written either way loads the same (fmt prints control words in hex).
-    // A pulse train file's block mixes words and long words (TOP ...): its values stay as written.
+    // so a value written either way loads the same (fmt prints control words in hex). A pulse
+    // train file's block mixes words and long words (TOP ...): its values stay as written.
     const bool mixed = is_function_file(*s.data.type) && is_pulse_train_file(s.data.file);
     if (s.data.type != FileType::Long && !mixed && v.integer > 32767 && v.integer <= 65535) v.integer -= 65536;
     s.data.words.push_back(v.integer);
@@ -1368,6 +1382,25 @@ LoadResult load_program_file(const std::filesystem::path& path) {
   return load_program_bytes(std::move(in.contents), path.string());
 }
 
+LoadResult load_converted_project(std::string text, const std::vector<rss::RungOrigin>& origins, std::string source_name) {
+  LoadResult r = load_program(std::move(text), std::move(source_name));
+  // Diagnostics point into the converted text; name the program file and rung as well, since
+  // the user knows the project by its rungs, not by the lines of a text they never saw.
+  std::map<std::uint32_t, const rss::RungOrigin*> origin_of_line;
+  for (const auto& o : origins) origin_of_line[o.line] = &o;
+  DiagnosticList named;
+  for (const auto& d : r.diagnostics.items()) {
+    std::string msg = d.message;
+    if (auto o = origin_of_line.find(d.line); o != origin_of_line.end())
+      msg = "program file " + std::to_string(o->second->file) + " rung " + std::to_string(o->second->rung) + ": " + msg;
+    if (d.severity == Severity::Error) named.error(d.line, d.column, msg);
+    else if (d.severity == Severity::Warning) named.warning(d.line, d.column, msg);
+    else named.note(d.line, d.column, msg);
+  }
+  r.diagnostics = std::move(named);
+  return r;
+}
+
 LoadResult load_program_bytes(std::string bytes, std::string source_name) {
   if (rss::looks_like_ole2(bytes)) {
     rss::ReadResult rr = rss::read_project(bytes, source_name);
@@ -1377,22 +1410,7 @@ LoadResult load_program_bytes(std::string bytes, std::string source_name) {
       r.diagnostics.error(0, 0, rr.error);
       return r;
     }
-    LoadResult r = load_program(std::move(*rr.text), std::move(source_name));
-    // Diagnostics point into the converted text; name the program file and rung as well, since
-    // the user knows the project by its rungs, not by the lines of a text they never saw.
-    std::map<std::uint32_t, const rss::RungOrigin*> origin_of_line;
-    for (const auto& o : rr.origins) origin_of_line[o.line] = &o;
-    DiagnosticList named;
-    for (const auto& d : r.diagnostics.items()) {
-      std::string msg = d.message;
-      if (auto o = origin_of_line.find(d.line); o != origin_of_line.end())
-        msg = "program file " + std::to_string(o->second->file) + " rung " + std::to_string(o->second->rung) + ": " + msg;
-      if (d.severity == Severity::Error) named.error(d.line, d.column, msg);
-      else if (d.severity == Severity::Warning) named.warning(d.line, d.column, msg);
-      else named.note(d.line, d.column, msg);
-    }
-    r.diagnostics = std::move(named);
-    return r;
+    return load_converted_project(std::move(*rr.text), rr.origins, std::move(source_name));
   }
   // Text (before the NUL test, which UTF-16 would fail): a UTF-8 byte-order mark is dropped, UTF-16 refused with what to do about it.
   if (std::string error = normalise_text_encoding(bytes); !error.empty()) {

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "parser/diagnostics.h"
 #include "parser/program.h"
@@ -36,6 +37,10 @@ LoadResult load_program(std::string text, std::string source_name);
 LoadResult load_program_file(const std::filesystem::path& path);
 // The same for a file's bytes already in memory (the test runner, the C++ API, the fuzzer).
 LoadResult load_program_bytes(std::string bytes, std::string source_name);
+namespace rss { struct RungOrigin; }
+// The export text a project file converted to (parser/rss), loaded with each diagnostic also
+// naming the program file and rung its line came from (`origins`).
+LoadResult load_converted_project(std::string text, const std::vector<rss::RungOrigin>& origins, std::string source_name);
 
 // Pasted rungs: rungs copied out of RSLogix as bare text (`SOR ... EOR`, one rung a line, no
 // START or LADDER statement). `is_pasted_rungs` tells such a text; `load_pasted_rungs` loads it

@@ -363,13 +363,17 @@ class Compiler {
     // interpreter runs the selectable timed interrupt from it (vm/interrupts.cpp).
     // The pulse train output file follows: PTO on the 1100, 1200 and 1500, PTOX on the 1400 (vm/ml_pto.h).
     if (proc_.is_micrologix_1100_class()) {
+      // So does the HSC function file, with as many elements as the processor has high-speed
+      // counters (ProcessorModel::hsc_count; vm/ml_hsc.h runs them).
       const FunctionFile pulse_train = proc_.micrologix == MicroLogixModel::ML1400 ? FunctionFile::PTOX : FunctionFile::PTO;
-      for (const FunctionFile kind : {FunctionFile::RTC, FunctionFile::STI, pulse_train}) {
+      for (const FunctionFile kind : {FunctionFile::RTC, FunctionFile::HSC, FunctionFile::STI, pulse_train}) {
+        const bool counters = kind == FunctionFile::HSC;
+        if (counters && proc_.hsc_count() == 0) continue;
         FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(kind)];
         f.present = true;
         f.type = FileType::Function;
         f.base = next;
-        f.elements = static_cast<std::uint32_t>(function_file_elements(static_cast<int>(kind)));
+        f.elements = static_cast<std::uint32_t>(counters ? proc_.hsc_count() : function_file_elements(static_cast<int>(kind)));
         f.words_per_element = static_cast<std::uint8_t>(function_file_words_per_element(static_cast<int>(kind)));
         next += f.words();
       }
@@ -425,6 +429,22 @@ class Compiler {
     for (const FunctionFile pulse_train : {FunctionFile::PTO, FunctionFile::PTOX})
       if (const FileLayout& f = layout_.function_file(pulse_train); f.present)
         for (std::uint32_t e = 0; e < f.elements; ++e) set_init(f.base + e * f.words_per_element + pto::kOutput, 0xFFFF);
+    // Each HSC as RSLogix creates it: the two bit words 0X0002 0X000F, HIP and OVF 2147483647, LOP
+    // and UNF -2147483648 (59-BSGS.SLC and every .RSS fixture without an HSC; docs/semantics.md).
+    if (const FileLayout& counters = layout_.function_file(FunctionFile::HSC); counters.present)
+      for (std::uint32_t e = 0; e < counters.elements; ++e) {
+        const std::uint32_t base = counters.base + e * hsc::kWords;
+        set_init(base + hsc::kBits, hsc::kDefaultBits);
+        set_init(base + hsc::kStatus, hsc::kDefaultStatus);
+        for (int w : {hsc::kHighPreset, hsc::kOverflow}) {
+          set_init(base + static_cast<std::uint32_t>(w), 0xFFFF);
+          set_init(base + static_cast<std::uint32_t>(w) + 1, 0x7FFF);
+        }
+        for (int w : {hsc::kLowPreset, hsc::kUnderflow}) {
+          set_init(base + static_cast<std::uint32_t>(w), 0x0000);
+          set_init(base + static_cast<std::uint32_t>(w) + 1, 0x8000);
+        }
+      }
     for (const auto& d : prog_.data) {
       if (!d.type || is_mfile(*d.type)) continue;
       const FileType t = *d.type;
@@ -434,8 +454,23 @@ class Compiler {
       }
       if (is_function_file(t)) {
         const FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(d.file)];
-        for (std::size_t i = 0; f.present && i < d.words.size() && i < f.words(); ++i)
-          set_init(f.base + static_cast<std::uint32_t>(i), static_cast<std::uint16_t>(d.words[i]));
+        if (d.file == static_cast<int>(FunctionFile::HSC)) {
+          // RSLogix's export form: 13 values an element, five of them 32-bit (low word first).
+          for (std::size_t i = 0; f.present && i < d.words.size(); ++i) {
+            const std::size_t e = static_cast<std::size_t>(std::max(d.start_element, 0)) + i / hsc::kExportValues;
+            if (e >= f.elements) break;
+            const std::size_t k = i % hsc::kExportValues;
+            const std::uint32_t at = f.base + static_cast<std::uint32_t>(e * hsc::kWords) +
+                                     static_cast<std::uint32_t>(hsc::export_value_word(k));
+            const auto bits = static_cast<std::uint32_t>(d.words[i]);
+            set_init(at, static_cast<std::uint16_t>(bits));
+            if (hsc::export_value_is_long(k)) set_init(at + 1, static_cast<std::uint16_t>(bits >> 16));
+          }
+          continue;
+        }
+        const std::size_t first = static_cast<std::size_t>(std::max(d.start_element, 0)) * f.words_per_element;
+        for (std::size_t i = 0; f.present && i < d.words.size() && first + i < f.words(); ++i)
+          set_init(f.base + static_cast<std::uint32_t>(first + i), static_cast<std::uint16_t>(d.words[i]));
         continue;
       }
       if (is_io(t)) {

@@ -51,7 +51,8 @@ std::optional<Location> DataTableLayout::locate(const Address& a, std::string* e
     loc.file = static_cast<int>(index);
     loc.word = f.base + static_cast<std::uint32_t>(a.element) * f.words_per_element + static_cast<std::uint32_t>(word);
     loc.bit = a.bit;
-    // PTO:0.TOP and the other 32-bit sub-elements read and write as L words do (low word first).
+    // PTO:0.TOP and HSC:0.ACC/.HIP/.LOP/.OVF/.UNF (1762-RM001C p. 5-23) are 32-bit: they read and
+    // write as L words do (low word first).
     loc.vtype = a.bit < 0 && function_word_is_long(a.file, word) ? ValueType::Int32 : ValueType::Int16;
     return loc;
   }

@@ -109,6 +109,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
   }
   if (dii_supported_) s46_ = L.status_word(status::kDiiFile);
   locate_sti_bits();
+  hsc_.attach(L.function_file(FunctionFile::HSC), L.files[0].base);
   fused_ = std::make_shared<const FusedProgram>(program, cost_, per_word_.data());
 }
 
@@ -2272,6 +2273,10 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       case Op::PTO:
       case Op::PTOX:
         pulse_trains_.scan(static_cast<int>(bc::imm_of(o[0])), rung, scan_start_ + elapsed, w_);
+        break;
+      case Op::HSL:
+      case Op::RAC:
+        if (rung) high_speed_counter(op, o, elapsed);
         break;
 
       // ---- I/O interrupts and diagnostics (issue 15) ----

@@ -51,6 +51,7 @@
 #include "vm/data_table.h"
 #include "vm/faults.h"
 #include "vm/ml_pto.h"
+#include "vm/ml_hsc.h"
 #include "vm/module.h"
 #include "vm/scan_time_model.h"
 
@@ -184,6 +185,9 @@ class Interpreter {
   const DiiState& dii() const { return dii_; }
   std::uint64_t isr_runs() const { return isr_runs_; }
   const StiTimer& sti() const { return sti_; }
+  // The MicroLogix high-speed counters (vm/ml_hsc.h); no counters on a processor without them.
+  MicroLogixHsc& hsc() { return hsc_; }
+  const MicroLogixHsc& hsc() const { return hsc_; }
   // The fault configure_sti raised.
   const FaultInfo& last_fault() const { return fault_; }
 
@@ -307,6 +311,8 @@ class Interpreter {
   // The MicroLogix STS (time only): STI:0.SPM := time, TIE := 1, the timer restarts from now; time 0
   // stops the STI and clears TIE.
   SOFTSLC_HANDLER void function_file_sti_start(const std::uint32_t* o, Nanoseconds now_in_scan);
+  // HSL and RAC on the MicroLogix high-speed counters (vm/ml_hsc.h).
+  SOFTSLC_HANDLER void high_speed_counter(Op op, const std::uint32_t* o, Nanoseconds now_in_scan);
   // IID, IIE, RPI (RM 11-33, B-43) on S:25-S:28; FBC, DDT (RM 7-18 .. 7-22).
   SOFTSLC_HANDLER void io_interrupt_control(Op op, const std::uint32_t* o, Nanoseconds now_in_scan);
   SOFTSLC_HANDLER void bit_compare(Op op, const std::uint32_t* o, bool rung);
@@ -410,6 +416,7 @@ class Interpreter {
   bool in_fault_routine_ = false;
   bool sti_ms_units_ = false;      // S:2/10 latched on entry to Run (RM 11-13)
   StiTimer sti_;
+  MicroLogixHsc hsc_;
   // The STI's program view (locate_sti_bits): the word holding its pending, enabled and executing
   // bits, and on a MicroLogix the STI function file's first word (-1 on the SLC).
   std::uint32_t sti_bits_ = 0;

@@ -618,6 +618,20 @@ void Interpreter::function_file_sti_start(const std::uint32_t* o, Nanoseconds no
   update_limit(now_in_scan);
 }
 
+// HSL (counter, high preset, low preset, output high source, output low source) and RAC (counter,
+// source): vm/ml_hsc.h brings the counter up to now and loads it. A preset that breaks OVF >= HIP or
+// UNF <= LOP sets the counter's ED and loads nothing [U].
+void Interpreter::high_speed_counter(Op op, const std::uint32_t* o, Nanoseconds now_in_scan) {
+  const int counter = static_cast<int>(bc::imm_of(o[0]));
+  const std::int64_t now = scan_start_ + now_in_scan;
+  if (op == Op::RAC) {
+    hsc_.reset_accumulator(w_, counter, rd_int(o[1]), now);
+    return;
+  }
+  (void)hsc_.load(w_, counter, rd_int(o[1]), rd_int(o[2]), static_cast<std::uint16_t>(rd_int(o[3])),
+                  static_cast<std::uint16_t>(rd_int(o[4])), now);
+}
+
 bool Interpreter::user_fault_routine(Nanoseconds& elapsed) {
   if (in_fault_routine_ || suspended_) return false;
   const std::uint16_t code = fault_.code;

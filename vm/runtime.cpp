@@ -444,6 +444,12 @@ ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elap
   data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
   s4_tick_ = tick;
   advance_rtc(scan_start + elapsed);
+  // The MicroLogix high-speed counters: loaded on entry to an executing mode, then counted up to
+  // the start of each scan (vm/ml_hsc.h).
+  if (interp_->hsc().counters() > 0) {
+    if (first_pass_) interp_->hsc().enter_run(data_.words(), scan_start + elapsed);
+    interp_->hsc().advance(data_.words(), scan_start + elapsed);
+  }
   std::uint16_t s1 = data_.status(status::kMode);
   data_.set_status(status::kMode, static_cast<std::uint16_t>(first_pass_ ? (s1 | status::kFirstPass)
                                                                          : (s1 & ~status::kFirstPass)));
@@ -864,6 +870,7 @@ void Runtime::module_instruction(int slot, ModuleInstructionContext& ctx) {
 // ---- Field devices ------------------------------------------------------------------------------------------
 
 RuntimeStatus Runtime::inject(std::string_view device, std::string_view fault, std::vector<std::string> args) {
+  if (auto counter = hsc_input_name(device); counter >= 0) return inject_hsc_pulses(counter, fault, args);
   DeviceFault f{std::string(device), std::string(fault), std::move(args)};
   for (Module* m : modules_) {
     if (!m) continue;
@@ -887,7 +894,32 @@ RuntimeStatus Runtime::inject(std::string_view device, std::string_view fault, s
   return RuntimeStatus::failure("no simulated field device is named '" + f.device + "'");
 }
 
+// HSC0 .. HSC5: the pulse-train source wired to a MicroLogix high-speed counter's input (vm/ml_hsc.h);
+// -1 for any other name, or on a processor without that counter.
+int Runtime::hsc_input_name(std::string_view device) const {
+  if (device.size() != 4 || device.substr(0, 3) != "HSC" || device[3] < '0' || device[3] > '5') return -1;
+  const int counter = device[3] - '0';
+  return counter < interp_->hsc().counters() ? counter : -1;
+}
+
+// `device HSC0 pulses N`: N pulses a second on the counter's input from now (0 stops them).
+RuntimeStatus Runtime::inject_hsc_pulses(int counter, std::string_view change, const std::vector<std::string>& args) {
+  const std::string name = "device HSC" + std::to_string(counter);
+  if (change != "pulses" || args.size() != 1)
+    return RuntimeStatus::failure(name + ": the high-speed counter's input takes 'pulses N' (N pulses a second, 0 stops them)");
+  std::int64_t rate = 0;
+  const std::string& text = args[0];
+  const bool digits = !text.empty() && text.size() <= 9 && text.find_first_not_of("0123456789") == std::string::npos;
+  if (digits) rate = std::stoll(text);
+  if (!digits) return RuntimeStatus::failure(name + ": pulses takes a whole number of pulses a second, not '" + text + "'");
+  if (auto error = interp_->hsc().set_pulse_rate(counter, rate, clock_.now()); !error.empty())
+    return RuntimeStatus::failure(name + ": " + error);
+  return {};
+}
+
 std::optional<std::vector<std::int64_t>> Runtime::observe(std::string_view device, std::string_view what) const {
+  if (auto counter = hsc_input_name(device); counter >= 0 && what == "pulses")
+    return std::vector<std::int64_t>{interp_->hsc().pulses_delivered(counter, clock_.now())};
   for (const Module* m : modules_)
     if (m)
       if (auto v = m->observe(device, what)) return v;
@@ -909,6 +941,8 @@ std::vector<std::string> Runtime::devices() const {
       for (auto& n : m->device_names()) out.push_back(std::move(n));
   for (const auto& p : processes_) out.push_back(p->name());
   if (ascii_channel_) out.push_back(ascii_channel_->device().name());
+  // The inputs of the MicroLogix high-speed counters, which need no bench (vm/ml_hsc.h).
+  for (int c = 0; c < interp_->hsc().counters(); ++c) out.push_back("HSC" + std::to_string(c));
   return out;
 }
 

@@ -179,6 +179,9 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // An observable value of a named field device ("outputs", "btw data", ...); nullopt when no
   // module owns the device or it has no such value.
   std::optional<std::vector<std::int64_t>> observe(std::string_view device, std::string_view what) const;
+  // The built-in HSC0-HSC5 input devices of a MicroLogix (`device HSC0 pulses 1000`; vm/ml_hsc.h).
+  int hsc_input_name(std::string_view device) const;
+  RuntimeStatus inject_hsc_pulses(int counter, std::string_view change, const std::vector<std::string>& args);
   // Every named field device, in slot order.
   std::vector<std::string> devices() const;
 

@@ -18,6 +18,7 @@
 #include <stdexcept>
 
 #include "instructions/instruction_table.h"
+#include "parser/address.h"
 
 namespace softslc::rss {
 namespace {
@@ -686,6 +687,9 @@ enum DataType : std::uint16_t { DtOutput = 0, DtInput = 1, DtStatus = 2, DtBinar
 constexpr std::uint16_t kStiFunctionFile = 0x14;
 // The PTO's (MicroLogix 1100: two elements of 12 words; docs/micrologix-function-files-sources.md 6.3).
 constexpr std::uint16_t kPtoFunctionFile = 0x12;
+// The type code of the HSC function file's record: one element of 18 words per high-speed counter
+// (docs/micrologix-function-files-sources.md section 6.1).
+constexpr std::uint16_t kHscFunctionFile = 0x11;
 
 struct DataFileRecord {
   std::uint16_t type = 0;
@@ -849,6 +853,33 @@ void write_pto_function_file(const DataFileRecord& r, Archive& a, std::size_t at
   }
 }
 
+// The HSC record, written as RSLogix's export writes DATA HSC0:0 (59-BSGS.SLC): per element PFN ER
+// bits bits MOD, the long words ACC HIP LOP OVF UNF (stored low word first: TVZ_1100_REV02.RSS holds
+// HIP 30 as 001E 0000), then OMB HPO LPO (hsc:: in parser/address.h).
+void write_hsc_function_file(const DataFileRecord& r, Archive& a, std::size_t at, std::string& out) {
+  if (r.elements < 1 || r.elements > 6 || r.words_per_element != hsc::kWords)
+    a.fail("the HSC function file has " + std::to_string(r.elements) + " elements of " + std::to_string(r.words_per_element) +
+               " words (1 to 6 of 18 expected)",
+           at);
+  out += "\nDATA HSC0:0\n";
+  for (int e = 0; e < r.elements; ++e) {
+    const std::size_t base = static_cast<std::size_t>(e) * static_cast<std::size_t>(hsc::kWords);
+    const auto word = [&](std::size_t w) { return word_at(r.values, base + w); };
+    out += "% HSC0:" + std::to_string(e) + " %\n";
+    for (std::size_t k = 0; k < hsc::kExportValues; ++k) {
+      const auto w = static_cast<std::size_t>(hsc::export_value_word(k));
+      std::string v;
+      if (hsc::export_value_is_long(k))
+        v = std::to_string(static_cast<std::int32_t>(word(w) | static_cast<std::uint32_t>(word(w + 1)) << 16));
+      else if (w == hsc::kBits || w == hsc::kStatus)
+        v = hex_word(word(w));
+      else
+        v = std::to_string(word(w));
+      out += v + (k == 4 || k == 9 || k == 12 ? "\n" : " ");
+    }
+  }
+}
+
 void decode_data_files(std::string_view data, const ProcessorCode& processor, std::string& out) {
   Archive a(data, "DATA FILES");
   a.expect("CDataHolder");
@@ -873,6 +904,10 @@ void decode_data_files(std::string_view data, const ProcessorCode& processor, st
     a.expect("CDataFile");
     const std::size_t at = a.offset();
     DataFileRecord r = data_file_record(a);
+    if (r.type == kHscFunctionFile) {
+      write_hsc_function_file(r, a, at, out);
+      continue;
+    }
     if (r.type == kPtoFunctionFile) {
       write_pto_function_file(r, a, at, out);
       continue;

@@ -618,16 +618,16 @@ TEST(MicroLogixFunctionFiles, CheckerAcceptsRtcOnlyWhereItExistsAndNamesUnmodell
             std::string::npos);
   EXPECT_NE(load_errors("START Bul.1761\nLADDER 2\nSOR MOV RTC:0.SEC N7:0 EOR\n").find("function file RTC"),
             std::string::npos);
-  // HSC is recognised and named, not simulated yet.
-  EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR XIC HSC:0/0 OTE O:0/0 EOR\n")
-                .find("function file HSC (HSC:0/0) is not simulated by softslc yet"),
+  // EII is recognised and named, not simulated yet (HSC is: tests/micrologix/hsc_test.cpp).
+  EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR XIC EII:0/0 OTE O:0/0 EOR\n")
+                .find("function file EII (EII:0/0) is not simulated by softslc yet"),
             std::string::npos);
   EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR MOV RTC:1.SEC N7:0 EOR\n").find("RTC has element 0 only"),
             std::string::npos);
   // A function file's DATA block still loads, kept as opaque data with a warning naming it.
-  LoadResult r = load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 OTE O:0/0 EOR\nDATA HSC:0\n1 2 3\n", "t.slc");
+  LoadResult r = load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 OTE O:0/0 EOR\nDATA EII:0\n1 2 3\n", "t.slc");
   ASSERT_TRUE(r.ok()) << r.render_diagnostics();
-  EXPECT_NE(r.render_diagnostics().find("data file 'HSC:0'"), std::string::npos) << r.render_diagnostics();
+  EXPECT_NE(r.render_diagnostics().find("data file 'EII:0'"), std::string::npos) << r.render_diagnostics();
 }
 
 // Runs scans until RTC:0.SEC differs from `from` (at most 2 s), i.e. up to the next whole second.
@@ -948,8 +948,8 @@ const std::vector<RssFixture> kRssFixtures = {
     {"drbitboy-PLC_lowpass/training_two_setpoints_running_0.965.RSS", nullptr},
     // PTO:0 drives O:0/2 at PTO:0.OF = 2000 Hz (tests/micrologix/pto_test.cpp).
     {"drbitboy-PLC_reject_timing/20230719_MicroLogix_1100_driver_of_Micro8xx_2080-MOT-HSC.RSS", nullptr},
-    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02.RSS", "of function file HSC"},
-    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02_LatchmoorAnnotations.RSS", "of function file HSC"},
+    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02.RSS", nullptr},
+    {"drbitboy-PLC_reject_timing/TVZ_1100_REV02_LatchmoorAnnotations.RSS", nullptr},
     {"drbitboy-PLC_reject_timing/lecky_demo.RSS", nullptr},
     {"drbitboy-PLC_reject_timing/lecky_demo_tof.RSS", nullptr},
     // B103:10/[N7:0] with N7:0 up to 111 (MicroLogixIndirect.BitPointerPastFifteenRunsOnIntoTheNextWords).

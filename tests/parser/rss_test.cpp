@@ -259,22 +259,28 @@ TEST(RssReader, HeaderSectorCountsBeyondTheFileAreRefused) {
 
 // A known RSLogix mnemonic softslc lacks is named as not supported; a typo stays unknown.
 TEST(RssReader, InstructionsSoftslcLacksAreNamedNotSupported) {
-  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 HSL N7:0 EOR\n", "t.slc");
+  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 DLG N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("instruction HSL is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
+  EXPECT_NE(r.render_diagnostics().find("instruction DLG is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
   auto typo = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 QQQ N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(typo.ok());
   EXPECT_NE(typo.render_diagnostics().find("unknown instruction 'QQQ'"), std::string::npos) << typo.render_diagnostics();
 }
 
-// Diagnostics about a converted project name the program file and rung (TVZ_1100_REV02_LatchmoorAnnotations.pdf,
-// LAD 2 rung 0002 drives HSC:0/FE, a bit of the HSC function file softslc does not simulate yet).
+// Diagnostics about a converted project name the program file and rung. Every fixture now loads,
+// so the 2080-MOT-HSC driver's LAD 2 rung 1 (`XIC T4:0/DN PTO 0`) is given an instruction softslc
+// does not have (DLG, same length: the lines stay where they were) in its converted text.
 TEST(RssReader, DiagnosticsNameTheProgramFileAndRung) {
-  fs::path f = kFixtures / "drbitboy-PLC_reject_timing" / "TVZ_1100_REV02.RSS";
+  fs::path f = kFixtures / "drbitboy-PLC_reject_timing" / "20230719_MicroLogix_1100_driver_of_Micro8xx_2080-MOT-HSC.RSS";
   if (!fs::exists(f)) GTEST_SKIP() << "no fixture " << f;
-  auto r = softslc::load_program_file(f);
+  auto rr = read_project(slurp(f), f.filename().string());
+  ASSERT_TRUE(rr.text) << rr.error;
+  const auto at = rr.text->find("XIC T4:0/DN PTO 0 EOR");
+  ASSERT_NE(at, std::string::npos);
+  rr.text->replace(at + 12, 3, "DLG");
+  auto r = softslc::load_converted_project(std::move(*rr.text), rr.origins, f.filename().string());
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 2: unknown bit name 'FE' of function file HSC"), std::string::npos)
+  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 1: instruction DLG is not supported by softslc yet"), std::string::npos)
       << r.render_diagnostics();
 }
 

@@ -438,6 +438,8 @@ int width_of(const Address& a) {
   if (a.has_bit()) return 1;
   if (a.type == FileType::Float) return 0;
   if (a.type == FileType::Long) return 32;
+  // HSC:0.ACC, .HIP, .LOP, .OVF, .UNF (parser/address.h hsc::).
+  if (is_function_file(a.type) && function_word_is_long(a.file, a.word)) return 32;
   return 16;
 }
 

@@ -361,14 +361,17 @@ class Compiler {
     // "Real-time clock") and runs in virtual time (Runtime::advance_rtc).
     // The STI function file (1763-RM001C pp. 269-272) follows it on the same four controllers; the
     // interpreter runs the selectable timed interrupt from it (vm/interrupts.cpp).
-    // The pulse train output file follows: PTO on the 1100, 1200 and 1500, PTOX on the 1400 (vm/ml_pto.h).
+    // The pulse train output file too: PTO on the 1100, 1200 and 1500, PTOX on the 1400 (vm/ml_pto.h).
     if (proc_.is_micrologix_1100_class()) {
       // So does the HSC function file, with as many elements as the processor has high-speed
-      // counters (ProcessorModel::hsc_count; vm/ml_hsc.h runs them).
+      // counters (ProcessorModel::hsc_count; vm/ml_hsc.h runs them). In FunctionFile order, which
+      // DataTableLayout::scan_for_file relies on.
       const FunctionFile pulse_train = proc_.micrologix == MicroLogixModel::ML1400 ? FunctionFile::PTOX : FunctionFile::PTO;
-      for (const FunctionFile kind : {FunctionFile::RTC, FunctionFile::HSC, FunctionFile::STI, pulse_train}) {
+      for (const FunctionFile kind :
+           {FunctionFile::RTC, FunctionFile::HSC, FunctionFile::PTOX, FunctionFile::STI, FunctionFile::PTO}) {
         const bool counters = kind == FunctionFile::HSC;
         if (counters && proc_.hsc_count() == 0) continue;
+        if ((kind == FunctionFile::PTO || kind == FunctionFile::PTOX) && kind != pulse_train) continue;
         FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(kind)];
         f.present = true;
         f.type = FileType::Function;

@@ -90,13 +90,16 @@ TEST(Layout, IoImagesInSlotOrder) {
 
 // file_containing answers from a word -> file index the compiler builds; a layout without the
 // index scans the files. Both must name the same file (or none) for every word, including the
-// words past the table and, on a MicroLogix 1100, the RTC function file after the data files.
+// words past the table and, on the MicroLogix controllers, the function files after the data files.
 TEST(Layout, FileIndexAgreesWithTheScanForEveryWord) {
   const std::pair<std::string_view, std::string_view> programs[] = {
       {kHeader, "SOR MOV N10:25 N11:0 EOR\nSOR XIC B9:1/0 OTE B3/62 EOR\nSOR SWP #ST12:1.[N7:0] 5 EOR\n"
                 "SOR TON T15:2 1.0 10 0 EOR\nDATA ST12:0\n% ST12:0 % \"\"\n% ST12:1 % \"x\"\n"},
       {"START Bul.1763\n", "SOR MOV N10:25 N11:0 EOR\nSOR XIC B9:1/0 OTE B3/62 EOR\nSOR MOV F8:3 L12:1 EOR\n"
-                            "SOR TON T15:2 0.001 10 0 EOR\n"}};
+                            "SOR TON T15:2 0.001 10 0 EOR\n"},
+      // The 1400's function files RTC, HSC (six), PTOX, STI; the 1500's RTC, HSC (two), STI, PTO.
+      {"START Bul.1766\n", "SOR MOV N10:25 N11:0 EOR\nSOR MOV F8:3 L12:1 EOR\n"},
+      {"START Bul.1764\n", "SOR MOV N10:25 N11:0 EOR\nSOR MOV F8:3 L12:1 EOR\n"}};
   for (const auto& [header, body] : programs) {
     CompiledProgram p = compiled(body, header);
     const DataTableLayout& indexed = *p.layout;

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "parser/address.h"
+#include "function_file_test_util.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
 #include "tools/controller/controller.h"
@@ -43,23 +44,12 @@ std::string config(std::int64_t acc, std::int64_t hip, std::int64_t lop, std::in
 }
 
 TEST(MicroLogixHsc, SubElementsParseAndPrintByName) {
-  struct Case {
-    const char* text;
-    int word, bit;
-  };
-  for (const Case& c : {Case{"HSC:0.PFN", hsc::kProgramFile, -1}, Case{"HSC:0.MOD", hsc::kMode, -1},
-                        Case{"HSC:0.ACC", hsc::kAccumulator, -1}, Case{"HSC:0.HIP", hsc::kHighPreset, -1},
-                        Case{"HSC:0.OVF", hsc::kOverflow, -1}, Case{"HSC:0.OMB", hsc::kOutputMask, -1},
-                        Case{"HSC:0/FE", hsc::kBits, hsc::kFunctionEnabledBit}, Case{"HSC:0/SP", hsc::kBits, hsc::kSetParametersBit},
-                        Case{"HSC:0/LPI", hsc::kBits, hsc::kLowInterruptBit}, Case{"HSC:0/OF", hsc::kStatus, hsc::kOverflowBit},
-                        Case{"HSC:0/LPR", hsc::kStatus, hsc::kLowReachedBit}, Case{"HSC:0/MD", hsc::kStatus, hsc::kModeDoneBit}}) {
-    std::string err;
-    auto a = parse_address(c.text, &err);
-    ASSERT_TRUE(a.has_value()) << c.text << ": " << err;
-    EXPECT_EQ(a->word, c.word) << c.text;
-    EXPECT_EQ(a->bit, c.bit) << c.text;
-    EXPECT_EQ(to_string(*a), c.text);
-  }
+  test::expect_named_sub_elements({{"HSC:0.PFN", hsc::kProgramFile, -1}, {"HSC:0.MOD", hsc::kMode, -1},
+                                   {"HSC:0.ACC", hsc::kAccumulator, -1}, {"HSC:0.HIP", hsc::kHighPreset, -1},
+                                   {"HSC:0.OVF", hsc::kOverflow, -1}, {"HSC:0.OMB", hsc::kOutputMask, -1},
+                                   {"HSC:0/FE", hsc::kBits, hsc::kFunctionEnabledBit}, {"HSC:0/SP", hsc::kBits, hsc::kSetParametersBit},
+                                   {"HSC:0/LPI", hsc::kBits, hsc::kLowInterruptBit}, {"HSC:0/OF", hsc::kStatus, hsc::kOverflowBit},
+                                   {"HSC:0/LPR", hsc::kStatus, hsc::kLowReachedBit}, {"HSC:0/MD", hsc::kStatus, hsc::kModeDoneBit}});
   // ACC, HIP, LOP, OVF, UNF are 32-bit (1762-RM001C p. 5-23: OVF "long word (32-bit INT)").
   for (int w : {hsc::kAccumulator, hsc::kHighPreset, hsc::kLowPreset, hsc::kOverflow, hsc::kUnderflow})
     EXPECT_TRUE(function_word_is_long(static_cast<int>(FunctionFile::HSC), w)) << w;

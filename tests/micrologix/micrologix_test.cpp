@@ -22,6 +22,7 @@
 #include "parser/formatter.h"
 #include "parser/loader.h"
 #include "parser/address.h"
+#include "function_file_test_util.h"
 #include "tools/controller/controller.h"
 #include "vm/scantime.h"
 #include "vm/timing_profile.h"
@@ -713,22 +714,11 @@ std::string sti_program(const std::string& sti, const std::string& main_rungs = 
 }
 
 TEST(MicroLogixSti, SubElementsParseAndPrintByName) {
-  struct Case {
-    const char* text;
-    int word, bit;
-  };
-  for (const Case& c : {Case{"STI:0.PFN", sti::kProgramFile, -1}, Case{"STI:0.ER", sti::kErrorCode, -1},
-                        Case{"STI:0.SPM", sti::kSetPoint, -1}, Case{"STI:0/UIX", sti::kBits, sti::kExecutingBit},
-                        Case{"STI:0/UIE", sti::kBits, sti::kEnableBit}, Case{"STI:0/UIL", sti::kBits, sti::kLostBit},
-                        Case{"STI:0/UIP", sti::kBits, sti::kPendingBit}, Case{"STI:0/TIE", sti::kBits, sti::kTimedEnableBit},
-                        Case{"STI:0/AS", sti::kBits, sti::kAutoStartBit}, Case{"STI:0/ED", sti::kBits, sti::kErrorBit}}) {
-    std::string err;
-    auto a = parse_address(c.text, &err);
-    ASSERT_TRUE(a.has_value()) << c.text << ": " << err;
-    EXPECT_EQ(a->word, c.word) << c.text;
-    EXPECT_EQ(a->bit, c.bit) << c.text;
-    EXPECT_EQ(to_string(*a), c.text);
-  }
+  test::expect_named_sub_elements({{"STI:0.PFN", sti::kProgramFile, -1}, {"STI:0.ER", sti::kErrorCode, -1},
+                                   {"STI:0.SPM", sti::kSetPoint, -1}, {"STI:0/UIX", sti::kBits, sti::kExecutingBit},
+                                   {"STI:0/UIE", sti::kBits, sti::kEnableBit}, {"STI:0/UIL", sti::kBits, sti::kLostBit},
+                                   {"STI:0/UIP", sti::kBits, sti::kPendingBit}, {"STI:0/TIE", sti::kBits, sti::kTimedEnableBit},
+                                   {"STI:0/AS", sti::kBits, sti::kAutoStartBit}, {"STI:0/ED", sti::kBits, sti::kErrorBit}});
   std::string err;
   EXPECT_FALSE(parse_address("STI:0.SP", &err).has_value());
   EXPECT_NE(err.find("STI has words PFN, ER, SPM and bits UIX, UIE, UIL, UIP, TIE, AS, ED"), std::string::npos) << err;

@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "parser/address.h"
+#include "function_file_test_util.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
 #include "parser/rss/rss_reader.h"
@@ -41,22 +42,11 @@ std::string pto_program(const std::string& pto0, const std::string& start = "Bul
 }
 
 TEST(MicroLogixPto, SubElementsParseAndPrintByName) {
-  struct Case {
-    const char* text;
-    int word, bit;
-  };
-  for (const Case& c : {Case{"PTO:0.OUT", 0, -1}, Case{"PTO:0.ER", 2, -1}, Case{"PTO:0.OF", 3, -1}, Case{"PTO:0.OFS", 4, -1},
-                        Case{"PTO:0.JF", 5, -1}, Case{"PTO:0.TOP", 6, -1}, Case{"PTO:1.OPP", 8, -1}, Case{"PTO:0.ADP", 10, -1},
-                        Case{"PTO:0/DN", 1, 0}, Case{"PTO:0/RS", 1, 2}, Case{"PTO:0/IS", 1, 5}, Case{"PTO:0/ED", 1, 6},
-                        Case{"PTO:0/NS", 1, 7}, Case{"PTO:0/EH", 1, 8}, Case{"PTO:0/EN", 1, 9}, Case{"PTO:0/CS", 1, 10},
-                        Case{"PTOX:2.OF", 3, -1}, Case{"PTOX:0.TOP", 9, -1}, Case{"PTOX:0.ADP", 13, -1}}) {
-    SCOPED_TRACE(c.text);
-    std::string err;
-    const auto a = parse_address(c.text, &err);
-    ASSERT_TRUE(a.has_value()) << err;
-    EXPECT_EQ(std::pair(a->word, a->bit), std::pair(c.word, c.bit));
-    EXPECT_EQ(to_string(*a), c.text) << "prints by name";
-  }
+  test::expect_named_sub_elements({{"PTO:0.OUT", 0, -1}, {"PTO:0.ER", 2, -1}, {"PTO:0.OF", 3, -1}, {"PTO:0.OFS", 4, -1},
+                                   {"PTO:0.JF", 5, -1}, {"PTO:0.TOP", 6, -1}, {"PTO:1.OPP", 8, -1}, {"PTO:0.ADP", 10, -1},
+                                   {"PTO:0/DN", 1, 0}, {"PTO:0/RS", 1, 2}, {"PTO:0/IS", 1, 5}, {"PTO:0/ED", 1, 6},
+                                   {"PTO:0/NS", 1, 7}, {"PTO:0/EH", 1, 8}, {"PTO:0/EN", 1, 9}, {"PTO:0/CS", 1, 10},
+                                   {"PTOX:2.OF", 3, -1}, {"PTOX:0.TOP", 9, -1}, {"PTOX:0.ADP", 13, -1}});
   std::string err;
   EXPECT_FALSE(parse_address("PTO:0.FREQ", &err).has_value());
   EXPECT_NE(err.find("PTO has words OUT, ER, OF, OFS, JF, TOP, OPP, ADP and bits DN"), std::string::npos) << err;

@@ -237,14 +237,17 @@ TEST(Cli, ScantimeOnEveryExampleFollowsTheSchema) {
 }  // namespace
 
 // Issue 16: the MicroLogix 1400 export has a timing profile, `--processor` applies the same checks
-// on scantime as on run (its L files are refused on a 1747-L551), and `run` reaches its 1762-IQ16.
+// on check and scantime as on run (its L files are refused on a 1747-L551: `check` exit 0 means
+// `run` loads it, with the same option too), and `run` reaches its 1762-IQ16.
 namespace {
 
 TEST(CliMicroLogix, ScantimePredictsTheFixtureAndRefusesWhatRunRefuses) {
   auto own = run("scantime " + kFixture);
   EXPECT_EQ(own.exit_code, 0) << own.out;
   EXPECT_NE(own.out.find("timing profile \"MicroLogix 1400 (Bul.1766)\""), std::string::npos) << own.out;
-  for (const char* cmd : {"scantime", "run"}) {
+  EXPECT_EQ(run("check " + kFixture + " --processor Bul.1766").exit_code, 0);
+  EXPECT_EQ(run("check " + kFixture + " --processor 1747-L999").exit_code, 2);
+  for (const char* cmd : {"check", "scantime", "run"}) {
     auto r = run(std::string(cmd) + " " + kFixture + " --processor 1747-L551");
     EXPECT_EQ(r.exit_code, 1) << cmd << ": " << r.out;
     EXPECT_NE(r.out.find("L (long integer) files exist on MicroLogix only"), std::string::npos) << cmd << ": " << r.out;

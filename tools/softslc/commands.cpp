@@ -90,17 +90,33 @@ int run_check(const CheckOptions& o) {
   auto r = load_input(o.file, o.processor, "check");
   report(r);
   if (!r.ok()) return kInputError;
+  // `--processor` on a program with its own START line checks it as `run --processor` runs it:
+  // re-checked with that processor's rules, so exit 0 still means `run` (with the same option)
+  // loads it. For pasted rungs load_input already made it the program's processor.
+  std::optional<Program> retargeted;
+  CompileOptions copts;
+  if (!o.processor.empty()) {
+    std::string error;
+    auto m = parse_processor_option(o.processor, error);
+    if (!m) {
+      std::cerr << "softslc check: " << error << "\n";
+      return kUsage;
+    }
+    retargeted = retarget(r, *m, "check");
+    if (!retargeted) return kInputError;
+    copts.processor = *m;
+  }
+  const Program& program = retargeted ? *retargeted : *r.program;
   // The specialty modules' own configuration rules (G files, M-file sizes, ID codes), each
   // diagnostic quoting the manual's rule.
   DiagnosticList modules;
-  check_module_configuration(*r.program, modules);
+  check_module_configuration(program, modules);
   if (!modules.has_errors()) {
     // One source of truth: `check` compiles the program exactly as `run` does (the same module
     // setup, no bench), so every limit the compiler enforces — rungs per file, operand types,
     // module instructions — is a `check` error too, and exit 0 means `run` loads it.
-    CompileOptions copts;
-    copts.module_instruction = load_module_setup(*r.program, std::nullopt).options.module_instruction;
-    for (const auto& e : compile(*r.program, copts).errors)
+    copts.module_instruction = load_module_setup(program, std::nullopt).options.module_instruction;
+    for (const auto& e : compile(program, copts).errors)
       modules.error(e.pos.line, e.pos.column, e.to_string());
   }
   modules.sort_by_position();

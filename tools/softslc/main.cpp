@@ -29,7 +29,7 @@ int run_main(int argc, char** argv) {
   auto* check_cmd = app.add_subcommand("check", "Parse and check a program (RSLogix 500 export, .SLC); "
                                                 "exit 0 clean or warnings only, 1 errors");
   check_cmd->add_option("FILE", check.file, "program file")->required();
-  check_cmd->add_option("--processor", check.processor, "processor of pasted rungs (bare SOR ... EOR lines): CATALOG or CATALOG:SERIES");
+  check_cmd->add_option("--processor", check.processor, "processor catalog (CATALOG or CATALOG:SERIES): of pasted rungs (bare SOR ... EOR lines), or overriding START as `run --processor` does");
 
   ImportOptions import_opts;
   auto* import_cmd = app.add_subcommand("import", "Convert an RSLogix 500 / Micro project file (.RSS) to export text");

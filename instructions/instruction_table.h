@@ -117,7 +117,10 @@ enum class Requirement : std::uint8_t {
   // element instead (1763/1766-RM001), which softslc does not have: refused there by name.
   SlcMessage502,
   SlcMessage,
-  SlcCommService,  // SVC: SLC 5/02-5/05
+  SlcCommService,  // SVC without an operand: SLC 5/02-5/05
+  // SVC with a channel select (a bit per channel): the SLC 5/03-5/05 and the MicroLogix 1100, 1200,
+  // 1400 and 1500 (1762-RM001C p. 21-26, 1763-RM001B p. 344, 1766-RM001A p. 396).
+  ChannelSelectService,
   // PTO drives the pulse train output function file PTO:0-1: the MicroLogix 1100, 1200 and 1500
   // (1763-RM001C p. 128 on, 1762-RM001C ch. 6). The MicroLogix 1400's is PTOX on PTOX:0-2 (1766-RM001A
   // p. 146 on).

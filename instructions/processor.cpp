@@ -105,6 +105,7 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::SlcMessage502: return family == ProcessorFamily::Slc502;
     case Requirement::SlcMessage: return is_modular_503_or_later(family);
     case Requirement::SlcCommService: return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
+    case Requirement::ChannelSelectService: return is_modular_503_or_later(family) || is_micrologix_1100_class();
     case Requirement::MicroLogixPto: return is_micrologix_1100_class() && micrologix != MicroLogixModel::ML1400;
     case Requirement::MicroLogixPtox: return micrologix == MicroLogixModel::ML1400;
   }
@@ -170,9 +171,18 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
                "(1762/1763/1764/1766-RM001) is not supported by softslc yet; this program's processor is " + have;
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
+    case Requirement::ChannelSelectService:
+      if (family == ProcessorFamily::Slc502)
+        return "with a channel select is the SLC 5/03-5/05 and MicroLogix form; the SLC 5/02's SVC takes no operand "
+               "(RM 12-41); this program's processor is " + have;
+      return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
+             " (1747-RM001G p. 12-41, 1762-RM001C p. 21-26, 1763-RM001B p. 344, 1766-RM001A p. 396)";
     case Requirement::SlcMessage502:
     case Requirement::SlcMessage:
     case Requirement::SlcCommService:
+      if (is_micrologix() && r == Requirement::SlcCommService)
+        return "takes a channel select on the " + have + " (`SVC 1` services channel 0; 1762-RM001C p. 21-26, "
+               "1763-RM001B p. 344, 1766-RM001A p. 396)";
       if (is_micrologix())
         return "is not available on the " + have + " in softslc: the MicroLogix MSG and SVC work on an MG message "
                "file element and the channel configuration (1763-RM001, 1766-RM001, 1762-RM001 \"Communications "
@@ -219,6 +229,7 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::SlcMessage502: return "SLC 5/02 (the 5/03-5/05 form has 11 operands)";
     case Requirement::SlcMessage: return "SLC 5/03, 5/04, 5/05";
     case Requirement::SlcCommService: return "SLC 5/02, 5/03, 5/04, 5/05";
+    case Requirement::ChannelSelectService: return "SLC 5/03, 5/04, 5/05, MicroLogix 1100, 1200, 1400, 1500";
     case Requirement::MicroLogixPto: return "MicroLogix 1100, 1200, 1500";
     case Requirement::MicroLogixPtox: return "MicroLogix 1400";
   }

@@ -639,6 +639,18 @@ class Checker {
     op.integer = op.symbol[3] - '0';
   }
 
+  // SVC's channel select names channels the controller has. The MicroLogix 1200 and the 1500 LSP
+  // have one, channel 0: select 1 only (1762-RM001C p. 21-27, the channel-select table); the 1500
+  // LRP takes 1, 2 or 3 (the same table), the 1100 and 1400 channel 0, channel 1 or both (the rows
+  // of their execution-time tables, 1763-RM001B p. 344, 1766-RM001A p. 396). The SLC 5/03-5/05 form
+  // takes bits 0 and 1 (the table's 1-3).
+  void check_channel_select(const Operand& select) {
+    const auto m = program_.processor.micrologix;
+    if ((m == MicroLogixModel::ML1200 || m == MicroLogixModel::ML1500LSP) && select.integer != 1)
+      error(select.pos, "SVC channel select " + select.spelling + ": the " + program_.processor.display_name +
+                            " has one channel, channel 0: its channel select is 1 (1762-RM001C p. 21-27)");
+  }
+
   void check_instruction(Instruction& in, bool first_in_rung, int file_number, int rung_index) {
     const auto& s = spec(in.opcode);
     auto& proc = program_.processor;
@@ -668,6 +680,8 @@ class Checker {
       error(in.operands[0].pos, mnemonic_of(in) + " counter " + in.operands[0].spelling + ": the " + proc.display_name +
                                     " has " + std::to_string(proc.hsc_count()) + " high-speed counter(s) (1762-RM001C p. 5-27; "
                                     "docs/semantics.md \"The HSC function file\")");
+    if (in.opcode == Opcode::SVC_CH && in.operands[0].kind == Operand::Kind::Integer && proc.supports(s.requires_))
+      check_channel_select(in.operands[0]);
     if (s.role == Role::Leading && !first_in_rung)
       error(in.pos, mnemonic_of(in) + " must be the first instruction of its rung");
     if (in.opcode == Opcode::SBR && (file_number < 3 || rung_index != 0))

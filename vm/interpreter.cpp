@@ -67,6 +67,13 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
     countable_[i] = 1;
     per_word_[i] = std::max<Nanoseconds>(0, model.per_word_cost(op));
   }
+  // SVC's channel select (1-3) can have figures of its own (the MicroLogix manuals print one per
+  // channel): the difference from the table's cost is charged at the SVC.
+  for (std::size_t v = 1; v < svc_select_extra_.size(); ++v)
+    for (int rung = 0; rung < 2; ++rung)
+      svc_select_extra_[v][static_cast<std::size_t>(rung)] =
+          std::max<Nanoseconds>(1, model.literal_operand_cost(Opcode::SVC_CH, static_cast<std::int64_t>(v), rung != 0)) -
+          cost_[static_cast<std::size_t>(Opcode::SVC_CH) * 2 + static_cast<std::size_t>(rung)];
   max_depth_ = std::clamp(program.processor.max_subroutine_depth(), 1, kMaxCallDepth);
   pulse_trains_.attach(program);
   const auto& L = *program.layout;
@@ -2314,10 +2321,14 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       case Op::MSG:
       case Op::MSG_502: message(op, o, rung, elapsed); break;
       case Op::SVC:
-      case Op::SVC_CH:
-        if (rung) chassis_.service_communications(op == Op::SVC ? 0x3 : static_cast<std::uint16_t>(bc::imm_of(o[0])),
-                                                  scan_start_ + elapsed);
+        if (rung) chassis_.service_communications(0x3, scan_start_ + elapsed);
         break;
+      case Op::SVC_CH: {
+        const auto select = static_cast<std::uint16_t>(bc::imm_of(o[0]));  // 1-3 (the table's range)
+        if (rung) chassis_.service_communications(select, scan_start_ + elapsed);
+        elapsed += svc_select_extra_[select & 3u][rung ? 1 : 0];
+        break;
+      }
 
       // ---- Process control ----
       case Op::PID:

@@ -378,6 +378,8 @@ class Interpreter {
   ChassisAccess& chassis_;
   const ScanTimeModel& model_;
   std::array<Nanoseconds, kInstructionCount> per_word_{};
+  // By SVC channel select (1-3) and rung state: the select's own figure less SVC's table cost.
+  std::array<std::array<Nanoseconds, 2>, 4> svc_select_extra_{};
   Nanoseconds extra_ns_ = 0;
   std::uint16_t* w_;
   // The MicroLogix pulse train outputs (PTO/PTOX function file), scanned by the PTO/PTOX handler.

@@ -30,6 +30,9 @@ class ProfileScanTimeModel final : public ScanTimeModel {
   // gives the 5/02 input scan as a base plus a time per module).
   Nanoseconds housekeeping_cost() const override { return profile_.housekeeping.ns + profile_.input_scan_base.ns; }
   Nanoseconds per_word_cost(Opcode op) const override { return profile_.instruction(op).per_word_ns; }
+  Nanoseconds literal_operand_cost(Opcode op, std::int64_t first, bool rung_in) const override {
+    return profile_.instruction(op).for_operand(first, rung_in);
+  }
   Nanoseconds mfile_access_cost(MFileAccess row, int words) const override;
 
   const TimingProfile& profile() const { return profile_; }

@@ -37,6 +37,11 @@ class ScanTimeModel {
   // Extra cost per word a file instruction (COP, FLL, BSL, BSR, FFU, ...) moves, rung true.
   // Called once per opcode at construction, like instruction_cost.
   virtual Nanoseconds per_word_cost(Opcode) const { return 0; }
+  // Cost of `op` whose first operand is the literal `first`, where the figures differ by its value
+  // (SVC's channel select). Asked at construction for each value the instruction can take.
+  virtual Nanoseconds literal_operand_cost(Opcode op, std::int64_t /*first*/, bool rung_in) const {
+    return instruction_cost(op, rung_in);
+  }
   // Cost of an immediate M0/M1 access of `words` words under the access-time row `row`
   // (1747-SN appendix B, 1203-SM1 appendix A). Asked at each M-file access: a virtual call, but
   // only on the M-file path.

@@ -111,8 +111,12 @@ class Predictor {
     const auto& t = profile_.instruction(in.opcode);
     note_source(t.source);
     int words = length_operand(in);
-    c.worst += t.true_ns + t.per_word_ns * (t.per_word_ns ? words : 0);
-    c.best += t.false_ns;
+    // A row per value of the first operand (SVC's channel select) where the manual prints one.
+    const bool literal_first = !t.by_operand.empty() && !in.operands.empty() &&
+                               in.operands[0].kind == Operand::Kind::Integer;
+    const std::int64_t first = literal_first ? in.operands[0].integer : 0;
+    c.worst += (literal_first ? t.for_operand(first, true) : t.true_ns) + t.per_word_ns * (t.per_word_ns ? words : 0);
+    c.best += literal_first ? t.for_operand(first, false) : t.false_ns;
     if (s.role == Role::Input) has_condition = true;
     if (in.opcode == Opcode::JSR && !in.operands.empty() && in.operands[0].kind == Operand::Kind::Integer)
       c.jsr_targets.push_back(static_cast<int>(in.operands[0].integer));

@@ -2,6 +2,7 @@
 
 #include "instructions/processor.h"
 
+#include <charconv>
 #include <cmath>
 #include <fstream>
 
@@ -110,12 +111,26 @@ void apply_profile_json(const json& j, TimingProfile& p) {
       std::string path = "instructions." + e.key();
       const InstructionSpec* spec = find_instruction(e.key());
       if (!spec) fail(path, "unknown instruction mnemonic");
-      check_keys(*e, path, {"true_us", "false_us", "per_word_us", "source"});
+      check_keys(*e, path, {"true_us", "false_us", "per_word_us", "by_operand", "source"});
       InstructionTiming t;
       t.true_ns = us_to_ns(member(*e, "true_us", path), path + ".true_us");
       t.false_ns = us_to_ns(member(*e, "false_us", path), path + ".false_us");
       t.per_word_ns = e->contains("per_word_us") ? us_to_ns((*e)["per_word_us"], path + ".per_word_us") : 0;
       t.source = source_of(*e, path, p);
+      if (auto b = e->find("by_operand"); b != e->end()) {
+        if (!b->is_object() || b->size() > 16)
+          fail(path + ".by_operand", "expected an object of at most 16 rows keyed by the first operand's value");
+        for (auto v = b->begin(); v != b->end(); ++v) {
+          const std::string vpath = path + ".by_operand." + v.key();
+          std::int64_t value = 0;
+          const auto* end = v.key().data() + v.key().size();
+          if (auto [ptr, ec] = std::from_chars(v.key().data(), end, value); ec != std::errc{} || ptr != end)
+            fail(vpath, "the key must be an integer (the first operand's value)");
+          check_keys(*v, vpath, {"true_us", "false_us"});
+          t.by_operand.push_back({value, us_to_ns(member(*v, "true_us", vpath), vpath + ".true_us"),
+                                  us_to_ns(member(*v, "false_us", vpath), vpath + ".false_us")});
+        }
+      }
       // A mnemonic's figure covers every form of it (OSR: the SLC's and the MicroLogix's), since a
       // processor has only one of them.
       for (const auto& row : kInstructionTable)

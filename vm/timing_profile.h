@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -41,11 +42,28 @@ struct TimedFigure {
   std::string source;  // key into TimingProfile::sources
 };
 
+// The figures of one value of an instruction's first operand, where the manual prints a row per
+// value: SVC's channel select (1763-RM001B p. 344: channel 0 94.1 us, channel 1 87.0 us, both 203.1 us).
+struct OperandTiming {
+  std::int64_t value = 0;
+  Nanoseconds true_ns = 0;
+  Nanoseconds false_ns = 0;
+};
+
 struct InstructionTiming {
   Nanoseconds true_ns = 0;      // rung-in true
   Nanoseconds false_ns = 0;     // rung-in false
   Nanoseconds per_word_ns = 0;  // added per word for file instructions (COP, FLL, BSL, ...), true only
   std::string source;
+  // Rows that replace true_ns/false_ns when the first operand is that literal ("by_operand").
+  std::vector<OperandTiming> by_operand;
+
+  // The true (or false) figure for an instance whose first operand is the literal `first`.
+  Nanoseconds for_operand(std::int64_t first, bool rung_in) const {
+    for (const auto& v : by_operand)
+      if (v.value == first) return rung_in ? v.true_ns : v.false_ns;
+    return rung_in ? true_ns : false_ns;
+  }
 };
 
 struct ModuleScanTiming {

@@ -254,7 +254,7 @@ class Checker {
 
   void resolve(Operand& op) {
     if (op.kind != Operand::Kind::Symbol || op.resolved) return;
-    auto it = symbols_.find(op.symbol);
+    auto it = symbols_.find(op.spelling);
     if (it == symbols_.end()) return;
     op.address = it->second->address;
     op.resolved = true;
@@ -469,14 +469,14 @@ class Checker {
     if (!keyword_words(os.kind).empty()) return check_keyword(in, op, os);
     resolve(op);
     const std::string where = mnemonic_of(in) + " " + std::string(os.label);
-    if (op.kind == Operand::Kind::Symbol && !op.resolved && op.symbol.starts_with("MG") &&
-        op.symbol.find(':') != std::string::npos) {
-      error(op.pos, where + ": " + op.symbol + " is a MicroLogix message file element (1763-RM001, 1766-RM001); "
+    if (op.kind == Operand::Kind::Symbol && !op.resolved && op.spelling.starts_with("MG") &&
+        op.spelling.find(':') != std::string::npos) {
+      error(op.pos, where + ": " + op.spelling + " is a MicroLogix message file element (1763-RM001, 1766-RM001); "
                                                "softslc has no MG files (docs/semantics.md \"MSG and SVC\")");
       return;
     }
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
-      error(op.pos, "unknown symbol '" + op.symbol + "' (" + where + ")");
+      error(op.pos, "unknown symbol '" + op.spelling + "' (" + where + ")");
       return;
     }
     if (op.kind == Operand::Kind::Address && uses_memdef_file(op.address))
@@ -485,9 +485,9 @@ class Checker {
     if (op.is_address() && is_function_file(op.address.type) && os.access != OperandAccess::Read)
       check_function_file_write(op, os, where);
     if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
-      const Symbol* sym = symbols_.at(op.symbol);
+      const Symbol* sym = symbols_.at(op.spelling);
       if (sym->automax && sym->automax->kind == AutomaxDef::Kind::IoDef)
-        return error(op.pos, where + ": " + op.symbol + " is an IODEF point of drop 0, and drop 0 registers are read "
+        return error(op.pos, where + ": " + op.spelling + " is an IODEF point of drop 0, and drop 0 registers are read "
                                                         "only (AutoMax Remote I/O manual, section 4.2)");
     }
     auto expect = [&](std::string_view what) {
@@ -632,11 +632,11 @@ class Checker {
   // HSL and RAC name their counter as RSLogix shows it, HSC0 to HSC5 (1762-RM001C p. 5-27: "Counter
   // HSC0"), or by its number: the name is read as the number, its spelling kept for the listing.
   static void name_hsc_counter(Operand& op) {
-    if (op.kind != Operand::Kind::Symbol || op.symbol.size() != 4 || op.symbol.compare(0, 3, "HSC") != 0 ||
-        op.symbol[3] < '0' || op.symbol[3] > '9')
+    if (op.kind != Operand::Kind::Symbol || op.spelling.size() != 4 || op.spelling.compare(0, 3, "HSC") != 0 ||
+        op.spelling[3] < '0' || op.spelling[3] > '9')
       return;
     op.kind = Operand::Kind::Integer;
-    op.integer = op.symbol[3] - '0';
+    op.integer = op.spelling[3] - '0';
   }
 
   // SVC's channel select names channels the controller has. The MicroLogix 1200 and the 1500 LSP
@@ -659,8 +659,8 @@ class Checker {
       // A surplus operand that is an unknown name was most likely meant as a mnemonic.
       if (in.operands.size() > s.operand_count) {
         auto& extra = in.operands[s.operand_count];
-        if (extra.kind == Operand::Kind::Symbol && !symbols_.count(extra.symbol)) {
-          error(extra.pos, unknown_instruction_message(extra.symbol));
+        if (extra.kind == Operand::Kind::Symbol && !symbols_.count(extra.spelling)) {
+          error(extra.pos, unknown_instruction_message(extra.spelling));
           unknown_in_rung_ = true;
           return;
         }
@@ -768,7 +768,7 @@ class Checker {
   void check_keyword(const Instruction& in, const Operand& op, const OperandSpec& os) {
     std::string choices;
     for (auto w : keyword_words(os.kind)) choices += (choices.empty() ? "" : ", ") + std::string(w);
-    if (op.kind != Operand::Kind::Symbol || !keyword_code(os.kind, op.symbol))
+    if (op.kind != Operand::Kind::Symbol || !keyword_code(os.kind, op.spelling))
       error(op.pos, mnemonic_of(in) + " " + std::string(os.label) + ": expected " + choices + ", found '" +
                         op.spelling + "'");
   }
@@ -810,7 +810,7 @@ class Checker {
     const Operand& size = ops[slc502 ? 5 : 7];
     const Operand& node = ops[slc502 ? 6 : 8];
     const Operand& target = ops[slc502 ? 7 : 9];
-    if (!slc502 && ops[2].kind == Operand::Kind::Symbol && ops[2].symbol == "REMOTE")
+    if (!slc502 && ops[2].kind == Operand::Kind::Symbol && ops[2].spelling == "REMOTE")
       return error(ops[2].pos, "MSG REMOTE (a message through a bridge to another link, 1747-RM001G p. 15-2) is not "
                                "simulated by softslc; the simulated network is one link: use LOCAL");
     const auto& proc = program_.processor;
@@ -821,7 +821,7 @@ class Checker {
                                "ASCII, 1747-RM001G p. 12-14) is not simulated by softslc; channel 1 is the " +
                                    std::string(proc.display_name) + "'s network port");
     const bool ethernet = link == MessageLink::Ethernet;
-    const std::string dev = device.kind == Operand::Kind::Symbol ? device.symbol : "";
+    const std::string dev = device.kind == Operand::Kind::Symbol ? device.spelling : "";
     if (dev == "PLC5" && link == MessageLink::Dh485)
       return error(device.pos, "MSG PLC5 on DH-485: a PLC-5 is on DH+ or Ethernet; the " + proc.display_name +
                                    "'s DH-485 channel sends 500CPU and 485CIF messages (docs/semantics.md \"MSG\")");
@@ -878,7 +878,7 @@ class Checker {
                             " runs past the end of the file (element 255)");
       else if (ethernet) {
         const int most = ethernet_max_elements(data.address.type, dev == "PLC5", command.kind == Operand::Kind::Symbol &&
-                                                                                   command.symbol == "WRITE");
+                                                                                   command.spelling == "WRITE");
         if (size.integer > most)
           error(size.pos, "MSG of " + size.spelling + " " + std::string(file_letter(data.address.type)) +
                               " element(s): one message on the SLC 5/05's Ethernet channel carries at most " +
@@ -1061,19 +1061,19 @@ class Checker {
         Role role = spec(e.instruction.opcode).role;
         bool is_output = role == Role::Output;
         if (is_output) {
-          if (!info.has_output) first_output = e.pos;
+          if (!info.has_output) first_output = e.pos();
           info.has_output = true;
           info.ends_with_output = true;
         } else {
           if (info.has_output && role == Role::Input)
-            error(e.pos, "input instruction " + mnemonic_of(e.instruction) +
+            error(e.pos(), "input instruction " + mnemonic_of(e.instruction) +
                              " after an output instruction (line " + std::to_string(first_output.line) + ", column " +
                              std::to_string(first_output.column) +
                              "); the SLC places conditions before outputs — use a branch");
           info.ends_with_output = false;
         }
         if (e.instruction.opcode == Opcode::END && !(top_level && elems.size() == 1))
-          error(e.pos, "END stands alone on the last rung of a file");
+          error(e.pos(), "END stands alone on the last rung of a file");
       } else {
         bool any_output = false, all_output = true;
         std::vector<SequenceInfo> legs;
@@ -1085,14 +1085,14 @@ class Checker {
         if (any_output) {
           for (std::size_t l = 0; l < legs.size(); ++l)
             if (!legs[l].ends_with_output)
-              error(e.pos, "leg " + std::to_string(l + 1) +
+              error(e.pos(), "leg " + std::to_string(l + 1) +
                                " of this output branch does not end in an output instruction");
-          if (!info.has_output) first_output = e.pos;
+          if (!info.has_output) first_output = e.pos();
           info.has_output = true;
           info.ends_with_output = all_output;
         } else {
           if (info.has_output)
-            error(e.pos, "input branch after an output instruction; the SLC places conditions before outputs");
+            error(e.pos(), "input branch after an output instruction; the SLC places conditions before outputs");
           info.ends_with_output = false;
         }
         info.instructions += 1;
@@ -1158,7 +1158,7 @@ class Checker {
       if (spec(e.instruction.opcode).role == Role::Output) ++outputs;
       if (e.instruction.opcode == Opcode::MCR) {
         has_mcr = true;
-        mcr_pos = e.pos;
+        mcr_pos = e.pos();
       }
     }
   }

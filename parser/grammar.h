@@ -77,9 +77,12 @@ struct file_type_st : string<'S', 'T'> {};
 struct file_type_m : seq<one<'M'>, one<'0', '1'>> {};
 struct file_type_letter : one<'O', 'I', 'S', 'B', 'T', 'C', 'R', 'N', 'F', 'L', 'A'> {};
 // MicroLogix function files (RTC:0.YR, HSC:0/FE): a name and no file number, so the name must
-// be followed by ':' (that keeps STI from swallowing ST9:0 and CS from C5:0).
+// be followed by ':' (that keeps STI from swallowing ST9:0 and CS from C5:0). Every name starts
+// with two capitals, and the lookahead for them turns away B3:0, N7:0 or T4:0 at their second
+// character instead of trying each name (a memcmp per name, 3% of a large program's load).
 struct file_type_function
-    : seq<sor<TAO_PEGTL_STRING("RTC"), TAO_PEGTL_STRING("HSC"), TAO_PEGTL_STRING("PTOX"), TAO_PEGTL_STRING("PTO"),
+    : seq<at<upper, upper>,
+          sor<TAO_PEGTL_STRING("RTC"), TAO_PEGTL_STRING("HSC"), TAO_PEGTL_STRING("PTOX"), TAO_PEGTL_STRING("PTO"),
               TAO_PEGTL_STRING("PWMX"),
               TAO_PEGTL_STRING("STI"), TAO_PEGTL_STRING("EII"), TAO_PEGTL_STRING("BHI"), TAO_PEGTL_STRING("MMI"),
               TAO_PEGTL_STRING("DAT"), TAO_PEGTL_STRING("TPI"), TAO_PEGTL_STRING("CS"), TAO_PEGTL_STRING("IOS"),

@@ -515,7 +515,6 @@ template <> struct action<symbol_name> {
   template <typename Input>
   static void apply(const Input& in, OperandBuilder& ob) {
     ob.op.kind = Operand::Kind::Symbol;
-    ob.op.symbol = in.string();
     ob.op.spelling = in.string();
     ob.op.pos = pos_of(in);
   }
@@ -747,7 +746,6 @@ template <> struct action<instruction> {
         find_instruction_form(spec(s.instruction.opcode).mnemonic, s.instruction.operands.size())->opcode;
     RungElement e;
     e.kind = RungElement::Kind::Instruction;
-    e.pos = s.instruction.pos;
     e.instruction = std::move(s.instruction);
     s.current_elements().push_back(std::move(e));
   }
@@ -762,7 +760,7 @@ template <> struct action<branch_open> {
       throw pegtl::parse_error("branches nested deeper than " + std::to_string(kMaxBranchNesting) + " levels", in);
     RungElement e;
     e.kind = RungElement::Kind::Branch;
-    e.pos = pos_of(in);
+    e.pos() = pos_of(in);
     e.legs.emplace_back();
     auto& container = s.current_elements();
     container.push_back(std::move(e));

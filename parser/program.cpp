@@ -12,7 +12,7 @@ bool Operand::same_as(const Operand& o) const {
     case Kind::Integer: return integer == o.integer;
     // Floats compare by bit pattern: fmt writes them with enough digits to round-trip exactly.
     case Kind::Float: return std::memcmp(&real, &o.real, sizeof real) == 0;
-    case Kind::Symbol: return symbol == o.symbol;
+    case Kind::Symbol: return spelling == o.spelling;
     case Kind::Expression: return spelling == o.spelling;
   }
   return false;

@@ -31,7 +31,8 @@ struct SourcePos {
 //
 // A program holds about five operands per rung, so their size is most of a large program's memory
 // (docs/performance.md "Load time"): the one-byte members and the position fill the gap after the
-// 60-byte Address instead of each opening an 8-byte slot of its own, 152 bytes instead of 160.
+// 60-byte Address instead of each opening an 8-byte slot of its own, and a symbol's name is its
+// spelling rather than a second string: 120 bytes.
 struct Operand {
   enum class Kind : std::uint8_t { Address, Integer, Float, Symbol, Expression };
   Address address;             // Kind::Address, and Kind::Symbol once resolved
@@ -40,8 +41,9 @@ struct Operand {
   SourcePos pos;
   std::int64_t integer = 0;    // Kind::Integer
   double real = 0.0;           // Kind::Float
-  std::string symbol;          // Kind::Symbol: the name as written
-  std::string spelling;        // the text as written, for diagnostics (Kind::Expression: the CPT expression)
+  // The text as written, for diagnostics; Kind::Symbol: the symbol's name; Kind::Expression: the
+  // CPT expression.
+  std::string spelling;
 
   // True when the operand designates a data-table location (directly or through a symbol).
   bool is_address() const { return kind == Kind::Address || (kind == Kind::Symbol && resolved); }
@@ -50,19 +52,27 @@ struct Operand {
   bool same_as(const Operand& o) const;
 };
 
+// The opcode comes last so that a RungElement can place its kind in the bytes after it.
 struct Instruction {
-  Opcode opcode = Opcode::XIC;
   std::vector<Operand> operands;
   SourcePos pos;
+  Opcode opcode = Opcode::XIC;
 };
 
 // A rung element is an instruction or a branch (BST leg NXB leg ... BND).
+//
+// A program holds about 3.6 elements per rung: the element's position is its instruction's (a
+// branch keeps the BST's there), and its kind sits in the instruction's tail padding, so an
+// element is 64 bytes instead of 80 (docs/performance.md "Load time").
 struct RungElement {
   enum class Kind : std::uint8_t { Instruction, Branch };
+  [[no_unique_address]] Instruction instruction;  // Kind::Instruction; a branch uses only its pos
   Kind kind = Kind::Instruction;
-  Instruction instruction;                       // Kind::Instruction
-  std::vector<std::vector<RungElement>> legs;    // Kind::Branch
-  SourcePos pos;
+  std::vector<std::vector<RungElement>> legs;     // Kind::Branch
+
+  // Where the element starts: its mnemonic, or the BST of a branch.
+  const SourcePos& pos() const { return instruction.pos; }
+  SourcePos& pos() { return instruction.pos; }
 };
 
 struct Rung {

@@ -578,7 +578,7 @@ class Compiler {
                       target = slc502 ? 7 : 9;
     if (in.operands.size() <= target || !in.operands[data].is_address()) return;
     const Operand& t = in.operands[target];
-    const bool cif = in.operands[1].kind == Operand::Kind::Symbol && in.operands[1].symbol == "485CIF";
+    const bool cif = in.operands[1].kind == Operand::Kind::Symbol && in.operands[1].spelling == "485CIF";
     init_literal(ops[block], 1, literal(in, node));
     init_literal(ops[block], 2, literal(in, size));
     init_literal(ops[block], 3, cif ? kCommonInterfaceFile : (t.is_address() ? t.address.file : 0));
@@ -661,7 +661,7 @@ class Compiler {
   // A value operand (Source, Dest, File). Sets `is_float` when it is a float.
   std::uint32_t value_operand(const Operand& op, bool dest, bool file_start, bool& is_float, SourcePos pos) {
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
-      error(pos, "unknown symbol '" + op.symbol + "'");
+      error(pos, "unknown symbol '" + op.spelling + "'");
       return 0;
     }
     if (!op.is_address()) {
@@ -754,7 +754,7 @@ class Compiler {
 
   std::uint32_t bit_operand(const Operand& op, SourcePos pos) {
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
-      error(pos, "unknown symbol '" + op.symbol + "'");
+      error(pos, "unknown symbol '" + op.spelling + "'");
       return 0;
     }
     if (!op.is_address() || !op.address.has_bit()) {
@@ -774,7 +774,7 @@ class Compiler {
 
   std::uint32_t element_operand(const Operand& op, OperandKind kind, SourcePos pos, FileType& type) {
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
-      error(pos, "unknown symbol '" + op.symbol + "'");
+      error(pos, "unknown symbol '" + op.spelling + "'");
       return 0;
     }
     const Address& a = op.address;
@@ -959,7 +959,7 @@ class Compiler {
         case OperandKind::MessageCommand:
         case OperandKind::MessageDevice:
         case OperandKind::MessageRoute:
-          if (auto code = op.kind == Operand::Kind::Symbol ? keyword_code(os.kind, op.symbol) : std::nullopt)
+          if (auto code = op.kind == Operand::Kind::Symbol ? keyword_code(os.kind, op.spelling) : std::nullopt)
             w = bc::imm(*code);
           else
             error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + ": '" + op.spelling + "' is not one of its words");
@@ -1097,7 +1097,7 @@ class Compiler {
         continue;
       }
       if (depth + 1 > kMaxBranchDepth) {
-        error(e.pos, "branches nested deeper than " + std::to_string(kMaxBranchDepth) + " levels");
+        error(e.pos(), "branches nested deeper than " + std::to_string(kMaxBranchDepth) + " levels");
         return;
       }
       out_.max_branch_depth = std::max(out_.max_branch_depth, depth + 1);

@@ -172,7 +172,7 @@ class Layouter {
       ib.shape = in.opcode == Opcode::XIC || in.opcode == Opcode::XIO ? Shape::Contact : Shape::Coil;
       ib.glyph = glyph;
       const std::string address = bit->is_address() ? to_string(bit->address) : bit->spelling;
-      std::string symbol = bit->kind == Operand::Kind::Symbol ? bit->symbol : symbol_of(*bit);
+      std::string symbol = bit->kind == Operand::Kind::Symbol ? bit->spelling : symbol_of(*bit);
       int width = std::max<int>({kMinLabelWidth, static_cast<int>(address.size()), static_cast<int>(symbol.size())});
       if (const std::string d = description_of(*bit); !d.empty()) ib.above = wrap(d, width, kMaxDescriptionLines);
       if (!symbol.empty()) ib.above.push_back(symbol);

@@ -276,6 +276,26 @@ TEST(MicroLogixEii, ABadPfnFromAToolSetsEdAndErOneWithoutAFault) {
   EXPECT_EQ(plc.get_int("N7:0"), 0);
   EXPECT_TRUE(plc.get_bit("EII:0/ED"));
   EXPECT_EQ(plc.get_int("EII:0.ER"), 1) << "error code 1, Invalid Program File Number (1763-RM001C p. 270)";
+  // An IS beyond the embedded input word: ED and softslc's ER 2 at the next input change [U].
+  plc.set("EII:1.PFN", 4);
+  plc.set("EII:1.IS", 20);
+  plc.set("EII:1/EIE", 1);
+  plc.set("I:0/5", 1);
+  plc.scan(1);
+  EXPECT_FALSE(plc.fault().has_value());
+  EXPECT_TRUE(plc.get_bit("EII:1/ED"));
+  EXPECT_EQ(plc.get_int("EII:1.ER"), 2);
+  EXPECT_EQ(plc.get_int("N7:1"), 0);
+  // A program that sets EIE on an EII whose PFN is 0: ED and ER 1 at its first edge, nothing runs.
+  Controller zero = Controller::from_text(eii_program("0 0 0X4002 0", "SOR XIC B3:0/0 OTL EII:0/EIE EOR\n"));
+  zero.set("B3:0/0", 1);
+  zero.scan(1);
+  zero.set("I:0/0", 1);
+  zero.scan(1);
+  EXPECT_FALSE(zero.fault().has_value());
+  EXPECT_TRUE(zero.get_bit("EII:0/ED"));
+  EXPECT_EQ(zero.get_int("EII:0.ER"), 1);
+  EXPECT_EQ(zero.get_int("N7:0"), 0);
 }
 
 TEST(MicroLogixEii, EveryRssFixtureCarriesItsEiiRecord) {

@@ -161,8 +161,9 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::MicroLogixUserInterrupt:
       if (is_micrologix())
         return "is the MicroLogix user interrupt instruction (1763-RM001 / 1766-RM001 \"Using Interrupts\"), which acts "
-               "on the STI, EII and HSC function files; softslc does not simulate those yet (docs/semantics.md "
-               "\"MicroLogix\")";
+               "on the STI, EII and HSC function files by an interrupt-type operand whose encoding is not in softslc's "
+               "sources, so softslc does not simulate it; a program can clear or set the interrupt's UIE bit instead "
+               "(docs/semantics.md \"UID, UIE, UIF\")";
       return "is not an SLC 500 instruction: 1747-RM001G chapter 11 has STD/STE/STS and IID/IIE/RPI, and UID/UIE/UIF "
              "belong to the MicroLogix 1100-1500 (1763-RM001, 1766-RM001); this program's processor is " + have;
     case Requirement::SlcOs302:

@@ -57,6 +57,14 @@ struct ProcessorModel {
       default: return 0;
     }
   }
+  // The EII function file's elements (event input interrupts): 4 on the MicroLogix 1100
+  // (1763-RM001C p. 272: "four EII elements", EII:0 to EII:3) and on the 1200 and 1500 (the
+  // priority list of 1762-RM001C p. 18-4 names Event Interrupts 0 to 3), 8 on the 1400 (its
+  // RSLogix export writes EII0:0 to EII0:7, 59-BSGS.SLC); 0 elsewhere.
+  int eii_count() const {
+    if (!is_micrologix_1100_class()) return 0;
+    return micrologix == MicroLogixModel::ML1400 ? 8 : 4;
+  }
   // L (32-bit long integer) files: MicroLogix 1100, 1200, 1400, 1500 (not the 1000, not SLC).
   bool has_long_files() const { return is_micrologix_1100_class(); }
   // The 0.001 s timer time base: MicroLogix 1100/1200/1400/1500 (the SLC and the MicroLogix

@@ -73,6 +73,24 @@ constexpr std::array kStiSubElements{
 
 bool is_sti(int id) { return id == static_cast<int>(FunctionFile::STI); }
 
+// The EII element's named words and bits (see eii:: in address.h). `writable` as read on
+// 1763-RM001C p. 275 (UIX read only, UIE and UIL read/write) and 1762-RM001C p. 18-19 (UIP read
+// only); the others [U] (docs/semantics.md "The EII function file").
+constexpr std::array kEiiSubElements{
+    FunctionSubElement{"PFN", eii::kProgramFile, -1, false}, FunctionSubElement{"ER", eii::kErrorCode, -1, false},
+    FunctionSubElement{"IS", eii::kInputSelect, -1, false},
+    FunctionSubElement{"UIX", eii::kBits, eii::kExecutingBit, false},
+    FunctionSubElement{"UIE", eii::kBits, eii::kEnableBit, true},
+    FunctionSubElement{"UIL", eii::kBits, eii::kLostBit, true},
+    FunctionSubElement{"UIP", eii::kBits, eii::kPendingBit, false},
+    FunctionSubElement{"EIE", eii::kBits, eii::kEventEnableBit, true},
+    FunctionSubElement{"AS", eii::kBits, eii::kAutoStartBit, false},
+    FunctionSubElement{"ED", eii::kBits, eii::kErrorBit, false},
+    FunctionSubElement{"ES", eii::kBits, eii::kEdgeSelectBit, false},
+};
+
+bool is_eii(int id) { return id == static_cast<int>(FunctionFile::EII); }
+
 // The PTO/PTOX element's named words and bits (see pto:: in address.h). `writable` is the manual's
 // "User Program Access": read on pages for DN, DS, RS, AS, RP, IS, ED, NS, OFS, TOP, OPP
 // (1762-RM001C pp. 6-9..6-12, 1763-RM001C pp. 136-140, 1766-RM001A p. 146); the others [U]
@@ -173,12 +191,14 @@ constexpr std::array kHscSubElements{
 
 bool is_hsc(int id) { return id == static_cast<int>(FunctionFile::HSC); }
 
-// The table of named sub-elements of the STI or the HSC; empty for the others.
+// The table of named sub-elements of the STI, the EII or the HSC; empty for the others.
 std::span<const FunctionSubElement> sub_elements(int id) {
   if (is_sti(id)) return kStiSubElements;
+  if (is_eii(id)) return kEiiSubElements;
   if (is_hsc(id)) return kHscSubElements;
   return {};
 }
+bool has_sub_elements(int id) { return is_sti(id) || is_eii(id) || is_hsc(id); }
 
 }  // namespace
 
@@ -192,14 +212,14 @@ int function_file_id(std::string_view name) {
   return -1;
 }
 
-bool function_file_simulated(int id) { return is_rtc(id) || is_sti(id) || is_hsc(id) || is_pulse_train(id); }
+bool function_file_simulated(int id) { return is_rtc(id) || has_sub_elements(id) || is_pulse_train(id); }
 int function_file_elements(int id) {
   if (is_pulse_train(id)) return id == static_cast<int>(FunctionFile::PTOX) ? pto::kPtoxElements : pto::kPtoElements;
-  return is_rtc(id) || is_sti(id) ? 1 : is_hsc(id) ? 6 : 0;
+  return is_rtc(id) || is_sti(id) ? 1 : is_hsc(id) ? 6 : is_eii(id) ? eii::kMaxElements : 0;
 }
 int function_file_words_per_element(int id) {
   if (is_pulse_train(id)) return pulse_train_layout(id).words;
-  return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : is_hsc(id) ? hsc::kWords : 0;
+  return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : is_eii(id) ? eii::kWords : is_hsc(id) ? hsc::kWords : 0;
 }
 
 bool is_pulse_train_file(int id) { return is_pulse_train(id); }
@@ -218,7 +238,7 @@ int function_word_number(int id, std::string_view name) {
       if (e.bit < 0 && e.name == name) return pulse_train_word(id, e);
     return -1;
   }
-  if (is_sti(id) || is_hsc(id)) {
+  if (has_sub_elements(id)) {
     for (const auto& e : sub_elements(id))
       if (e.bit < 0 && e.name == name) return e.word;
     return -1;
@@ -235,7 +255,7 @@ std::string_view function_word_name(int id, int word) {
       if (e.bit < 0 && pulse_train_word(id, e) == word) return e.name;
     return {};
   }
-  if (is_sti(id) || is_hsc(id)) {
+  if (has_sub_elements(id)) {
     for (const auto& e : sub_elements(id))
       if (e.bit < 0 && e.word == word) return e.name;
     return {};
@@ -246,7 +266,7 @@ std::string_view function_word_name(int id, int word) {
 
 bool function_bit_number(int id, std::string_view name, int& word, int& bit) {
   if (is_pulse_train(id)) return named_bit(kPulseTrainSubElements, name, word, bit);
-  if (is_sti(id) || is_hsc(id)) return named_bit(sub_elements(id), name, word, bit);
+  if (has_sub_elements(id)) return named_bit(sub_elements(id), name, word, bit);
   if (!is_rtc(id)) return false;
   for (const auto& b : kRtcBits)
     if (b.name == name) {
@@ -263,7 +283,7 @@ std::string_view function_bit_name(int id, int word, int bit) {
       if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
     return {};
   }
-  if (is_sti(id) || is_hsc(id)) {
+  if (has_sub_elements(id)) {
     for (const auto& e : sub_elements(id))
       if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
     return {};
@@ -288,7 +308,7 @@ bool function_sub_element_writable(int id, int word, int bit) {
     return any;  // bit 15 of the bit word is nobody's to write
   }
   // The RTC words are written by programs (CPW into RTC:0.YR, slc_adjust_clock.RSS).
-  if (!is_sti(id) && !is_hsc(id)) return true;
+  if (!has_sub_elements(id)) return true;
   bool any = false;
   for (const auto& e : sub_elements(id)) {
     if (e.word != word) continue;
@@ -315,7 +335,7 @@ std::string listed_names(const Table& table) {
 std::string function_sub_element_names(int id) {
   if (is_rtc(id)) return "words YR, MON, DAY, HR, MIN, SEC, DOW and bits DS, BL";
   if (is_pulse_train(id)) return listed_names(kPulseTrainSubElements);
-  if (is_sti(id) || is_hsc(id)) return listed_names(sub_elements(id));
+  if (has_sub_elements(id)) return listed_names(sub_elements(id));
   return {};
 }
 

@@ -110,6 +110,30 @@ inline constexpr std::uint16_t kDefaultBits = 1u << kEnableBit;
 inline constexpr std::uint16_t kErrorInvalidFile = 1;
 }  // namespace sti
 
+// The event input interrupt function file EII:0 .. EII:n (1763-RM001C pp. 272-276, 1762-RM001C
+// pp. 18-17 .. 18-20): per element four words, in the order RSLogix writes them in a library export
+// (`DATA EII0:0` / `0 0 0X4002 n` for element n, 59-BSGS.SLC) and stores them in a project (the
+// .RSS function-file record of type 0x15: four elements of four words, word 3 = 0, 1, 2, 3): PFN,
+// ER, the bit word, IS (input select; RSLogix's default is the element's own number). Access as
+// read: UIX, UIP read only, UIE, UIL read/write (1763-RM001C p. 275, 1762-RM001C p. 18-19); the
+// rest [U]. The bit positions are softslc's decision [U]: UIX, UIE, UIL, UIP, EIE, AS, ED at the
+// STI's positions (its TIE is the EII's EIE), and ES (edge select, 1 = rising edge) at bit 14, the
+// only other bit of RSLogix's default 0x4002 (docs/semantics.md "The EII function file").
+namespace eii {
+inline constexpr int kProgramFile = 0, kErrorCode = 1, kBits = 2, kInputSelect = 3;
+inline constexpr int kWords = 4;
+inline constexpr int kMaxElements = 8;
+inline constexpr int kExecutingBit = 0, kEnableBit = 1, kLostBit = 2, kPendingBit = 3, kEventEnableBit = 4,
+                     kAutoStartBit = 5, kErrorBit = 6, kEdgeSelectBit = 14;
+// RSLogix's default bit word: UIE and ES (rising edge).
+inline constexpr std::uint16_t kDefaultBits = (1u << kEnableBit) | (1u << kEdgeSelectBit);
+// EII:n.ER 1: "Invalid Program File Number", as the STI's code 1 (1763-RM001C p. 270) [U];
+// ER 2: IS names no embedded input (0-15) [U].
+inline constexpr std::uint16_t kErrorInvalidFile = 1, kErrorInvalidInput = 2;
+// The largest IS: the bits of the embedded input word I:0.0 [U].
+inline constexpr int kMaxInput = 15;
+}  // namespace eii
+
 // The pulse train output function files: PTO:0-1 on the MicroLogix 1100, 1200 and 1500, PTOX:0-2
 // on the MicroLogix 1400. Layout (docs/micrologix-function-files-sources.md section 6.3): the
 // words RSLogix stores in a project (the .RSS function-file record of type 0x12: two elements of 12

@@ -302,7 +302,7 @@ class Checker {
       return;
     }
     if (!function_file_simulated(a.file)) {
-      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC, STI, HSC and PTO/PTOX are");
+      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC, STI, EII, HSC and PTO/PTOX are");
       return;
     }
     if (is_pulse_train_file(a.file) && !check_pulse_train_name(a.file, pos)) return;
@@ -311,6 +311,11 @@ class Checker {
         error(pos, to_string(a) + ": the " + proc.display_name + " has " + std::to_string(proc.hsc_count()) +
                        " high-speed counter(s), HSC:0" + (proc.hsc_count() > 1 ? " to HSC:" + std::to_string(proc.hsc_count() - 1) : "") +
                        " (docs/semantics.md \"The HSC function file\")");
+    } else if (a.file == static_cast<int>(FunctionFile::EII)) {
+      if (a.element >= proc.eii_count())
+        error(pos, to_string(a) + ": the " + proc.display_name + " has " + std::to_string(proc.eii_count()) +
+                       " event input interrupts, EII:0 to EII:" + std::to_string(proc.eii_count() - 1) +
+                       " (1763-RM001C p. 272; docs/semantics.md \"The EII function file\")");
     } else if (a.element >= function_file_elements(a.file))
       error(pos, to_string(a) + ": " + name + (function_file_elements(a.file) == 1
                                                    ? " has element 0 only"
@@ -339,15 +344,17 @@ class Checker {
     const Address& a = op.address;
     if (is_pulse_train_file(a.file)) return check_pulse_train_write(op, os, where);
     const bool hsc = a.file == static_cast<int>(FunctionFile::HSC);
-    if (a.file != static_cast<int>(FunctionFile::STI) && !hsc) return;
+    const bool eii = a.file == static_cast<int>(FunctionFile::EII);
+    if (a.file != static_cast<int>(FunctionFile::STI) && !hsc && !eii) return;
     const std::string name(function_file_name(a.file));
     if (os.kind == OperandKind::File)
       return error(op.pos, where + ": the " + name + " function file is written one sub-element at a time (MOV, OTL, "
                                    "...); a file instruction would also write its read-only words");
     if (a.word >= 0 && !function_sub_element_writable(a.file, a.word, a.bit))
       error(op.pos, where + ": " + to_string(a) + " is read only to the user program (" +
-                        (hsc ? "1762-RM001C ch. 5; docs/semantics.md \"The HSC function file\")"
-                             : "1763-RM001C pp. 270-272; docs/semantics.md \"MicroLogix\")"));
+                        (hsc   ? "1762-RM001C ch. 5; docs/semantics.md \"The HSC function file\")"
+                         : eii ? "1763-RM001C p. 275; docs/semantics.md \"The EII function file\")"
+                               : "1763-RM001C pp. 270-272; docs/semantics.md \"MicroLogix\")"));
   }
 
   // PTO:0/DN, .OPP, .OUT ... are the PTO sub-system's (read only); OF, TOP, ADP, JF, RP, EH, CS, JP, JC
@@ -1244,6 +1251,7 @@ class Checker {
                           "1500; this program's processor is " + program_.processor.display_name);
     if (is_pulse_train_file(d.file)) return check_pulse_train_data(d);
     if (d.file == static_cast<int>(FunctionFile::HSC)) return check_hsc_data(d);
+    if (d.file == static_cast<int>(FunctionFile::EII)) return check_eii_data(d);
     if (d.start_element != 0 || d.words.size() != static_cast<std::size_t>(sti::kWords))
       return error(d.pos, "DATA " + d.file_name + ": the STI function file has one element of four words, "
                           "PFN ER bits SPM, as RSLogix exports it (for example 3 0 0X0032 1000)");
@@ -1280,6 +1288,26 @@ class Checker {
     }
   }
 
+  // How many of a function file's `elements` in DATA block `d` the processor's `count` takes. A program
+  // moved to a processor with fewer (the MicroLogix 1400's six counters or eight EIIs to an 1100): the
+  // extra elements left as RSLogix created them (`is_default(e)`) are dropped with a warning; a
+  // configured one is an error, and none is used then.
+  template <typename IsDefault>
+  std::size_t elements_to_use(const DataBlock& d, std::size_t elements, int count, const std::string& file,
+                              const std::string& what, IsDefault is_default) {
+    if (elements <= static_cast<std::size_t>(count)) return elements;
+    for (std::size_t e = static_cast<std::size_t>(count); e < elements; ++e)
+      if (!is_default(e)) {
+        error(d.pos, "DATA " + d.file_name + " configures " + file + ":" + std::to_string(e) + "; the " +
+                         program_.processor.display_name + " has " + std::to_string(count) + " " + what);
+        return 0;
+      }
+    warning(d.pos, "DATA " + d.file_name + " gives " + std::to_string(elements) + " " + file + " elements; the " +
+                       program_.processor.display_name + " has " + std::to_string(count) +
+                       ": the others hold RSLogix's defaults and are dropped");
+    return static_cast<std::size_t>(count);
+  }
+
   // DATA HSC0:0: each element's 13 values as RSLogix exports them (hsc:: in parser/address.h), one
   // element per high-speed counter of the processor. The HSC sub-system refuses a configuration whose
   // OVF is below HIP (1762-RM001C p. 5-23 says "greater than", but RSLogix's own default has both at
@@ -1290,22 +1318,15 @@ class Checker {
     if (d.start_element != 0 || d.words.empty() || d.words.size() % hsc::kExportValues != 0)
       return error(d.pos, "DATA " + d.file_name + ": each HSC element is 13 values as RSLogix exports it: PFN ER bits "
                           "bits MOD, then ACC HIP LOP OVF UNF, then OMB HPO LPO");
-    std::size_t elements = d.words.size() / hsc::kExportValues;
-    if (elements > static_cast<std::size_t>(count)) {
-      // A program moved to a processor with fewer counters (the MicroLogix 1400's six to an 1100's
-      // one): counters left as RSLogix created them are dropped with a warning, configured ones refused.
-      static constexpr std::array<std::int64_t, hsc::kExportValues> kDefault{
-          0, 0, hsc::kDefaultBits, hsc::kDefaultStatus, 0, 0, INT32_MAX, INT32_MIN, INT32_MAX, INT32_MIN, 0, 0, 0};
-      for (std::size_t e = static_cast<std::size_t>(count); e < elements; ++e)
-        for (std::size_t k = 0; k < hsc::kExportValues; ++k)
-          if (d.words[e * hsc::kExportValues + k] != kDefault[k])
-            return error(d.pos, "DATA " + d.file_name + " configures HSC:" + std::to_string(e) + "; the " +
-                                    program_.processor.display_name + " has " + std::to_string(count) + " high-speed counter(s)");
-      warning(d.pos, "DATA " + d.file_name + " gives " + std::to_string(elements) + " HSC elements; the " +
-                         program_.processor.display_name + " has " + std::to_string(count) +
-                         ": the others hold RSLogix's defaults and are dropped");
-      elements = static_cast<std::size_t>(count);
-    }
+    static constexpr std::array<std::int64_t, hsc::kExportValues> kDefault{
+        0, 0, hsc::kDefaultBits, hsc::kDefaultStatus, 0, 0, INT32_MAX, INT32_MIN, INT32_MAX, INT32_MIN, 0, 0, 0};
+    const auto is_default = [&](std::size_t e) {
+      for (std::size_t k = 0; k < hsc::kExportValues; ++k)
+        if (d.words[e * hsc::kExportValues + k] != kDefault[k]) return false;
+      return true;
+    };
+    const std::size_t elements =
+        elements_to_use(d, d.words.size() / hsc::kExportValues, count, "HSC", "high-speed counter(s)", is_default);
     for (std::size_t e = 0; e < elements; ++e) {
       const auto v = [&](std::size_t k) { return d.words[e * hsc::kExportValues + k]; };
       const std::string at = "HSC:" + std::to_string(e);
@@ -1327,6 +1348,43 @@ class Checker {
       if (unf > lop)
         error(d.pos, at + ": UNF " + std::to_string(unf) + " must be less than or equal to LOP " + std::to_string(lop) +
                          " or the HSC sub-system gives an error (1766-RM001A p. 127)");
+    }
+  }
+
+  // DATA EII0:0: four words an element (PFN ER bits IS, as RSLogix exports them; eii:: in
+  // parser/address.h), from element 0, one element per event input of the processor. A PFN that is
+  // set must be a ladder file 3-255 (error code 1, as the STI's, 1763-RM001C p. 270), and so must it
+  // be when the EII can fire (EIE or AS set); IS must name an embedded input bit 0-15 [U]
+  // (docs/semantics.md "The EII function file"). Found here rather than as the controller's error on
+  // entering Run, so that `check` exit 0 means the program runs.
+  void check_eii_data(const DataBlock& d) {
+    const int count = program_.processor.eii_count();
+    if (d.start_element != 0 || d.words.empty() || d.words.size() % eii::kWords != 0)
+      return error(d.pos, "DATA " + d.file_name + ": each EII element is four values, PFN ER bits IS, as RSLogix exports it "
+                          "(for example 3 0 0X4032 0)");
+    // RSLogix's default element n: 0 0 0X4002 n (59-BSGS.SLC).
+    const auto is_default = [&](std::size_t e) {
+      const auto v = [&](int k) { return d.words[e * eii::kWords + static_cast<std::size_t>(k)]; };
+      return v(eii::kProgramFile) == 0 && v(eii::kErrorCode) == 0 && v(eii::kBits) == eii::kDefaultBits &&
+             v(eii::kInputSelect) == static_cast<std::int64_t>(e);
+    };
+    const std::size_t elements =
+        elements_to_use(d, d.words.size() / eii::kWords, count, "EII", "event input interrupts", is_default);
+    for (auto w : d.words)
+      if (w < -32768 || w > 65535) return error(d.pos, "value " + std::to_string(w) + " does not fit a 16-bit word");
+    for (std::size_t e = 0; e < elements; ++e) {
+      const auto v = [&](int k) { return static_cast<std::uint16_t>(d.words[e * eii::kWords + static_cast<std::size_t>(k)]); };
+      const std::string at = "EII:" + std::to_string(e);
+      const int pfn = v(eii::kProgramFile);
+      const bool can_fire = (v(eii::kBits) >> eii::kEventEnableBit & 1u) || (v(eii::kBits) >> eii::kAutoStartBit & 1u);
+      if (pfn != 0 && (pfn < 3 || pfn > 255 || !program_.find_file(pfn)))
+        error(d.pos, at + ".PFN " + std::to_string(pfn) + " is not a subroutine file of this program (3-255, no LADDER " +
+                         std::to_string(pfn) + "): error code 1, Invalid Program File Number (1763-RM001C p. 270, as the STI's)");
+      else if (pfn == 0 && can_fire)
+        error(d.pos, at + "/EIE or /AS is set but " + at + ".PFN is 0: give the EII's program file (3-255)");
+      if (const int input = static_cast<std::int16_t>(v(eii::kInputSelect)); input < 0 || input > eii::kMaxInput)
+        error(d.pos, at + ".IS " + std::to_string(input) + " names no embedded input: 0-" + std::to_string(eii::kMaxInput) +
+                         ", a bit of I:0.0 (docs/semantics.md \"The EII function file\")");
     }
   }
 

@@ -111,6 +111,18 @@ void format_data(const DataBlock& d, std::string& out) {
     return;
   }
   if (is_function_file(t) && d.file == static_cast<int>(FunctionFile::HSC)) return format_hsc_data(d, out);
+  if (is_function_file(t) && d.file == static_cast<int>(FunctionFile::EII)) {
+    // The EII: one row per element, PFN ER bits IS, the bit word in hex, as RSLogix exports it.
+    for (std::size_t i = 0; i < d.words.size(); ++i) {
+      const std::size_t k = i % static_cast<std::size_t>(eii::kWords);
+      if (k == 0) out += "% EII0:" + std::to_string(i / static_cast<std::size_t>(eii::kWords)) + " %";
+      const auto w = static_cast<std::uint16_t>(d.words[i]);
+      out += " " + (k == static_cast<std::size_t>(eii::kBits) ? hex_word(w) : std::to_string(w));
+      if (k + 1 == static_cast<std::size_t>(eii::kWords)) out += "\n";
+    }
+    out += "\n";
+    return;
+  }
   if (is_function_file(t)) {
     // The STI: one row of PFN ER bits SPM as RSLogix exports it (SPM is 0-65,535).
     out += "% .PFN    .ER  bits   .SPM  %\n";

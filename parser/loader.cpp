@@ -865,7 +865,9 @@ template <> struct action<data_header> {
     int fixed = type ? fixed_file_number(*type) : -1;
     // The STI function file's block gives its configuration (docs/program-format.md); the other
     // function files' blocks are kept as written.
-    const bool sti = type && is_function_file(*type) && function_file_id(letters) == static_cast<int>(FunctionFile::STI);
+    // The EII's block too (DATA EII0:0, four words an element, as RSLogix exports it).
+    const bool sti = type && is_function_file(*type) && (function_file_id(letters) == static_cast<int>(FunctionFile::STI) ||
+                                                         function_file_id(letters) == static_cast<int>(FunctionFile::EII));
     // So does a pulse train output file's (DATA PTO0:0 / PTOX0:0, as RSLogix exports PTOX0:0) and the
     // HSC function file's, in RSLogix's export form (DATA HSC0:0, 13 values an element).
     const bool pulse_train = type && is_function_file(*type) && is_pulse_train_file(function_file_id(letters));
@@ -881,7 +883,8 @@ template <> struct action<data_header> {
       } else if (sti) {
         // RSLogix exports it as STI0:0; softslc's addresses write STI:0. Either names the one element.
         if (!number.empty() && number != "0")
-          s.diags.error(s.data.pos.line, s.data.pos.column, "the STI function file has no file number: DATA STI:0 or, as RSLogix exports it, DATA STI0:0");
+          s.diags.error(s.data.pos.line, s.data.pos.column, "the " + letters + " function file has no file number: DATA " + letters +
+                                                                ":0 or, as RSLogix exports it, DATA " + letters + "0:0");
         s.data.file = function_file_id(letters);
       } else if (hsc) {
         if (!number.empty() && number != "0")

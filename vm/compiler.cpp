@@ -368,15 +368,19 @@ class Compiler {
       // DataTableLayout::scan_for_file relies on.
       const FunctionFile pulse_train = proc_.micrologix == MicroLogixModel::ML1400 ? FunctionFile::PTOX : FunctionFile::PTO;
       for (const FunctionFile kind :
-           {FunctionFile::RTC, FunctionFile::HSC, FunctionFile::PTOX, FunctionFile::STI, FunctionFile::PTO}) {
+           {FunctionFile::RTC, FunctionFile::HSC, FunctionFile::PTOX, FunctionFile::STI, FunctionFile::EII, FunctionFile::PTO}) {
         const bool counters = kind == FunctionFile::HSC;
         if (counters && proc_.hsc_count() == 0) continue;
+        // The EII file has as many elements as the processor has event inputs (eii_count).
+        const bool events = kind == FunctionFile::EII;
         if ((kind == FunctionFile::PTO || kind == FunctionFile::PTOX) && kind != pulse_train) continue;
         FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(kind)];
         f.present = true;
         f.type = FileType::Function;
         f.base = next;
-        f.elements = static_cast<std::uint32_t>(counters ? proc_.hsc_count() : function_file_elements(static_cast<int>(kind)));
+        f.elements = static_cast<std::uint32_t>(counters ? proc_.hsc_count()
+                                                : events ? proc_.eii_count()
+                                                         : function_file_elements(static_cast<int>(kind)));
         f.words_per_element = static_cast<std::uint8_t>(function_file_words_per_element(static_cast<int>(kind)));
         next += f.words();
       }
@@ -427,6 +431,13 @@ class Compiler {
     // otherwise (every saved project without an STI has 0 0 0X0002 0; docs/semantics.md "MicroLogix").
     if (const FileLayout& timed = layout_.function_file(FunctionFile::STI); timed.present)
       set_init(timed.base + sti::kBits, sti::kDefaultBits);
+    // Each EII as RSLogix creates it: UIE and ES set, IS = the element's number (0 0 0X4002 n in
+    // 59-BSGS.SLC and the .RSS record of type 0x15; docs/semantics.md "The EII function file").
+    if (const FileLayout& events = layout_.function_file(FunctionFile::EII); events.present)
+      for (std::uint32_t e = 0; e < events.elements; ++e) {
+        set_init(events.base + e * eii::kWords + eii::kBits, eii::kDefaultBits);
+        set_init(events.base + e * eii::kWords + eii::kInputSelect, static_cast<std::uint16_t>(e));
+      }
     // Every PTO/PTOX element's OUT is -1 (no output) until configured: the .RSS record and the export
     // hold -1 in every unused element (docs/micrologix-function-files-sources.md section 6.3).
     for (const FunctionFile pulse_train : {FunctionFile::PTO, FunctionFile::PTOX})

@@ -117,6 +117,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
   if (dii_supported_) s46_ = L.status_word(status::kDiiFile);
   locate_sti_bits();
   hsc_.attach(L.function_file(FunctionFile::HSC), L.files[0].base);
+  locate_event_interrupts();
   fused_ = std::make_shared<const FusedProgram>(program, cost_, per_word_.data());
 }
 
@@ -1757,6 +1758,10 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
   if (ok && first_pass && !configure_dii(true)) ok = false;
   if (first_pass) scan_toggle(prog_, w_, true);
   if (first_pass) pulse_trains_.enter_run(w_);  // every PTO idle on entering Run [U]
+  // The MicroLogix EII and HSC interrupts: nothing waits on entering Run; the counters were brought
+  // up to this scan's start (Runtime::program_scan), so a preset reached since runs at the first rung.
+  if (first_pass) reset_event_interrupts(true);
+  collect_counter_events();
   update_limit(elapsed);
   if (ok) ok = run_routine(2, elapsed, max_depth_);
   if (ok) scan_toggle(prog_, w_, false);  // END or TND

@@ -132,6 +132,19 @@ struct DiiState {
   std::uint64_t runs = 0;         // DII routine executions since the runtime was created
 };
 
+// A MicroLogix event interrupt as the interpreter keeps it: an EII:n (event input interrupt) or an
+// HSC:n (high-speed counter interrupt) function-file element, whose first words are PFN, ER and the
+// bit word with UIX/UIE/UIL/UIP/ED at the STI's positions (eii::, hsc:: in parser/address.h). What
+// waits is counted here: "1 active and ... up to 2 pending" before the lost bit (1763-RM001C p. 275).
+struct EventInterrupt {
+  bool counter = false;          // HSC:n, else EII:n
+  int number = 0;                // n
+  std::uint32_t element = 0;     // data-table index of the element's first word (PFN)
+  int priority = 0;              // vm/interrupts.cpp, 1762-RM001C p. 18-4
+  int queued = 0;                // events waiting to run, 0-2
+  std::uint64_t runs = 0;        // routine executions since the runtime was created
+};
+
 // Maximum call depth the interpreter's call stack holds (the processor's limit is at most 8).
 inline constexpr int kMaxCallDepth = 16;
 
@@ -182,6 +195,12 @@ class Interpreter {
   void dii_input(int slot, int word, std::uint16_t before, std::uint16_t after, VirtualTime at);
   // The module in `slot` requests its I/O interrupt (between scans, in Run; RM 11-27).
   void io_interrupt_request(int slot);
+  // The MicroLogix event input interrupts: the embedded input word I:0.0 (slot 0, word 0) changed at
+  // the terminals (between scans, in Run). Each EII whose EIE is set and whose IS bit saw its edge
+  // (ES) gets an event; the routine runs at the next rung start (docs/semantics.md "The EII function file").
+  void event_input(int slot, int word, std::uint16_t before, std::uint16_t after);
+  // The EII:n or HSC:n interrupt (nullptr when the processor has none), for tests and tools.
+  const EventInterrupt* event_interrupt(bool counter, int number) const;
   const DiiState& dii() const { return dii_; }
   std::uint64_t isr_runs() const { return isr_runs_; }
   const StiTimer& sti() const { return sti_; }
@@ -329,6 +348,19 @@ class Interpreter {
   [[gnu::noinline, gnu::cold]] bool at_limit(Nanoseconds& elapsed);
   bool service_interrupts(Nanoseconds& elapsed);
   bool run_sti(Nanoseconds& elapsed);
+  // The MicroLogix EII and HSC interrupts (vm/interrupts.cpp): set up once by the constructor, in
+  // priority order, highest first.
+  void locate_event_interrupts();
+  // Entering Run: nothing waits or runs; AS sets an EII's EIE [U]. Leaving Run: nothing waits.
+  void reset_event_interrupts(bool entering_run);
+  // An event of `e`: one more waits (UIP), or the lost bit UIL when two already wait.
+  void queue_event(EventInterrupt& e, int events);
+  // The HSC events of the last counter update (vm/ml_hsc.h) become HSC interrupts.
+  void collect_counter_events();
+  // The element's PFN when it names a subroutine file; otherwise sets ED and ER 1 and returns 0.
+  int event_program(EventInterrupt& e);
+  bool event_runnable(const EventInterrupt& e) const;
+  bool run_event(EventInterrupt& e, Nanoseconds& elapsed);
   // the DII and the I/O event interrupt, and the priorities of RM 11-30 (an interrupt
   // runs only inside a routine of lower priority: fault routine > DII > STI > ISR > main program).
   bool sti_runnable() const;
@@ -425,6 +457,9 @@ class Interpreter {
   std::uint16_t sti_pending_ = 0, sti_enabled_ = 0, sti_executing_ = 0;
   std::int64_t sti_file_word_ = -1;
   int sti_queued_ = 0;             // MicroLogix: expiries waiting to run, at most 2 (1763-RM001C p. 270)
+  std::array<EventInterrupt, eii::kMaxElements + 6> events_{};  // EII:n and HSC:n, highest priority first
+  int event_count_ = 0;
+  int events_queued_ = 0;          // the sum of events_[].queued: rung starts look while it is not 0
   // The priority of the routine running now (kPriority* in vm/interrupts.cpp).
   int priority_ = 0;
   DiiState dii_;

@@ -1,4 +1,5 @@
-// Interrupts: the selectable timed interrupt (STI), STD/STE/STS and the user fault routine.
+// Interrupts: the selectable timed interrupt (STI), STD/STE/STS, the user fault routine, and the
+// MicroLogix EII and HSC interrupts.
 //
 // Design. An interrupt routine is a program file run by the interpreter's own dispatch loop
 // (Interpreter::run_routine), called recursively from a rung start of the routine it interrupts;
@@ -33,7 +34,15 @@
 // the status file (locate_sti_bits: UIP, UIE, UIX for S:2/0-2), PFN/SPM/TIE read where the SLC
 // reads S:30/S:31, up to two waiting expiries before the lost bit (sti_queued_), and rung starts
 // that look while one waits so that a program's OTL of UIE runs it at the next rung.
+//
+// Their event input interrupts (EII:n) and high-speed counter interrupts (HSC:n) are EventInterrupts:
+// function-file elements with the STI's UIX/UIE/UIL/UIP bits and its "1 active and 2 pending" rule,
+// kept in one array in the priority order of 1762-RM001C p. 18-4 (all above the STI). An embedded
+// input's edge (event_input, from the runtime when the terminal changes) or a counter's high preset or
+// overflow (collect_counter_events, after each counter update) queues a run; rung starts look while
+// one waits (update_limit), so it runs at the next rung start once its UIE is set.
 #include <algorithm>
+#include <array>
 #include <string>
 
 #include "vm/interpreter.h"
@@ -43,11 +52,26 @@ namespace softslc {
 namespace {
 
 // Interrupt priorities (RM 11-30: "an executing interrupt can only be interrupted by an interrupt
-// having higher priority"; the 5/03+ order fault routine, DII, STI, ISR).
+// having higher priority"; the 5/03+ order fault routine, DII, STI, ISR). The MicroLogix event
+// interrupts lie between the STI and the fault routine (1762-RM001C p. 18-4), from
+// kPriorityEventLowest up, in the order of kEventOrder.
 constexpr int kPriorityIsr = 1;
 constexpr int kPrioritySti = 2;
-constexpr int kPriorityDii = 3;
-constexpr int kPriorityFault = 4;
+constexpr int kPriorityEventLowest = 3;
+constexpr int kPriorityDii = 30;
+constexpr int kPriorityFault = 40;
+
+// The MicroLogix user interrupts, highest priority first: 1762-RM001C p. 18-4 lists the User Fault
+// Routine, Event Interrupt 0, Event Interrupt 1, High-Speed Counter Interrupt 0, Event Interrupts 2
+// and 3, High-Speed Counter Interrupt 1 (1500 only) and the STI. The 1400's EII:4-7 and HSC:2-5 are
+// not in that list: softslc puts them after it, EIIs first [U]. {counter, number}.
+struct EventSlot {
+  bool counter;
+  int number;
+};
+constexpr std::array<EventSlot, 14> kEventOrder{{{false, 0}, {false, 1}, {true, 0}, {false, 2}, {false, 3}, {true, 1},
+                                                {false, 4}, {false, 5}, {false, 6}, {false, 7}, {true, 2}, {true, 3},
+                                                {true, 4}, {true, 5}}};
 
 bool slc_503_or_later(const ProcessorModel& p) {
   return p.family == ProcessorFamily::Slc503 || p.family == ProcessorFamily::Slc504 ||
@@ -146,6 +170,13 @@ void Interpreter::update_limit(Nanoseconds elapsed) {
   // sets UIE (1763-RM001C p. 270 "STI subroutine processing resumes"; 1762-RM001C p. 18-3: interrupts
   // are serviced at the start of a rung), so rung starts look while one waits.
   if (sti_file_word_ >= 0 && sti_queued_ > 0 && priority_ < kPrioritySti) limit = std::min(limit, elapsed);
+  // So do they while an EII or HSC event waits (for its UIE, or a routine of higher priority to end).
+  if (events_queued_ > 0)
+    for (int i = 0; i < event_count_; ++i)
+      if (events_[static_cast<std::size_t>(i)].queued > 0 && events_[static_cast<std::size_t>(i)].priority > priority_) {
+        limit = std::min(limit, elapsed);
+        break;
+      }
   if (dii_runnable() || runnable_isr_slot() != 0) limit = std::min(limit, elapsed);
   limit_ = limit;
 }
@@ -205,6 +236,16 @@ bool Interpreter::service_interrupts(Nanoseconds& elapsed) {
       if (!run_dii(elapsed)) return false;
       continue;
     }
+    // The MicroLogix EII and HSC interrupts, in their priority order, all above the STI.
+    bool ran = false;
+    for (int i = 0; events_queued_ > 0 && i < event_count_; ++i) {
+      EventInterrupt& e = events_[static_cast<std::size_t>(i)];
+      if (!event_runnable(e)) continue;
+      if (!run_event(e, elapsed)) return false;
+      ran = true;
+      break;
+    }
+    if (ran) continue;
     if (sti_runnable()) {
       if (!run_sti(elapsed)) return false;
       continue;
@@ -475,6 +516,7 @@ bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
 
 void Interpreter::stop_interrupts() {
   w_ = table_.words();
+  reset_event_interrupts(false);
   sti_.file = 0;
   sti_.next_period = 0;
   sti_queued_ = 0;
@@ -618,6 +660,152 @@ void Interpreter::function_file_sti_start(const std::uint32_t* o, Nanoseconds no
   update_limit(now_in_scan);
 }
 
+// ---- The MicroLogix EII and HSC interrupts ---------------------------------------------------------------
+// EII:n and HSC:n (eii::, hsc:: in parser/address.h) share the STI's program view: UIX, UIE, UIL, UIP
+// and ED at the same bit positions of word 2, PFN in word 0, ER in word 1. Sources: 1763-RM001C p. 275
+// and 1762-RM001C p. 18-19 (UIX, UIE, UIL, UIP: "1 active and ... up to 2 pending"), p. 18-3 (service
+// points), p. 18-4 (priority); the rest is softslc's reading, marked [U] in docs/semantics.md
+// "The EII function file" and "The HSC function file".
+
+void Interpreter::locate_event_interrupts() {
+  const FileLayout& inputs = prog_.layout->function_file(FunctionFile::EII);
+  const FileLayout& counters = prog_.layout->function_file(FunctionFile::HSC);
+  event_count_ = 0;
+  for (std::size_t k = 0; k < kEventOrder.size(); ++k) {
+    const EventSlot slot = kEventOrder[k];
+    const FileLayout& f = slot.counter ? counters : inputs;
+    if (!f.present || static_cast<std::uint32_t>(slot.number) >= f.elements) continue;
+    EventInterrupt& e = events_[static_cast<std::size_t>(event_count_++)];
+    e.counter = slot.counter;
+    e.number = slot.number;
+    e.element = f.base + static_cast<std::uint32_t>(slot.number) * f.words_per_element;
+    e.priority = kPriorityEventLowest + static_cast<int>(kEventOrder.size() - k);
+  }
+}
+
+const EventInterrupt* Interpreter::event_interrupt(bool counter, int number) const {
+  for (int i = 0; i < event_count_; ++i)
+    if (events_[static_cast<std::size_t>(i)].counter == counter && events_[static_cast<std::size_t>(i)].number == number)
+      return &events_[static_cast<std::size_t>(i)];
+  return nullptr;
+}
+
+void Interpreter::reset_event_interrupts(bool entering_run) {
+  events_queued_ = 0;
+  for (int i = 0; i < event_count_; ++i) {
+    EventInterrupt& e = events_[static_cast<std::size_t>(i)];
+    e.queued = 0;
+    std::uint16_t& bits = w_[e.element + eii::kBits];
+    bits = static_cast<std::uint16_t>(bits & ~((1u << eii::kExecutingBit) | (1u << eii::kPendingBit)));
+    if (!entering_run || e.counter) continue;
+    // AS "automatically sets the Event User Interrupt Enable bit when the controller enters any
+    // executing mode" (the 2080-UM002 wording of the same bit; taken as the EII's EIE [U]). An EII
+    // that may fire must name its program file (error code 1, as the STI's, 1763-RM001C p. 270).
+    if ((bits >> eii::kAutoStartBit) & 1u) bits = static_cast<std::uint16_t>(bits | (1u << eii::kEventEnableBit));
+    if ((bits >> eii::kEventEnableBit) & 1u) (void)event_program(e);
+  }
+}
+
+int Interpreter::event_program(EventInterrupt& e) {
+  std::uint16_t* fn = w_ + e.element;
+  const int file = fn[eii::kProgramFile];
+  if (file >= 3 && file <= 255 && prog_.file(file)) return file;
+  // Only a tool can make it so (PFN is read only and `check` refuses a bad DATA block): the
+  // element's ED and ER 1 "Invalid Program File Number" (as the STI's, 1763-RM001C p. 270); the
+  // controller does not fault and nothing runs [U].
+  fn[eii::kBits] = static_cast<std::uint16_t>(fn[eii::kBits] | (1u << eii::kErrorBit));
+  fn[eii::kErrorCode] = eii::kErrorInvalidFile;
+  return 0;
+}
+
+void Interpreter::queue_event(EventInterrupt& e, int events) {
+  std::uint16_t& bits = w_[e.element + eii::kBits];
+  // 1763-RM001C p. 275: "1 active and ... up to 2 pending user interrupt conditions before it sets
+  // the lost bit"; UIP shows that one waits (1762-RM001C p. 18-19).
+  const int room = 2 - e.queued;
+  const int taken = std::min(room, events);
+  e.queued += taken;
+  events_queued_ += taken;
+  if (taken > 0) bits = static_cast<std::uint16_t>(bits | (1u << eii::kPendingBit));
+  if (events > taken) bits = static_cast<std::uint16_t>(bits | (1u << eii::kLostBit));
+}
+
+void Interpreter::event_input(int slot, int word, std::uint16_t before, std::uint16_t after) {
+  if (slot != 0 || word != 0 || before == after) return;
+  w_ = table_.words();
+  for (int i = 0; i < event_count_; ++i) {
+    EventInterrupt& e = events_[static_cast<std::size_t>(i)];
+    if (e.counter) continue;
+    const std::uint16_t* fn = w_ + e.element;
+    // EIE arms the EII [U]; IS names the input (validated by `check`; a tool's bad IS sets ED, ER 2).
+    if (!((fn[eii::kBits] >> eii::kEventEnableBit) & 1u)) continue;
+    const int input = static_cast<std::int16_t>(fn[eii::kInputSelect]);
+    if (input < 0 || input > eii::kMaxInput) {
+      w_[e.element + eii::kBits] = static_cast<std::uint16_t>(fn[eii::kBits] | (1u << eii::kErrorBit));
+      w_[e.element + eii::kErrorCode] = eii::kErrorInvalidInput;
+      continue;
+    }
+    const bool was = (before >> input) & 1u, is = (after >> input) & 1u;
+    if (was == is) continue;
+    // ES set: the rising edge; clear: the falling edge [U].
+    const bool rising = (fn[eii::kBits] >> eii::kEdgeSelectBit) & 1u;
+    if (is != rising) continue;
+    if (event_program(e) == 0) continue;
+    queue_event(e, 1);
+  }
+}
+
+void Interpreter::collect_counter_events() {
+  for (int i = 0; i < event_count_; ++i) {
+    EventInterrupt& e = events_[static_cast<std::size_t>(i)];
+    if (!e.counter) continue;
+    const MicroLogixHsc::Events ev = hsc_.take_events(e.number);
+    if (ev.high == 0 && ev.overflow == 0) continue;
+    std::uint16_t* fn = w_ + e.element;
+    // A set mask bit lets its event interrupt [U]: RSLogix's default has HPM, LPM, UFM and OFM set
+    // (0X000F), and so has TVZ_1100_REV02.RSS, whose LAD 11 "HSC0" runs on every high preset as its
+    // annotations say. A counter whose PFN is 0 has no interrupt.
+    const std::uint16_t masks = fn[hsc::kStatus];
+    const std::int64_t high = (masks >> hsc::kHighMaskBit) & 1u ? ev.high : 0;
+    const std::int64_t overflow = (masks >> hsc::kOverflowMaskBit) & 1u ? ev.overflow : 0;
+    if (high + overflow == 0 || fn[hsc::kProgramFile] == 0) continue;
+    if (event_program(e) == 0) continue;
+    // HPI / OFI say which event interrupted; the other interrupt bits are cleared, as LPI and UFI are
+    // "when the High Preset Interrupt executes" (1762-RM001C pp. 5-10, 5-13) [U: at the event].
+    std::uint16_t& bits = fn[hsc::kBits];
+    bits = static_cast<std::uint16_t>(bits & ~((1u << hsc::kLowInterruptBit) | (1u << hsc::kUnderflowInterruptBit) |
+                                               (1u << hsc::kHighInterruptBit) | (1u << hsc::kOverflowInterruptBit)));
+    if (high > 0) bits = static_cast<std::uint16_t>(bits | (1u << hsc::kHighInterruptBit));
+    if (overflow > 0) bits = static_cast<std::uint16_t>(bits | (1u << hsc::kOverflowInterruptBit));
+    queue_event(e, static_cast<int>(std::min<std::int64_t>(high + overflow, 3)));
+  }
+}
+
+bool Interpreter::event_runnable(const EventInterrupt& e) const {
+  return e.queued > 0 && priority_ < e.priority && ((w_[e.element + eii::kBits] >> eii::kEnableBit) & 1u);
+}
+
+bool Interpreter::run_event(EventInterrupt& e, Nanoseconds& elapsed) {
+  --e.queued;
+  --events_queued_;
+  std::uint16_t& bits = w_[e.element + eii::kBits];
+  const int file = event_program(e);
+  if (file == 0) {
+    // The PFN was made invalid (by a tool) while the event waited: ED and ER 1, nothing runs.
+    events_queued_ -= e.queued;
+    e.queued = 0;
+    bits = static_cast<std::uint16_t>(bits & ~(1u << eii::kPendingBit));
+    return true;
+  }
+  // UIX while the routine runs (1763-RM001C p. 275); UIP stays while another waits.
+  if (e.queued == 0) bits = static_cast<std::uint16_t>(bits & ~(1u << eii::kPendingBit));
+  bits = static_cast<std::uint16_t>(bits | (1u << eii::kExecutingBit));
+  if (!run_interrupt_routine(file, e.priority, elapsed)) return false;
+  w_[e.element + eii::kBits] = static_cast<std::uint16_t>(w_[e.element + eii::kBits] & ~(1u << eii::kExecutingBit));
+  ++e.runs;
+  return true;
+}
+
 // HSL (counter, high preset, low preset, output high source, output low source) and RAC (counter,
 // source): vm/ml_hsc.h brings the counter up to now and loads it. A preset that breaks OVF >= HIP or
 // UNF <= LOP sets the counter's ED and loads nothing [U].
@@ -626,10 +814,13 @@ void Interpreter::high_speed_counter(Op op, const std::uint32_t* o, Nanoseconds 
   const std::int64_t now = scan_start_ + now_in_scan;
   if (op == Op::RAC) {
     hsc_.reset_accumulator(w_, counter, rd_int(o[1]), now);
-    return;
+  } else {
+    (void)hsc_.load(w_, counter, rd_int(o[1]), rd_int(o[2]), static_cast<std::uint16_t>(rd_int(o[3])),
+                    static_cast<std::uint16_t>(rd_int(o[4])), now);
   }
-  (void)hsc_.load(w_, counter, rd_int(o[1]), rd_int(o[2]), static_cast<std::uint16_t>(rd_int(o[3])),
-                  static_cast<std::uint16_t>(rd_int(o[4])), now);
+  // Bringing the counter up to now may have reached a preset: its interrupt runs at the next rung start.
+  collect_counter_events();
+  update_limit(now_in_scan);
 }
 
 bool Interpreter::user_fault_routine(Nanoseconds& elapsed) {

@@ -41,6 +41,7 @@ void MicroLogixHsc::enter_run(std::uint16_t* w, std::int64_t now) {
       set_bit(bits, b, false);
     if (bit_of(bits, hsc::kAutoStartBit)) set_bit(bits, hsc::kFunctionEnabledBit, true);
     k.config = {};
+    k.events = {};
     load_from_file(w, c);
     k.seen = pulses_delivered(c, now);
     k.set_parameters = bit_of(bits, hsc::kSetParametersBit);
@@ -87,11 +88,14 @@ void MicroLogixHsc::count(std::uint16_t* w, int counter, std::int64_t pulses) {
         k.accumulator += pulses;
         pulses = 0;
       } else {
-        // Reaches HIP and is cleared; each further HIP pulses (if HIP > 0) is one more cycle.
+        // Reaches HIP and is cleared; each further HIP pulses (if HIP > 0) is one more cycle, and
+        // one more high-preset event.
         pulses -= to_high;
         k.accumulator = 0;
         reached_high = true;
+        ++k.events.high;
         if (c.high > 0) {
+          k.events.high += pulses / c.high;
           k.accumulator = pulses % c.high;
           pulses = 0;
         }
@@ -104,6 +108,7 @@ void MicroLogixHsc::count(std::uint16_t* w, int counter, std::int64_t pulses) {
       } else {
         pulses -= to_roll;
         k.accumulator = c.underflow;
+        ++k.events.overflow;
         set_bit(status, hsc::kOverflowBit, true);
       }
     }
@@ -200,6 +205,13 @@ std::string MicroLogixHsc::set_pulse_rate(int counter, std::int64_t rate, std::i
   s.start = now;
   s.rate = rate;
   return {};
+}
+
+MicroLogixHsc::Events MicroLogixHsc::take_events(int counter) {
+  if (counter < 0 || counter >= count_) return {};
+  Events e = counters_[static_cast<std::size_t>(counter)].events;
+  counters_[static_cast<std::size_t>(counter)].events = {};
+  return e;
 }
 
 std::int64_t MicroLogixHsc::pulses_delivered(int counter, std::int64_t now) const {

@@ -59,6 +59,14 @@ class MicroLogixHsc {
   // Pulses the source has delivered to the counter's input by `now` (counted or not).
   std::int64_t pulses_delivered(int counter, std::int64_t now) const;
 
+  // The interrupt events of a counter since the last call: how many times it reached the high preset
+  // and counted through the overflow value. The interpreter turns them into HSC interrupts (the
+  // masks, UIE and PFN decide; vm/interrupts.cpp) and the counts start again from 0.
+  struct Events {
+    std::int64_t high = 0, overflow = 0;
+  };
+  Events take_events(int counter);
+
  private:
   struct Config {
     bool loaded = false;
@@ -76,6 +84,7 @@ class MicroLogixHsc {
     std::int64_t accumulator = 0;
     std::int64_t seen = 0;         // pulses delivered at the last update
     bool set_parameters = false;   // SP at the last update (for its rising edge)
+    Events events;                 // not yet taken by the interpreter
     PulseSource source;
   };
 

@@ -375,8 +375,12 @@ void Runtime::enter_suspend() {
 // ---- Interrupt sources --------------------------------------------------------------------------
 
 void Runtime::field_input_changed(int slot, int word, std::uint16_t before, std::uint16_t after) {
-  // The DII works in Run only (RM 11-18: it begins operation on entry to Run).
-  if (mode_ == Mode::Run) interp_->dii_input(slot, word, before, after, clock_.now());
+  // The DII works in Run only (RM 11-18: it begins operation on entry to Run); so does the EII [U].
+  if (mode_ != Mode::Run) return;
+  interp_->dii_input(slot, word, before, after, clock_.now());
+  // The MicroLogix EII sees the embedded inputs' terminals change, at this moment of virtual time
+  // (docs/semantics.md "The EII function file").
+  interp_->event_input(slot, word, before, after);
 }
 
 void Runtime::request_io_interrupt(int slot) {

@@ -685,6 +685,8 @@ enum DataType : std::uint16_t { DtOutput = 0, DtInput = 1, DtStatus = 2, DtBinar
 
 // The type code of the STI function file's record among the function files.
 constexpr std::uint16_t kStiFunctionFile = 0x14;
+// The EII's (MicroLogix 1100: four elements of four words, PFN ER bits IS; eii:: in parser/address.h).
+constexpr std::uint16_t kEiiFunctionFile = 0x15;
 // The PTO's (MicroLogix 1100: two elements of 12 words; docs/micrologix-function-files-sources.md 6.3).
 constexpr std::uint16_t kPtoFunctionFile = 0x12;
 // The type code of the HSC function file's record: one element of 18 words per high-speed counter
@@ -880,6 +882,22 @@ void write_hsc_function_file(const DataFileRecord& r, Archive& a, std::size_t at
   }
 }
 
+// The EII record (type 0x15), written as RSLogix's export writes DATA EII0:0 (59-BSGS.SLC): per
+// element PFN ER bits IS, the bit word in hex. Every fixture holds 0 0 0x4002 n in element n.
+void write_eii_function_file(const DataFileRecord& r, Archive& a, std::size_t at, std::string& out) {
+  if (r.elements < 1 || r.elements > eii::kMaxElements || r.words_per_element != eii::kWords)
+    a.fail("the EII function file has " + std::to_string(r.elements) + " elements of " + std::to_string(r.words_per_element) +
+               " words (1 to 8 of 4 expected)",
+           at);
+  out += "\nDATA EII0:0\n";
+  for (int e = 0; e < r.elements; ++e) {
+    const std::size_t base = static_cast<std::size_t>(e) * static_cast<std::size_t>(eii::kWords);
+    out += "% EII0:" + std::to_string(e) + " %\n" + std::to_string(word_at(r.values, base)) + " " +
+           std::to_string(word_at(r.values, base + 1)) + " " + hex_word(word_at(r.values, base + 2)) + " " +
+           std::to_string(word_at(r.values, base + 3)) + "\n";
+  }
+}
+
 void decode_data_files(std::string_view data, const ProcessorCode& processor, std::string& out) {
   Archive a(data, "DATA FILES");
   a.expect("CDataHolder");
@@ -910,6 +928,10 @@ void decode_data_files(std::string_view data, const ProcessorCode& processor, st
     }
     if (r.type == kPtoFunctionFile) {
       write_pto_function_file(r, a, at, out);
+      continue;
+    }
+    if (r.type == kEiiFunctionFile) {
+      write_eii_function_file(r, a, at, out);
       continue;
     }
     if (r.type != kStiFunctionFile) continue;

@@ -252,6 +252,93 @@ TEST(MicroLogixHsc, RacTimingIsTheManualsOnThe1200And1500) {
   }
 }
 
+// ---- The HSC interrupt ------------------------------------------------------------------------------------
+// The PFN routine runs when the counter reaches its high preset or counts through OVF, with the STI's
+// and EII's pending/lost rules (1763-RM001C p. 275: "1 active and ... up to 2 pending") and priority
+// (1762-RM001C p. 18-4: High-Speed Counter Interrupt 0 below Event Interrupts 0 and 1, above Event
+// Interrupt 2 and the STI). [U], as decided in docs/semantics.md "The HSC function file": a set mask
+// bit (HPM, OFM) lets its event interrupt, as RSLogix's default 0X000F and TVZ_1100_REV02's 0XB00F have
+// them; UIE holds the routine back while clear; HPI or OFI says which event it was; the counter is
+// updated (and its events taken) at the start of each scan and at HSL and RAC.
+
+// PFN 3, UIE (and `bits`), masks `status`; LAD 3 counts its runs in N7:0 and copies HPI to B3:1/0.
+std::string hsc_interrupt_program(const std::string& bits, const std::string& status, std::int64_t hip, std::int64_t acc = 0,
+                                  std::int64_t ovf = 1000000) {
+  return "START Bul.1763\nLADDER 2\nSOR OTE HSC:0/FE EOR\nSOR XIC B3:0/0 OTL HSC:0/UIE EOR\nSOR MOV N7:0 N7:5 EOR\n"
+         "LADDER 3\nSOR ADD N7:0 1 N7:0 EOR\nSOR XIC HSC:0/HPI OTE B3:1/0 EOR\nSOR XIC HSC:0/OFI OTE B3:1/1 EOR\n"
+         "DATA HSC:0\n3 0 " + bits + " " + status + " 0\n" + std::to_string(acc) + " " + std::to_string(hip) + " -10 " +
+         std::to_string(ovf) + " -10\n0 0 0\n";
+}
+
+TEST(MicroLogixHsc, HighPresetRunsTheInterruptRoutine) {
+  // 1000 pulses a second, HIP 10: a high preset every 10 ms, each one run of LAD 3 at the next scan.
+  Controller plc = Controller::from_text(hsc_interrupt_program("0X0002", "0X000F", 10));
+  plc.scan(1);
+  plc.inject("HSC0", "pulses", {"1000"});
+  plc.run_for(95 * kNsPerMs);
+  plc.inject("HSC0", "pulses", {"0"});
+  const std::int64_t n = plc.observe("HSC0", "pulses").at(0);
+  plc.scan(1);
+  ASSERT_FALSE(plc.fault().has_value()) << plc.fault()->to_string();
+  EXPECT_EQ(plc.get_int("N7:0"), n / 10);
+  EXPECT_GE(n / 10, 9);
+  EXPECT_EQ(plc.get_int("N7:5"), n / 10) << "at the first rung start of the scan, before rung 2";
+  EXPECT_TRUE(plc.get_bit("B3:1/0")) << "HPI: the high preset caused it";
+  EXPECT_FALSE(plc.get_bit("HSC:0/UIX"));
+  EXPECT_FALSE(plc.get_bit("HSC:0/UIP"));
+  EXPECT_FALSE(plc.get_bit("HSC:0/UIL"));
+}
+
+TEST(MicroLogixHsc, OverflowRunsTheInterruptRoutineWithOfi) {
+  // ACC starts above HIP, so it counts on to OVF (p. 5-23) and through it: one overflow interrupt.
+  Controller plc = Controller::from_text(hsc_interrupt_program("0X0002", "0X000F", 10, 990, 1000));
+  plc.scan(1);
+  plc.inject("HSC0", "pulses", {"1000"});
+  plc.run_for(20 * kNsPerMs);
+  plc.inject("HSC0", "pulses", {"0"});
+  plc.scan(1);
+  EXPECT_TRUE(plc.get_bit("HSC:0/OF"));
+  EXPECT_GE(plc.get_int("N7:0"), 1);
+  EXPECT_TRUE(plc.get_bit("B3:1/1")) << "OFI";
+}
+
+TEST(MicroLogixHsc, AClearMaskOrAZeroPfnHasNoInterrupt) {
+  // HPM clear (0X000D): the high preset is reached (MD) but nothing runs [U].
+  Controller plc = Controller::from_text(hsc_interrupt_program("0X0002", "0X000D", 10));
+  plc.scan(1);
+  plc.inject("HSC0", "pulses", {"1000"});
+  plc.run_for(50 * kNsPerMs);
+  EXPECT_TRUE(plc.get_bit("HSC:0/MD"));
+  EXPECT_EQ(plc.get_int("N7:0"), 0);
+  EXPECT_FALSE(plc.get_bit("HSC:0/UIP"));
+  // RSLogix's default counter (PFN 0) never interrupts.
+  Controller plain = Controller::from_text(hsc_program(config(0, 10, 0, 1000, 0), "SOR OTE HSC:0/FE EOR\n"));
+  plain.inject("HSC0", "pulses", {"1000"});
+  plain.run_for(50 * kNsPerMs);
+  EXPECT_TRUE(plain.get_bit("HSC:0/MD"));
+  EXPECT_FALSE(plain.get_bit("HSC:0/UIP"));
+  EXPECT_FALSE(plain.fault().has_value());
+}
+
+TEST(MicroLogixHsc, UieClearHoldsTwoInterruptsAndLosesTheRest) {
+  // UIE clear: the high presets wait, two of them, then UIL (1763-RM001C p. 275, the same rule for
+  // every MicroLogix user interrupt); setting UIE runs the two.
+  Controller plc = Controller::from_text(hsc_interrupt_program("0X0000", "0X000F", 10));
+  plc.scan(1);
+  plc.inject("HSC0", "pulses", {"1000"});
+  plc.run_for(15 * kNsPerMs);
+  EXPECT_TRUE(plc.get_bit("HSC:0/UIP"));
+  EXPECT_FALSE(plc.get_bit("HSC:0/UIL"));
+  plc.run_for(30 * kNsPerMs);
+  plc.inject("HSC0", "pulses", {"0"});
+  EXPECT_TRUE(plc.get_bit("HSC:0/UIL"));
+  EXPECT_EQ(plc.get_int("N7:0"), 0);
+  plc.set("B3:0/0", 1);
+  plc.scan(1);
+  EXPECT_EQ(plc.get_int("N7:0"), 2);
+  EXPECT_FALSE(plc.get_bit("HSC:0/UIP"));
+}
+
 // ---- TVZ_1100_REV02: a production MicroLogix 1100 program with an encoder on HSC0 ---------------
 
 const std::string kTvzDir = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rss/drbitboy-PLC_reject_timing/";
@@ -296,6 +383,25 @@ TEST(MicroLogixHsc, TvzCountsEncoderPulsesWhenTheEncoderIsInUse) {
   EXPECT_LT(plc.get_int("HSC:0.ACC"), 30);
   EXPECT_TRUE(plc.get_bit("HSC:0/MD"));
   EXPECT_GE(plc.observe("HSC0", "pulses").at(0), 3000);
+}
+
+TEST(MicroLogixHsc, TvzHscInterruptFeedsItsSpeedCalculation) {
+  // TVZ's HSC:0 (PFN 11, UIE, masks 0XB00F) runs LAD 11 "HSC0" at every high preset (its annotations),
+  // which adds HIP (30) to F18:11; LAD 13, its STI every 300 ms, turns F18:11 into pulses a minute
+  // (x 200) and revolutions a minute (/ 100 pulses a revolution, F18:15), then clears it. At 3000
+  // pulses a second that is 900 pulses in 300 ms: 180,000 a minute, 1800 RPM, give or take one high
+  // preset (30 pulses: 60 RPM) at either end of the STI's period.
+  Controller plc = Controller::load(kTvzDir + "TVZ_1100_REV02.RSS");
+  plc.set("B13:0/11", 1);
+  plc.set("N17:0", 0);
+  plc.set("N17:1", 10);
+  plc.scan(2);
+  plc.inject("HSC0", "pulses", {"3000"});
+  plc.run_for(seconds(2));
+  ASSERT_FALSE(plc.fault().has_value()) << plc.fault()->to_string();
+  EXPECT_FALSE(plc.get_bit("HSC:0/UIL")) << "every high preset's routine ran";
+  EXPECT_GE(plc.get_float("F18:15"), 1740.0);
+  EXPECT_LE(plc.get_float("F18:15"), 1860.0);
 }
 
 }  // namespace

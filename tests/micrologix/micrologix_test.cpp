@@ -619,16 +619,16 @@ TEST(MicroLogixFunctionFiles, CheckerAcceptsRtcOnlyWhereItExistsAndNamesUnmodell
             std::string::npos);
   EXPECT_NE(load_errors("START Bul.1761\nLADDER 2\nSOR MOV RTC:0.SEC N7:0 EOR\n").find("function file RTC"),
             std::string::npos);
-  // EII is recognised and named, not simulated yet (HSC is: tests/micrologix/hsc_test.cpp).
-  EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR XIC EII:0/0 OTE O:0/0 EOR\n")
-                .find("function file EII (EII:0/0) is not simulated by softslc yet"),
+  // BHI is recognised and named, not simulated (HSC and EII are: tests/micrologix/hsc_test.cpp, eii_test.cpp).
+  EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR XIC BHI:0/0 OTE O:0/0 EOR\n")
+                .find("function file BHI (BHI:0/0) is not simulated by softslc yet"),
             std::string::npos);
   EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR MOV RTC:1.SEC N7:0 EOR\n").find("RTC has element 0 only"),
             std::string::npos);
   // A function file's DATA block still loads, kept as opaque data with a warning naming it.
-  LoadResult r = load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 OTE O:0/0 EOR\nDATA EII:0\n1 2 3\n", "t.slc");
+  LoadResult r = load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 OTE O:0/0 EOR\nDATA BHI:0\n1 2 3\n", "t.slc");
   ASSERT_TRUE(r.ok()) << r.render_diagnostics();
-  EXPECT_NE(r.render_diagnostics().find("data file 'EII:0'"), std::string::npos) << r.render_diagnostics();
+  EXPECT_NE(r.render_diagnostics().find("data file 'BHI:0'"), std::string::npos) << r.render_diagnostics();
 }
 
 // Runs scans until RTC:0.SEC differs from `from` (at most 2 s), i.e. up to the next whole second.

@@ -171,14 +171,14 @@ TEST(Program, LongAndAsciiDataBlocks) {
 
 TEST(Program, FunctionFilesAreKeptOpaqueWithAWarning) {
   auto r = load_program("START Bul.1766\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n"
-                        "DATA EII0:0 \n% EII0:0  %\n     0      0 0X0002\n\nDATA PWMX0:0\n% PWMX0:0 %\n    -1 0X0000\n",
+                        "DATA BHI0:0 \n% BHI0:0  %\n     0      0 0X0002\n\nDATA PWMX0:0\n% PWMX0:0 %\n    -1 0X0000\n",
                         "ml.slc");
   ASSERT_TRUE(r.ok()) << r.render_diagnostics();
   EXPECT_EQ(r.diagnostics.warning_count(), 2u);
   ASSERT_EQ(r.program->data.size(), 2u);
   EXPECT_FALSE(r.program->data[0].type.has_value());
-  EXPECT_EQ(r.program->data[0].file_name, "EII0:0");
-  EXPECT_EQ(r.program->data[0].opaque_text, "% EII0:0  %\n     0      0 0X0002");
+  EXPECT_EQ(r.program->data[0].file_name, "BHI0:0");
+  EXPECT_EQ(r.program->data[0].opaque_text, "% BHI0:0  %\n     0      0 0X0002");
 }
 
 TEST(Program, ForceBlocks) {

@@ -396,7 +396,7 @@ TEST(IoInterruptCheck, IsrOptionNamesAnExistingFile) {
 
 TEST(UserInterrupt, UidUieUifAreRefusedByNameOnEveryProcessor) {
   // 1747-RM001G has no UID/UIE/UIF; the MicroLogix 1100-1500 have them (1763/1766-RM001) on the
-  // STI/EII/HSC function files, which softslc does not simulate.
+  // STI/EII/HSC function files, with an interrupt-type operand whose encoding was not found.
   for (std::string_view m : {"UID", "UIE", "UIF"}) {
     const std::string slc = build_errors(program_text("SOR " + std::string(m) + " 1 EOR"));
     EXPECT_NE(slc.find("is not an SLC 500 instruction"), std::string::npos) << slc;

@@ -115,6 +115,23 @@ struct FusedScan {
 
 FusedRule fused_rule(Opcode op);
 
+// A subroutine call a run took itself and that had not returned when the run stopped (vm/fused.h,
+// "Calls"): the interpreter pushes a call frame for it, as its JSR handler would have.
+struct FusedCall {
+  std::uint32_t ret = 0;      // code offset of the SOR (or EOF) after the JSR's rung
+  std::uint32_t file = 0;     // the calling file
+  std::uint32_t rung = 0;     // the JSR's rung number
+  std::int32_t ret_run = -1;  // the run starting at ret, or -1
+};
+// The call state a run shares with the interpreter's run_routine.
+struct FusedCalls {
+  static constexpr unsigned kCapacity = 16;  // at least kMaxCallDepth (vm/interpreter.cpp checks)
+  std::uint32_t file = 0;  // in: the program file the run starts in; out: the file where it stopped
+  unsigned room = 0;       // in: calls allowed before the nesting limit (fault 0030h)
+  unsigned depth = 0;      // out: calls outstanding, oldest first in call[0, depth)
+  FusedCall call[kCapacity];
+};
+
 class FusedProgram {
  public:
   // Contacts per fused rung: the cost table has 2^kMaxContacts entries per shape.
@@ -151,8 +168,11 @@ class FusedProgram {
   // offset where the general path continues (the SOR of the next rung, the file's EOF, or the
   // SOR of a rung at which `limit`, the watchdog or an interrupt point, was reached, or, with
   // kRunsGeneral, of a rung the general path must execute, or with kTransfer a taken JSR or RET).
+  // A taken JSR whose subroutine starts with a fused run, with `calls.room` left, is entered
+  // without returning (its call is added to `calls`), and a taken RET with a call outstanding
+  // returns into the run after that JSR's rung; `calls.file` follows.
   Exit execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
-                        Nanoseconds limit, const FusedScan& scan) const;
+                        Nanoseconds limit, const FusedScan& scan, FusedCalls& calls) const;
 
   std::size_t runs() const { return runs_.size(); }
   std::size_t fused_rungs() const { return fused_rungs_; }
@@ -162,6 +182,8 @@ class FusedProgram {
   std::size_t word_rungs() const { return word_rungs_; }
   // Fused rungs ending in a JSR or RET.
   std::size_t transfer_rungs() const { return transfer_rungs_; }
+  // Fused JSRs whose subroutine starts with a fused run (a run enters it itself).
+  std::size_t linked_calls() const { return linked_calls_; }
   bool wide_indices() const { return wide_; }
 
  private:
@@ -174,6 +196,7 @@ class FusedProgram {
     bool word = false;                // a word rung: records in wrecords_, run_word_segment
     Op action = Op::SOR;              // word rungs: the action, or SOR for none
     bool transfer = false;            // word rungs: ends in a JSR or RET (kTransfer)
+    bool call = false;                // ... in a JSR, whose record carries the call's targets
     std::uint8_t action_flags = 0;    // its header flags (a timer's time base)
     std::uint16_t action_aux = 0;     // its header aux (RES: the element's FileType)
     std::uint16_t instructions = 0;  // instruction-table instructions in the rung
@@ -182,6 +205,11 @@ class FusedProgram {
     std::uint32_t cost_at = 0;       // first of 2^contacts entries in costs_
     std::uint32_t on_at = 0;         // first of coils * 2^contacts entries in on_
     std::uint32_t rules_at = 0;      // first of coils entries in rules_, then (word rungs) compares Op bytes
+    // The same three tables as pointers, set once every shape is built, so a word rung loads one
+    // pointer per table instead of the vector's start and the offset.
+    const Nanoseconds* cost = nullptr;
+    const std::uint16_t* on = nullptr;
+    const std::uint8_t* rules = nullptr;
   };
   // Consecutive rungs of one run that share a shape, or consecutive word rungs: executed by one
   // kernel call.
@@ -208,9 +236,19 @@ class FusedProgram {
   // consecutive rungs of different shapes cost no call. Adds the instructions to `count`;
   // returns the rungs completed, with kRunsGeneral set when it stopped before a rung the
   // general path must run, or kTransfer (and `exit` set) after a rung whose JSR or RET is taken.
+  // Where a word segment stopped at a taken transfer: the exit, and for a JSR the record's call
+  // words (kCallWords, vm/fused.h "Calls").
+  struct Stop {
+    Exit exit;
+    const std::uint32_t* call = nullptr;
+  };
   static std::uint32_t run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
                                         Nanoseconds& t, std::uint64_t& count, Nanoseconds limit, const FusedScan& scan,
-                                        Exit& exit);
+                                        Stop& stop);
+  // A fused JSR's record ends in its call words, then the transfer's code offset and rung number:
+  // the subroutine's file, the run at its first rung (or -1), the return offset (the next rung's
+  // SOR, or EOF) and the run that starts there (or -1).
+  static constexpr unsigned kCallWords = 4;
   // word_rung's results.
   enum WordRungResult : unsigned { kRungDone = 0, kRungGeneral = 1, kRungTransfer = 2 };
   template <Op A, unsigned NC, unsigned NM, bool Transfer>
@@ -234,7 +272,8 @@ class FusedProgram {
   // Word-rung records, 32-bit units: the shape's index, each contact's and coil's bit operand word (vm/bytecode.h,
   // mode BIT), two read operands per compare, then the action's table operands other than
   // literals and time bases (COP: its two file operands' word indices and its length as an
-  // immediate), in instruction-box order, then for a transfer its code offset and rung number.
+  // immediate), in instruction-box order, then for a JSR its call words (kCallWords), then for a
+  // transfer its code offset and rung number.
   // A read operand is a word index, or an immediate with bit 31 set and its value in bits 0-30
   // (kImmediate).
   std::vector<std::uint32_t> wrecords_;
@@ -253,6 +292,7 @@ class FusedProgram {
   std::size_t fused_rungs_ = 0;
   std::size_t word_rungs_ = 0;
   std::size_t transfer_rungs_ = 0;
+  std::size_t linked_calls_ = 0;
 };
 
 }  // namespace softslc

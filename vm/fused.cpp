@@ -505,7 +505,11 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
       if (run.last > run.first && segments_.back().shape == key && !after_transfer)
         ++segments_.back().rungs;
       else
-        segments_.push_back({at, 1, key, rung_index});
+        segments_.push_back({at, 1, key, rung_index, 0, 0});
+      if (word) {
+        segments_.back().rec_end = static_cast<std::uint32_t>(wrecords_.size());
+        segments_.back().instructions += shapes_[static_cast<std::size_t>(shape)].instructions;
+      }
       run.last = static_cast<std::uint32_t>(segments_.size());
       run.next = end;
       after_transfer = shapes_[static_cast<std::size_t>(shape)].transfer;
@@ -687,17 +691,25 @@ template <Op A, unsigned NC, unsigned NM, bool Transfer>
 [[gnu::always_inline]] inline std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
                                              Nanoseconds& elapsed, std::uint64_t& count, Nanoseconds limit,
                                              const FusedScan& scan, Stop& stop) {
-  const std::uint32_t* rec = p.wrecords_.data() + segment.rec;
+  const std::uint32_t* const first = p.wrecords_.data() + segment.rec;
+  const std::uint32_t* const end = p.wrecords_.data() + segment.rec_end;
+  const std::uint32_t* rec = first;
   Nanoseconds t = elapsed;
-  std::uint64_t n = count;
-  std::uint32_t done = 0;
-  const std::uint32_t rungs = segment.rungs;
   const Shape* const shapes = p.shapes_.data();
+  // The rungs before `at` and their instructions: a segment that stops early counts them then,
+  // so a rung adds nothing to the count as it runs.
+  auto completed = [&](const std::uint32_t* at) {
+    std::uint32_t rungs = 0;
+    for (const std::uint32_t* r = first; r != at; r += shapes[r[0]].stride, ++rungs) count += shapes[r[0]].instructions;
+    return rungs;
+  };
   for (;;) {
     const Shape& sh = shapes[rec[0]];
     unsigned result = kRungDone;
     // One case per action, transfer or not, and contact/compare count (Builder::build_shape
-    // numbers them).
+    // numbers them; none is larger than kLastWordKernel).
+    static_assert(kLastWordKernel == (std::size(kActions) * 2 - 1) * kWordVariants + kWordVariants - 1);
+    if (sh.kernel > kLastWordKernel) __builtin_unreachable();
     switch (sh.kernel) {
 #define SOFTSLC_WORD_RUNG(A, T, V, NC, NM)                                                         \
   case ((A) * 2 + (T)) * kWordVariants + (V):                                                      \
@@ -718,25 +730,29 @@ template <Op A, unsigned NC, unsigned NM, bool Transfer>
       default: result = kRungGeneral; break;  // not built (a timer then a transfer): the general path
     }
     if (result != kRungDone) [[unlikely]] {
-      if (result == kRungTransfer) {
-        // The rung ran to its JSR or RET: counted, and the interpreter takes the transfer.
-        n += sh.instructions;
-        ++done;
-        stop.exit = {rec[sh.stride - 2] | kTransfer, rec[sh.stride - 1]};
-        stop.call = sh.call ? rec + sh.stride - 2 - kCallWords : nullptr;
-      }
       elapsed = t;
-      count = n;
-      return done | (result == kRungTransfer ? kTransfer : kRunsGeneral);
+      if (result == kRungGeneral) return completed(rec) | kRunsGeneral;
+      // The rung ran to its JSR or RET: counted, and the interpreter takes the transfer. A
+      // transfer rung ends its segment (the rung after it starts one), so this is seldom a walk.
+      stop.exit = {rec[sh.stride - 2] | kTransfer, rec[sh.stride - 1]};
+      stop.call = sh.call ? rec + sh.stride - 2 - kCallWords : nullptr;
+      if (rec + sh.stride == end) [[likely]] {
+        count += segment.instructions;
+        return segment.rungs | kTransfer;
+      }
+      count += sh.instructions;
+      return (completed(rec) + 1) | kTransfer;
     }
-    n += sh.instructions;
     rec += sh.stride;
-    ++done;
-    if (t >= limit || done == rungs) break;
+    if (rec == end) break;
+    if (t >= limit) [[unlikely]] {
+      elapsed = t;
+      return completed(rec);
+    }
   }
   elapsed = t;
-  count = n;
-  return done;
+  count += segment.instructions;
+  return segment.rungs;
 }
 
 // Kernel (N * 2 + Wide) * 4 + Coil, as Builder::build_shape numbers it.

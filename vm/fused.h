@@ -218,6 +218,10 @@ class FusedProgram {
     std::uint32_t rungs = 0;       // rungs in the segment
     std::uint32_t shape = 0;       // or kWordSegment
     std::uint32_t first_rung = 0;  // index in sor_ of the first rung
+    // Word segments: one past the last record in wrecords_, and the instructions of all its rungs
+    // (added once when the segment completes; a segment that stops early counts its rungs then).
+    std::uint32_t rec_end = 0;
+    std::uint32_t instructions = 0;
   };
   struct Run {
     std::uint32_t first = 0;  // index in segments_ of the first segment
@@ -254,6 +258,8 @@ class FusedProgram {
   template <Op A, unsigned NC, unsigned NM, bool Transfer>
   static unsigned word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
                         Nanoseconds& t, const FusedScan& scan);
+  // The largest Shape::kernel of a word rung (run_word_segment's last case).
+  static constexpr unsigned kLastWordKernel = 153;
   // Segment::shape of a segment of word rungs (each record names its shape).
   static constexpr std::uint32_t kWordSegment = 0xFFFFFFFFu;
   using Kernel = std::uint32_t (*)(const FusedProgram&, const Segment&, std::uint16_t*, Nanoseconds&, Nanoseconds,

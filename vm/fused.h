@@ -65,6 +65,21 @@
 // COP is fused when the compiler resolved both spans (flag B: no fault is possible); the copy is
 // word_ops::copy_direct, the handler's code, and its per-word charge is added with the rung's.
 //
+// Calls (issue 20). A taken JSR need not leave the run either: when the subroutine's first rung
+// starts a fused run (and the JSR's code offset is that rung's SOR), the run checks the nesting
+// limit (calls.room, the frames run_routine has left), notes the call (return offset, calling file,
+// the JSR's rung number, and the run that starts at the return: the FusedCall) and, unless the
+// watchdog or an interrupt point is reached at the subroutine's first SOR, continues there. A taken
+// RET with a call of the run outstanding returns into the run after the JSR's rung the same way
+// (after the same check at that SOR). Every other case stops the run where the general path would
+// act: the nesting limit (the JSR is returned, and run_routine raises 0030h), a subroutine or a
+// return rung that is not fused (the run stops at its SOR, or at the file's EOF), a rung handed
+// back (kRunsGeneral), or the watchdog. The calls still outstanding then are returned in
+// FusedCalls, and run_routine pushes their frames (a fused run holds no branch and no false MCR
+// zone, so the frames are the JSR handler's). The mixed program's scan thus runs as one call of
+// execute() instead of one per JSR and return. A fused JSR's record carries the call's targets
+// (kCallWords), filled in once every file's runs are known.
+//
 // Exactness. Gathering every contact before any coil writes is only correct when no contact
 // reads a bit that a coil earlier in the same rung writes; such rungs are left to the general
 // path. A run of consecutive fused rungs is executed in one call; before each rung after the

@@ -796,7 +796,7 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
           }
           calls.call[calls.depth++] = {stop.call[2], calls.file, stop.exit.rung, static_cast<std::int32_t>(stop.call[3])};
           calls.file = stop.call[0];
-          at = sor_[segments_[runs_[static_cast<std::size_t>(next_run)].first].first_rung];
+          at = 0;  // not read: the subroutine's first SOR is looked up below only if the run stops there
         } else {
           // A RET with no call of this run outstanding: run_routine returns (or ends the scan).
           if (calls.depth == 0) {
@@ -810,11 +810,15 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
         }
         // The SOR the general path would dispatch next: the watchdog or an interrupt is checked
         // there, and a rung that is not fused runs there.
-        if (next_run < 0 || t >= limit) {
+        if (next_run < 0) {
           out = {at, 0};
           break;
         }
         r = &runs_[static_cast<std::size_t>(next_run)];
+        if (t >= limit) [[unlikely]] {
+          out = {sor_[segments_[r->first].first_rung], 0};
+          break;
+        }
         s = r->first;
         continue;
       }

@@ -212,6 +212,8 @@ class FusedProgram::Builder {
             if (is_timer(action_)) return -1;
             transfer_ = op;
             transfer_at_ = pc;
+            // A JSR's subroutine file (an immediate).
+            if (op == Op::JSR) call_file_ = static_cast<std::uint32_t>(bc::imm_of(o[0]));
             break;
           }
           if (bc::count_of(h) != 1 || bc::mode_of(o[0]) != bc::kBit) return -1;
@@ -236,6 +238,7 @@ class FusedProgram::Builder {
     }
     if (depth != 0) return -1;
     rung_number_ = bc::aux_of(code[sor]);
+    end_ = end;
     auto [it, inserted] = shape_index_.try_emplace(key_, static_cast<std::uint32_t>(out_.shapes_.size()));
     if (inserted) build_shape();
     const Shape& shape = out_.shapes_[it->second];
@@ -293,6 +296,14 @@ class FusedProgram::Builder {
     for (std::uint32_t o : compares_) r.push_back(encode(o));
     r.insert(r.end(), coils_.begin(), coils_.end());
     r.insert(r.end(), action_operands_.begin(), action_operands_.end());
+    if (transfer_ == Op::JSR) {
+      // The call words (FusedProgram::kCallWords); the runs are filled in once every file's runs
+      // are known (the FusedProgram constructor).
+      r.push_back(call_file_);
+      r.push_back(static_cast<std::uint32_t>(-1));
+      r.push_back(end_);
+      r.push_back(static_cast<std::uint32_t>(-1));
+    }
     if (transfer_ != Op::SOR) {
       r.push_back(transfer_at_);
       r.push_back(rung_number_);
@@ -340,6 +351,7 @@ class FusedProgram::Builder {
     s.word = word_rung();
     s.action = action_;
     s.transfer = transfer_ != Op::SOR;
+    s.call = transfer_ == Op::JSR;
     s.cost_at = static_cast<std::uint32_t>(out_.costs_.size());
     s.on_at = static_cast<std::uint32_t>(out_.on_.size());
     s.rules_at = static_cast<std::uint32_t>(out_.rules_.size());
@@ -359,7 +371,7 @@ class FusedProgram::Builder {
         out_.rules_.push_back(static_cast<std::uint8_t>(word_ops::compare_mask(bc::op_of(h))));
     if (s.word) {
       s.stride = static_cast<std::uint16_t>(1 + n + (n - nc) + coils_.size() + action_operands_.size() +
-                                            (s.transfer ? 2 : 0));
+                                            (s.transfer ? 2 : 0) + (s.call ? kCallWords : 0));
       unsigned a = 0;
       while (kActions[a] != action_) ++a;
       s.kernel = static_cast<std::uint8_t>((a * 2 + (s.transfer ? 1 : 0)) * kWordVariants +
@@ -424,6 +436,8 @@ class FusedProgram::Builder {
   Op transfer_ = Op::SOR;           // JSR or RET ending the rung, or SOR
   std::uint32_t transfer_at_ = 0;   // its code offset
   std::uint32_t rung_number_ = 0;   // the rung's number in its file
+  std::uint32_t end_ = 0;           // the next rung's SOR, or the file's EOF
+  std::uint32_t call_file_ = 0;     // a JSR's subroutine file
 };
 
 FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nanoseconds>& cost,
@@ -449,6 +463,8 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
   const std::uint32_t* code = program.code.data();
   // Runs that start after a transfer inside another run, and that run: they end where it ends.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> tails;
+  // Each fused JSR rung's record and the index in run_of_rung_ of the rung after it (or -1).
+  std::vector<std::pair<std::uint32_t, std::int64_t>> calls;
   for (const CompiledFile& f : program.files) {
     const std::uint32_t base = file_first_rung_[static_cast<std::size_t>(f.number)];
     std::int32_t open = -1;        // the run being extended
@@ -489,16 +505,38 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
       if (run.last > run.first && segments_.back().shape == key && !after_transfer)
         ++segments_.back().rungs;
       else
-        segments_.push_back({at, 1, key, rung_index});
+        segments_.push_back({at, 1, key, rung_index, 0, 0});
+      if (word) {
+        segments_.back().rec_end = static_cast<std::uint32_t>(wrecords_.size());
+        segments_.back().instructions += shapes_[static_cast<std::size_t>(shape)].instructions;
+      }
       run.last = static_cast<std::uint32_t>(segments_.size());
       run.next = end;
       after_transfer = shapes_[static_cast<std::size_t>(shape)].transfer;
       if (after_transfer) ++transfer_rungs_;
+      if (shapes_[static_cast<std::size_t>(shape)].call)
+        calls.emplace_back(at, r + 1 < f.rungs.size() ? std::int64_t{base} + static_cast<std::int64_t>(r) + 1 : -1);
     }
   }
   for (const auto& [tail, whole] : tails) {
     runs_[tail].last = runs_[whole].last;
     runs_[tail].next = runs_[whole].next;
+  }
+  // The call words of every fused JSR (vm/fused.h, "Calls"): the run at the subroutine's first
+  // rung, when the JSR's code offset is that rung's SOR, and the run at the rung after the JSR.
+  for (const auto& [at, next_rung] : calls) {
+    std::uint32_t* c = wrecords_.data() + at + shapes_[wrecords_[at]].stride - 2 - kCallWords;
+    const CompiledFile* target = program.file(static_cast<int>(c[0]));
+    const std::uint32_t* jo = code + c[kCallWords] + 1;
+    if (target != nullptr && !target->rungs.empty() && target->rungs[0].offset == bc::payload_of(jo[1]))
+      c[1] = static_cast<std::uint32_t>(run_of_rung_[file_first_rung_[c[0] & 0xFF]]);
+    if (static_cast<std::int32_t>(c[1]) >= 0) ++linked_calls_;
+    if (next_rung >= 0) c[3] = static_cast<std::uint32_t>(run_of_rung_[static_cast<std::size_t>(next_rung)]);
+  }
+  for (Shape& sh : shapes_) {
+    sh.cost = costs_.data() + sh.cost_at;
+    sh.on = on_.data() + sh.on_at;
+    sh.rules = rules_.data() + sh.rules_at;
   }
 }
 
@@ -579,14 +617,14 @@ template <Op A, unsigned NC, unsigned NM, bool Transfer>
 [[gnu::always_inline]] inline unsigned FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
                                     std::uint16_t* w, Nanoseconds& t, const FusedScan& scan) {
   constexpr bool fixed = NC != kAnyCount;
-  const Nanoseconds* const cost = p.costs_.data() + sh.cost_at;
-  const std::uint16_t* const on = p.on_.data() + sh.on_at;
+  const Nanoseconds* const cost = sh.cost;
+  const std::uint16_t* const on = sh.on;
   const unsigned nc = fixed ? NC : sh.contacts;
   const unsigned nm = fixed ? NM : sh.compares;
   const unsigned coils = fixed ? 0 : sh.coils;
   const unsigned n = nc + nm;
   // The coils' FusedRules, then the compares' masks (word_ops::compare_mask).
-  const std::uint8_t* const rules = p.rules_.data() + sh.rules_at;
+  const std::uint8_t* const rules = sh.rules;
   const std::uint32_t* o = rec;
   unsigned v = 0;
   for (unsigned i = 0; i < nc; ++i, ++o)
@@ -652,17 +690,26 @@ template <Op A, unsigned NC, unsigned NM, bool Transfer>
 
 [[gnu::always_inline]] inline std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
                                              Nanoseconds& elapsed, std::uint64_t& count, Nanoseconds limit,
-                                             const FusedScan& scan, Exit& exit) {
-  const std::uint32_t* rec = p.wrecords_.data() + segment.rec;
+                                             const FusedScan& scan, Stop& stop) {
+  const std::uint32_t* const first = p.wrecords_.data() + segment.rec;
+  const std::uint32_t* const end = p.wrecords_.data() + segment.rec_end;
+  const std::uint32_t* rec = first;
   Nanoseconds t = elapsed;
-  std::uint64_t n = count;
-  std::uint32_t done = 0;
-  const std::uint32_t rungs = segment.rungs;
+  const Shape* const shapes = p.shapes_.data();
+  // The rungs before `at` and their instructions: a segment that stops early counts them then,
+  // so a rung adds nothing to the count as it runs.
+  auto completed = [&](const std::uint32_t* at) {
+    std::uint32_t rungs = 0;
+    for (const std::uint32_t* r = first; r != at; r += shapes[r[0]].stride, ++rungs) count += shapes[r[0]].instructions;
+    return rungs;
+  };
   for (;;) {
-    const Shape& sh = p.shapes_[rec[0]];
+    const Shape& sh = shapes[rec[0]];
     unsigned result = kRungDone;
     // One case per action, transfer or not, and contact/compare count (Builder::build_shape
-    // numbers them).
+    // numbers them; none is larger than kLastWordKernel).
+    static_assert(kLastWordKernel == (std::size(kActions) * 2 - 1) * kWordVariants + kWordVariants - 1);
+    if (sh.kernel > kLastWordKernel) __builtin_unreachable();
     switch (sh.kernel) {
 #define SOFTSLC_WORD_RUNG(A, T, V, NC, NM)                                                         \
   case ((A) * 2 + (T)) * kWordVariants + (V):                                                      \
@@ -683,24 +730,29 @@ template <Op A, unsigned NC, unsigned NM, bool Transfer>
       default: result = kRungGeneral; break;  // not built (a timer then a transfer): the general path
     }
     if (result != kRungDone) [[unlikely]] {
-      if (result == kRungTransfer) {
-        // The rung ran to its JSR or RET: counted, and the interpreter takes the transfer.
-        n += sh.instructions;
-        ++done;
-        exit = {rec[sh.stride - 2] | kTransfer, rec[sh.stride - 1]};
-      }
       elapsed = t;
-      count = n;
-      return done | (result == kRungTransfer ? kTransfer : kRunsGeneral);
+      if (result == kRungGeneral) return completed(rec) | kRunsGeneral;
+      // The rung ran to its JSR or RET: counted, and the interpreter takes the transfer. A
+      // transfer rung ends its segment (the rung after it starts one), so this is seldom a walk.
+      stop.exit = {rec[sh.stride - 2] | kTransfer, rec[sh.stride - 1]};
+      stop.call = sh.call ? rec + sh.stride - 2 - kCallWords : nullptr;
+      if (rec + sh.stride == end) [[likely]] {
+        count += segment.instructions;
+        return segment.rungs | kTransfer;
+      }
+      count += sh.instructions;
+      return (completed(rec) + 1) | kTransfer;
     }
-    n += sh.instructions;
     rec += sh.stride;
-    ++done;
-    if (t >= limit || done == rungs) break;
+    if (rec == end) break;
+    if (t >= limit) [[unlikely]] {
+      elapsed = t;
+      return completed(rec);
+    }
   }
   elapsed = t;
-  count = n;
-  return done;
+  count += segment.instructions;
+  return segment.rungs;
 }
 
 // Kernel (N * 2 + Wide) * 4 + Coil, as Builder::build_shape numbers it.
@@ -718,21 +770,57 @@ static_assert(std::size(kActions) == 11, "run_word_segment has a case for every 
 static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every contact count");
 
 FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed,
-                                         std::uint64_t& count, Nanoseconds limit, const FusedScan& scan) const {
-  const Run& r = runs_[static_cast<std::size_t>(run)];
+                                         std::uint64_t& count, Nanoseconds limit, const FusedScan& scan,
+                                         FusedCalls& calls) const {
+  const Run* r = &runs_[static_cast<std::size_t>(run)];
   Nanoseconds t = elapsed;
   std::uint64_t n = 0;
-  for (std::uint32_t s = r.first;;) {
+  Exit out;
+  for (std::uint32_t s = r->first;;) {
     const Segment& sg = segments_[s];
     std::uint32_t result;
     if (sg.shape == kWordSegment) {
-      Exit exit;
-      result = run_word_segment(*this, sg, w, t, n, limit, scan, exit);
-      // A transfer is always its run's last rung.
+      Stop stop;
+      result = run_word_segment(*this, sg, w, t, n, limit, scan, stop);
+      // A transfer is always its run's last rung: the run continues in the subroutine, or after
+      // the JSR the RET returns to, or stops there for run_routine (vm/fused.h, "Calls").
       if (result & kTransfer) [[unlikely]] {
-        elapsed = t;
-        count += n;
-        return exit;
+        std::int32_t next_run;
+        std::uint32_t at;
+        if (stop.call != nullptr) {
+          next_run = static_cast<std::int32_t>(stop.call[1]);
+          // Fault 0030h, or a subroutine that does not start fused: the JSR handler's work.
+          if (next_run < 0 || calls.depth == calls.room) {
+            out = stop.exit;
+            break;
+          }
+          calls.call[calls.depth++] = {stop.call[2], calls.file, stop.exit.rung, static_cast<std::int32_t>(stop.call[3])};
+          calls.file = stop.call[0];
+          at = 0;  // not read: the subroutine's first SOR is looked up below only if the run stops there
+        } else {
+          // A RET with no call of this run outstanding: run_routine returns (or ends the scan).
+          if (calls.depth == 0) {
+            out = stop.exit;
+            break;
+          }
+          const FusedCall& c = calls.call[--calls.depth];
+          calls.file = c.file;
+          next_run = c.ret_run;
+          at = c.ret;
+        }
+        // The SOR the general path would dispatch next: the watchdog or an interrupt is checked
+        // there, and a rung that is not fused runs there.
+        if (next_run < 0) {
+          out = {at, 0};
+          break;
+        }
+        r = &runs_[static_cast<std::size_t>(next_run)];
+        if (t >= limit) [[unlikely]] {
+          out = {sor_[segments_[r->first].first_rung], 0};
+          break;
+        }
+        s = r->first;
+        continue;
       }
     } else {
       const Shape& sh = shapes_[sg.shape];
@@ -741,21 +829,22 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
     }
     const std::uint32_t done = result & ~kRunsGeneral;
     if (result & kRunsGeneral) [[unlikely]] {
-      elapsed = t;
-      count += n;
-      return {sor_[sg.first_rung + done] | kRunsGeneral, 0};
+      out = {sor_[sg.first_rung + done] | kRunsGeneral, 0};
+      break;
     }
-    if (++s == r.last && done == sg.rungs) break;
+    if (++s == r->last && done == sg.rungs) {
+      out = {r->next, 0};
+      break;
+    }
     // The next rung's SOR: the general path raises the watchdog fault or runs the interrupt there.
     if (t >= limit) [[unlikely]] {
-      elapsed = t;
-      count += n;
-      return {sor_[sg.first_rung + done], 0};
+      out = {sor_[sg.first_rung + done], 0};
+      break;
     }
   }
   elapsed = t;
   count += n;
-  return {r.next, 0};
+  return out;
 }
 
 }  // namespace softslc

@@ -65,6 +65,21 @@
 // COP is fused when the compiler resolved both spans (flag B: no fault is possible); the copy is
 // word_ops::copy_direct, the handler's code, and its per-word charge is added with the rung's.
 //
+// Calls (issue 20). A taken JSR need not leave the run either: when the subroutine's first rung
+// starts a fused run (and the JSR's code offset is that rung's SOR), the run checks the nesting
+// limit (calls.room, the frames run_routine has left), notes the call (return offset, calling file,
+// the JSR's rung number, and the run that starts at the return: the FusedCall) and, unless the
+// watchdog or an interrupt point is reached at the subroutine's first SOR, continues there. A taken
+// RET with a call of the run outstanding returns into the run after the JSR's rung the same way
+// (after the same check at that SOR). Every other case stops the run where the general path would
+// act: the nesting limit (the JSR is returned, and run_routine raises 0030h), a subroutine or a
+// return rung that is not fused (the run stops at its SOR, or at the file's EOF), a rung handed
+// back (kRunsGeneral), or the watchdog. The calls still outstanding then are returned in
+// FusedCalls, and run_routine pushes their frames (a fused run holds no branch and no false MCR
+// zone, so the frames are the JSR handler's). The mixed program's scan thus runs as one call of
+// execute() instead of one per JSR and return. A fused JSR's record carries the call's targets
+// (kCallWords), filled in once every file's runs are known.
+//
 // Exactness. Gathering every contact before any coil writes is only correct when no contact
 // reads a bit that a coil earlier in the same rung writes; such rungs are left to the general
 // path. A run of consecutive fused rungs is executed in one call; before each rung after the
@@ -115,6 +130,23 @@ struct FusedScan {
 
 FusedRule fused_rule(Opcode op);
 
+// A subroutine call a run took itself and that had not returned when the run stopped (vm/fused.h,
+// "Calls"): the interpreter pushes a call frame for it, as its JSR handler would have.
+struct FusedCall {
+  std::uint32_t ret = 0;      // code offset of the SOR (or EOF) after the JSR's rung
+  std::uint32_t file = 0;     // the calling file
+  std::uint32_t rung = 0;     // the JSR's rung number
+  std::int32_t ret_run = -1;  // the run starting at ret, or -1
+};
+// The call state a run shares with the interpreter's run_routine.
+struct FusedCalls {
+  static constexpr unsigned kCapacity = 16;  // at least kMaxCallDepth (vm/interpreter.cpp checks)
+  std::uint32_t file = 0;  // in: the program file the run starts in; out: the file where it stopped
+  unsigned room = 0;       // in: calls allowed before the nesting limit (fault 0030h)
+  unsigned depth = 0;      // out: calls outstanding, oldest first in call[0, depth)
+  FusedCall call[kCapacity];
+};
+
 class FusedProgram {
  public:
   // Contacts per fused rung: the cost table has 2^kMaxContacts entries per shape.
@@ -151,8 +183,11 @@ class FusedProgram {
   // offset where the general path continues (the SOR of the next rung, the file's EOF, or the
   // SOR of a rung at which `limit`, the watchdog or an interrupt point, was reached, or, with
   // kRunsGeneral, of a rung the general path must execute, or with kTransfer a taken JSR or RET).
+  // A taken JSR whose subroutine starts with a fused run, with `calls.room` left, is entered
+  // without returning (its call is added to `calls`), and a taken RET with a call outstanding
+  // returns into the run after that JSR's rung; `calls.file` follows.
   Exit execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed, std::uint64_t& count,
-                        Nanoseconds limit, const FusedScan& scan) const;
+                        Nanoseconds limit, const FusedScan& scan, FusedCalls& calls) const;
 
   std::size_t runs() const { return runs_.size(); }
   std::size_t fused_rungs() const { return fused_rungs_; }
@@ -162,18 +197,23 @@ class FusedProgram {
   std::size_t word_rungs() const { return word_rungs_; }
   // Fused rungs ending in a JSR or RET.
   std::size_t transfer_rungs() const { return transfer_rungs_; }
+  // Fused JSRs whose subroutine starts with a fused run (a run enters it itself).
+  std::size_t linked_calls() const { return linked_calls_; }
   bool wide_indices() const { return wide_; }
 
  private:
   // One shape: a distinct op sequence, with its tables. Rungs of one shape have records of one
   // size and layout, so a kernel specialised for the contact count and coil kind walks them.
-  struct Shape {
+  // 64 bytes, so a word rung finds its shape from the index in its record with one shift (the
+  // mixed 1k scan: 86,242 -> 83,590 instructions with the lazy SOR lookup in execute()).
+  struct alignas(64) Shape {
     std::uint8_t contacts = 0;
     std::uint8_t compares = 0;        // word rungs: compares, after the contacts in v
     std::uint8_t coils = 0;
     bool word = false;                // a word rung: records in wrecords_, run_word_segment
     Op action = Op::SOR;              // word rungs: the action, or SOR for none
     bool transfer = false;            // word rungs: ends in a JSR or RET (kTransfer)
+    bool call = false;                // ... in a JSR, whose record carries the call's targets
     std::uint8_t action_flags = 0;    // its header flags (a timer's time base)
     std::uint16_t action_aux = 0;     // its header aux (RES: the element's FileType)
     std::uint16_t instructions = 0;  // instruction-table instructions in the rung
@@ -182,6 +222,11 @@ class FusedProgram {
     std::uint32_t cost_at = 0;       // first of 2^contacts entries in costs_
     std::uint32_t on_at = 0;         // first of coils * 2^contacts entries in on_
     std::uint32_t rules_at = 0;      // first of coils entries in rules_, then (word rungs) compares Op bytes
+    // The same three tables as pointers, set once every shape is built, so a word rung loads one
+    // pointer per table instead of the vector's start and the offset.
+    const Nanoseconds* cost = nullptr;
+    const std::uint16_t* on = nullptr;
+    const std::uint8_t* rules = nullptr;
   };
   // Consecutive rungs of one run that share a shape, or consecutive word rungs: executed by one
   // kernel call.
@@ -190,6 +235,10 @@ class FusedProgram {
     std::uint32_t rungs = 0;       // rungs in the segment
     std::uint32_t shape = 0;       // or kWordSegment
     std::uint32_t first_rung = 0;  // index in sor_ of the first rung
+    // Word segments: one past the last record in wrecords_, and the instructions of all its rungs
+    // (added once when the segment completes; a segment that stops early counts its rungs then).
+    std::uint32_t rec_end = 0;
+    std::uint32_t instructions = 0;
   };
   struct Run {
     std::uint32_t first = 0;  // index in segments_ of the first segment
@@ -208,14 +257,26 @@ class FusedProgram {
   // consecutive rungs of different shapes cost no call. Adds the instructions to `count`;
   // returns the rungs completed, with kRunsGeneral set when it stopped before a rung the
   // general path must run, or kTransfer (and `exit` set) after a rung whose JSR or RET is taken.
+  // Where a word segment stopped at a taken transfer: the exit, and for a JSR the record's call
+  // words (kCallWords, vm/fused.h "Calls").
+  struct Stop {
+    Exit exit;
+    const std::uint32_t* call = nullptr;
+  };
   static std::uint32_t run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
                                         Nanoseconds& t, std::uint64_t& count, Nanoseconds limit, const FusedScan& scan,
-                                        Exit& exit);
+                                        Stop& stop);
+  // A fused JSR's record ends in its call words, then the transfer's code offset and rung number:
+  // the subroutine's file, the run at its first rung (or -1), the return offset (the next rung's
+  // SOR, or EOF) and the run that starts there (or -1).
+  static constexpr unsigned kCallWords = 4;
   // word_rung's results.
   enum WordRungResult : unsigned { kRungDone = 0, kRungGeneral = 1, kRungTransfer = 2 };
   template <Op A, unsigned NC, unsigned NM, bool Transfer>
   static unsigned word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
                         Nanoseconds& t, const FusedScan& scan);
+  // The largest Shape::kernel of a word rung (run_word_segment's last case).
+  static constexpr unsigned kLastWordKernel = 153;
   // Segment::shape of a segment of word rungs (each record names its shape).
   static constexpr std::uint32_t kWordSegment = 0xFFFFFFFFu;
   using Kernel = std::uint32_t (*)(const FusedProgram&, const Segment&, std::uint16_t*, Nanoseconds&, Nanoseconds,
@@ -234,7 +295,8 @@ class FusedProgram {
   // Word-rung records, 32-bit units: the shape's index, each contact's and coil's bit operand word (vm/bytecode.h,
   // mode BIT), two read operands per compare, then the action's table operands other than
   // literals and time bases (COP: its two file operands' word indices and its length as an
-  // immediate), in instruction-box order, then for a transfer its code offset and rung number.
+  // immediate), in instruction-box order, then for a JSR its call words (kCallWords), then for a
+  // transfer its code offset and rung number.
   // A read operand is a word index, or an immediate with bit 31 set and its value in bits 0-30
   // (kImmediate).
   std::vector<std::uint32_t> wrecords_;
@@ -253,6 +315,7 @@ class FusedProgram {
   std::size_t fused_rungs_ = 0;
   std::size_t word_rungs_ = 0;
   std::size_t transfer_rungs_ = 0;
+  std::size_t linked_calls_ = 0;
 };
 
 }  // namespace softslc

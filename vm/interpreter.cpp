@@ -1858,6 +1858,8 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
   const bool* const fast_op = coverage_ ? kNoFastPathOp.data() : kFastPathOp.data();
   const std::uint32_t* general_sor = nullptr;  // a SOR fused rungs handed back (FusedProgram::kRunsGeneral)
   const std::uint32_t* call_ret = nullptr;     // call_subroutine: where the taken JSR at pc returns
+  FusedCalls fused_calls;                      // the calls a fused run takes itself (vm/fused.h, "Calls")
+  static_assert(FusedCalls::kCapacity >= kMaxCallDepth);
 
   for (;;) {
   resume:
@@ -1954,7 +1956,19 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
           if (run >= 0) {
             Nanoseconds t = elapsed;
             std::uint64_t n = 0;
-            const FusedProgram::Exit x = fused_->execute(run, w_, t, n, limit_, FusedScan{scan_start_, first_pass_});
+            fused_calls.file = static_cast<std::uint32_t>(cur_file);
+            fused_calls.room = static_cast<unsigned>(max_depth - fsp);
+            fused_calls.depth = 0;
+            const FusedProgram::Exit x =
+                fused_->execute(run, w_, t, n, limit_, FusedScan{scan_start_, first_pass_}, fused_calls);
+            // The subroutine calls the run took and did not return from: the JSR handler's frames
+            // (in a fused run the branch stack is at its base and no MCR zone is off).
+            for (unsigned i = 0; i < fused_calls.depth; ++i) {
+              const FusedCall& c = fused_calls.call[i];
+              frames[static_cast<std::size_t>(fsp++)] = {code_ + c.ret, static_cast<int>(c.file),
+                                                         static_cast<int>(c.rung), false, bsp, bsp_base};
+            }
+            cur_file = static_cast<int>(fused_calls.file);
             pc = code_ + (x.next & FusedProgram::kOffsetMask);
             if (x.next & FusedProgram::kRunsGeneral) general_sor = pc;
             elapsed = t;

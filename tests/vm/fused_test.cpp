@@ -540,56 +540,129 @@ std::string random_transfer_program(Rng& rng) {
   return s;
 }
 
+// Scans `text` 30 times fused and unfused from the same data (random N7 values, S:2/14 on for a
+// third of the seeds, the watchdog for a quarter) and requires the same data table, scan time,
+// instruction count, last rung and fault after every scan; counts each fault code in `faults`.
+void compare_transfer_scans(const std::string& text, unsigned seed, Rng& rng, std::map<std::uint16_t, std::size_t>& faults) {
+  const SlowDistinctCosts model;
+  const CompiledProgram p = build(text);
+  Machine fused(p, model, true), general(p, model, false);
+  const auto& L = *p.layout;
+  auto set_both = [&](std::uint32_t at, std::uint16_t v) {
+    fused.table.set_word(at, v);
+    general.table.set_word(at, v);
+  };
+  for (std::uint32_t e = 0; e < 12; ++e) set_both(L.files[7].base + e, static_cast<std::uint16_t>(rng() % 64 - 8));
+  // S:2/14 on for some seeds (ADD keeps the low bits instead of clamping).
+  if (seed % 3 == 0) {
+    const std::uint32_t s2 = L.status_word(status::kControl);
+    set_both(s2, static_cast<std::uint16_t>(fused.table.word(s2) | status::kOverflowSelect));
+  }
+  // Without a near watchdog, a far one (1,000 s of virtual time) still ends a scan that a broken
+  // fused path sends round in a loop, so such a change fails here instead of hanging.
+  const Nanoseconds watchdog =
+      seed % 4 == 0 ? 9'000'000 + static_cast<Nanoseconds>(seed) * 77'777 : Nanoseconds{1'000'000'000'000};
+  VirtualTime start = static_cast<VirtualTime>(rng() % 10'000'000);
+  for (int scan = 0; scan < 30; ++scan) {
+    if (scan % 2 == 0) {
+      for (std::uint32_t w = 0; w < 2; ++w) set_both(L.files[3].base + w, static_cast<std::uint16_t>(rng()));
+      // The indirect COP's source element: past N7's end (002Ah) now and then.
+      set_both(L.files[10].base, static_cast<std::uint16_t>(rng() % 4 == 0 ? 9 + rng() % 3 : rng() % 6));
+    }
+    const auto a = fused.interp.program_scan(start, 0, scan == 0, watchdog);
+    const auto b = general.interp.program_scan(start, 0, scan == 0, watchdog);
+    const std::string where = "seed " + std::to_string(seed) + " scan " + std::to_string(scan) + "\n" + text;
+    expect_same(a, b, where);
+    EXPECT_EQ(a.fault.file, b.fault.file) << where;
+    EXPECT_EQ(a.fault.message, b.fault.message) << where;
+    if (a.faulted) ++faults[a.fault.code];
+    for (std::uint32_t w = 0; w < L.total_words; ++w)
+      ASSERT_EQ(fused.table.word(w), general.table.word(w)) << "word " << L.describe(w) << ", " << where;
+    start += a.elapsed + static_cast<VirtualTime>(rng() % 3'000'000);
+  }
+}
+
 TEST(Fused, TransferAndCopyRungsMatchTheGeneralPath) {
   const SlowDistinctCosts model;
-  std::size_t transfer_total = 0, word_total = 0, rungs_total = 0, scans = 0;
+  std::size_t transfer_total = 0, word_total = 0, rungs_total = 0;
   std::map<std::uint16_t, std::size_t> faults;
   for (unsigned seed = 1; seed <= 80; ++seed) {
     Rng rng(seed);
     rng.words = 2;
     const std::string text = random_transfer_program(rng);
     const CompiledProgram p = build(text);
-    Machine fused(p, model, true), general(p, model, false);
-    const FusedProgram fp = fused_program(p, fused);
+    const FusedProgram fp = fused_program(p, Machine(p, model, true));
     transfer_total += fp.transfer_rungs();
     word_total += fp.word_rungs();
     for (const auto& f : p.files) rungs_total += f.rungs.size();
-    const auto& L = *p.layout;
-    auto set_both = [&](std::uint32_t at, std::uint16_t v) {
-      fused.table.set_word(at, v);
-      general.table.set_word(at, v);
-    };
-    for (std::uint32_t e = 0; e < 12; ++e) set_both(L.files[7].base + e, static_cast<std::uint16_t>(rng() % 64 - 8));
-    // S:2/14 on for some seeds (ADD keeps the low bits instead of clamping).
-    if (seed % 3 == 0) {
-      const std::uint32_t s2 = L.status_word(status::kControl);
-      set_both(s2, static_cast<std::uint16_t>(fused.table.word(s2) | status::kOverflowSelect));
-    }
-    const Nanoseconds watchdog = seed % 4 == 0 ? 9'000'000 + static_cast<Nanoseconds>(seed) * 77'777 : INT64_MAX;
-    VirtualTime start = static_cast<VirtualTime>(rng() % 10'000'000);
-    for (int scan = 0; scan < 30; ++scan, ++scans) {
-      if (scan % 2 == 0) {
-        for (std::uint32_t w = 0; w < 2; ++w) set_both(L.files[3].base + w, static_cast<std::uint16_t>(rng()));
-        // The indirect COP's source element: past N7's end (002Ah) now and then.
-        set_both(L.files[10].base, static_cast<std::uint16_t>(rng() % 4 == 0 ? 9 + rng() % 3 : rng() % 6));
-      }
-      const auto a = fused.interp.program_scan(start, 0, scan == 0, watchdog);
-      const auto b = general.interp.program_scan(start, 0, scan == 0, watchdog);
-      const std::string where = "seed " + std::to_string(seed) + " scan " + std::to_string(scan) + "\n" + text;
-      expect_same(a, b, where);
-      EXPECT_EQ(a.fault.file, b.fault.file) << where;
-      EXPECT_EQ(a.fault.message, b.fault.message) << where;
-      if (a.faulted) ++faults[a.fault.code];
-      for (std::uint32_t w = 0; w < L.total_words; ++w)
-        ASSERT_EQ(fused.table.word(w), general.table.word(w)) << "word " << L.describe(w) << ", " << where;
-      start += a.elapsed + static_cast<VirtualTime>(rng() % 3'000'000);
-    }
+    compare_transfer_scans(text, seed, rng, faults);
   }
   // Many transfer rungs were fused, and the scans met each fault the brief names: the nesting
   // limit (0030h), a COP past its file (002Ah), the watchdog (0022h), the overflow trap (0020h).
   EXPECT_GT(transfer_total, 80u * 10);
   EXPECT_GT(word_total * 2, rungs_total);
   for (std::uint16_t code : {std::uint16_t{0x0030}, std::uint16_t{0x002A}, std::uint16_t{0x0022}, std::uint16_t{0x0020}})
+    EXPECT_GT(faults[code], 5u) << std::hex << code;
+}
+
+// Calls a run takes itself (vm/fused.h, "Calls"): files 2, 3, 4 and 5 call one another (3 calls
+// itself too) through fused JSR rungs, so a run enters subroutines and returns from them several
+// deep and up to the nesting limit (0030h). Around them, what makes a call leave the run: a
+// subroutine whose first rung stays general (an OSR), a general rung right after a JSR (the
+// return lands on it), a JSR as its file's last rung (the return is the EOF), a subroutine with
+// no RET (it returns at its EOF), a RET part-way through, a subroutine whose first rung is a
+// timer with a negative preset for some seeds (handed back: 0034h), and the watchdog (0022h)
+// reached inside subroutines.
+std::string random_call_program(Rng& rng, unsigned seed) {
+  std::string s = "START 1747-L532\nLADDER 2\n"
+                  "SOR XIO B3:1/15 BST MOV 7 T4:0.PRE NXB MOV 7 T4:1.PRE NXB MOV 7 T4:2.PRE NXB MOV 7 T4:3.PRE BND EOR\n"
+                  "SOR XIC B3:1/14 EQU N7:11 N9:9 MOV N10:0 N10:1 EOR\n";
+  if (seed % 5 == 0) s += "SOR XIC B3:0/9 MOV -1 T4:3.PRE EOR\n";
+  const std::string guard = "XIC B3:0/13 ";
+  auto body = [&](int rungs, const std::string& calls, const std::string& g) {
+    std::string b;
+    for (int r = 0; r < rungs; ++r) {
+      const unsigned kind = rng() % 10;
+      const std::string jsr = std::string("JSR ") + calls[rng() % calls.size()];
+      if (kind < 4) {
+        b += "SOR " + g + random_transfer_rung(rng, jsr) + " EOR\n";
+        // The return lands on a general rung.
+        if (rng() % 3 == 0) b += "SOR XIC " + random_bit(rng) + " OSR B3:2/" + std::to_string(r % 8) + " OTE B3:2/" + std::to_string(8 + r % 8) + " EOR\n";
+      } else if (kind == 4) {
+        b += "SOR XIC " + random_bit(rng) + " " + random_copy(rng) + " EOR\n";
+      } else {
+        b += "SOR " + random_word_rung(rng) + " EOR\n";
+      }
+    }
+    return b;
+  };
+  s += body(15 + static_cast<int>(rng() % 15), "345", "");
+  // File 2 ends in a JSR for some seeds: the return is its EOF.
+  s += rng() % 2 ? "SOR XIC B3:0/0 OTU S:5/0 EOR\n" : "SOR XIC B3:0/0 OTU S:5/0 EOR\nSOR XIC B3:0/7 JSR 5 EOR\n";
+  s += "LADDER 3\nSOR SBR " + random_word_contact(rng) + "OTE B3:1/3 EOR\n" + body(4, "345", guard) + "SOR " +
+       random_transfer_rung(rng, "RET") + " EOR\n" + body(2, "45", guard) + "SOR RET EOR\n";
+  // File 4's first rung is general for half the seeds; it has no RET (it returns at its EOF).
+  s += std::string("LADDER 4\n") + (rng() % 2 ? "SOR SBR XIC B3:0/5 OSR B3:2/0 OTE B3:2/1 EOR\n" : "SOR SBR XIC B3:0/5 OTE B3:2/1 EOR\n") +
+       body(3, "35", guard);
+  s += "LADDER 5\nSOR SBR XIC B3:0/6 TON T4:3 0.01 5 0 EOR\n" + body(3, "34", guard) + "SOR " +
+       random_transfer_rung(rng, "RET") + " EOR\n" + body(2, "3", guard);
+  return s;
+}
+
+TEST(Fused, CallsTakenInsideARunMatchTheGeneralPath) {
+  const SlowDistinctCosts model;
+  std::size_t linked = 0;
+  std::map<std::uint16_t, std::size_t> faults;
+  for (unsigned seed = 1; seed <= 80; ++seed) {
+    Rng rng(seed);
+    rng.words = 2;
+    const std::string text = random_call_program(rng, seed);
+    const CompiledProgram p = build(text);
+    linked += fused_program(p, Machine(p, model, true)).linked_calls();
+    compare_transfer_scans(text, seed, rng, faults);
+  }
+  EXPECT_GT(linked, 80u * 8);
+  for (std::uint16_t code : {std::uint16_t{0x0030}, std::uint16_t{0x0034}, std::uint16_t{0x0022}})
     EXPECT_GT(faults[code], 5u) << std::hex << code;
 }
 

@@ -84,6 +84,31 @@ LoadResult load_input(const std::string& file, const std::string& processor_opti
   return load_pasted_rungs(std::move(in.contents), file, *m);
 }
 
+// `--processor` on check and run: the processor it names and the program re-checked for it
+// (retarget), so that `check --processor X` exit 0 means `run --processor X` loads it. `exit` is
+// kUsage for an unknown catalog, kInputError when the program does not check for it; without the
+// option, nothing is overridden.
+struct ProcessorOverride {
+  std::optional<ProcessorModel> processor;
+  std::optional<Program> program;
+  int exit = kOk;
+};
+
+ProcessorOverride override_processor(const LoadResult& r, const std::string& option, const char* command) {
+  ProcessorOverride out;
+  if (option.empty()) return out;
+  std::string error;
+  out.processor = parse_processor_option(option, error);
+  if (!out.processor) {
+    std::cerr << "softslc " << command << ": " << error << "\n";
+    out.exit = kUsage;
+    return out;
+  }
+  out.program = retarget(r, *out.processor, command);
+  if (!out.program) out.exit = kInputError;
+  return out;
+}
+
 }  // namespace
 
 int run_check(const CheckOptions& o) {
@@ -93,20 +118,11 @@ int run_check(const CheckOptions& o) {
   // `--processor` on a program with its own START line checks it as `run --processor` runs it:
   // re-checked with that processor's rules, so exit 0 still means `run` (with the same option)
   // loads it. For pasted rungs load_input already made it the program's processor.
-  std::optional<Program> retargeted;
+  ProcessorOverride over = override_processor(r, o.processor, "check");
+  if (over.exit != kOk) return over.exit;
   CompileOptions copts;
-  if (!o.processor.empty()) {
-    std::string error;
-    auto m = parse_processor_option(o.processor, error);
-    if (!m) {
-      std::cerr << "softslc check: " << error << "\n";
-      return kUsage;
-    }
-    retargeted = retarget(r, *m, "check");
-    if (!retargeted) return kInputError;
-    copts.processor = *m;
-  }
-  const Program& program = retargeted ? *retargeted : *r.program;
+  copts.processor = over.processor;
+  const Program& program = over.program ? *over.program : *r.program;
   // The specialty modules' own configuration rules (G files, M-file sizes, ID codes), each
   // diagnostic quoting the manual's rule.
   DiagnosticList modules;
@@ -322,22 +338,12 @@ int run_run(const RunOptions& o) {
   if (!r.ok()) return kInputError;
   spdlog::debug("{}: loaded, {} bytes, {} program files", o.file, r.source.size(), r.program->files.size());
   // Under --processor, the program as that processor sees it (checked with its rules).
-  std::optional<Program> retargeted;
+  ProcessorOverride over = override_processor(r, o.processor, "run");
+  if (over.exit != kOk) return over.exit;
   RuntimeOptions options;
-  ProcessorModel processor = r.program->processor;
-  if (!o.processor.empty()) {
-    std::string error;
-    auto m = parse_processor_option(o.processor, error);
-    if (!m) {
-      std::cerr << "softslc run: " << error << "\n";
-      return kUsage;
-    }
-    processor = *m;
-    options.processor = *m;
-    retargeted = retarget(r, *m, "run");
-    if (!retargeted) return kInputError;
-  }
-  const Program& program = retargeted ? *retargeted : *r.program;
+  options.processor = over.processor;
+  const ProcessorModel processor = over.processor ? *over.processor : r.program->processor;
+  const Program& program = over.program ? *over.program : *r.program;
   if (!o.timing.empty()) {
     try {
       auto user = load_timing_profile_file(o.timing);

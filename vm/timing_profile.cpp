@@ -118,14 +118,19 @@ void apply_profile_json(const json& j, TimingProfile& p) {
       t.per_word_ns = e->contains("per_word_us") ? us_to_ns((*e)["per_word_us"], path + ".per_word_us") : 0;
       t.source = source_of(*e, path, p);
       if (auto b = e->find("by_operand"); b != e->end()) {
+        // Only SVC's channel select is charged per value in a run (Interpreter's
+        // svc_select_extra_); a figure scantime would price and run would not charge is refused.
+        if (e.key() != "SVC")
+          fail(path + ".by_operand", "only SVC's channel select (1-3) has figures per operand value");
         if (!b->is_object() || b->size() > 16)
           fail(path + ".by_operand", "expected an object of at most 16 rows keyed by the first operand's value");
         for (auto v = b->begin(); v != b->end(); ++v) {
           const std::string vpath = path + ".by_operand." + v.key();
           std::int64_t value = 0;
           const auto* end = v.key().data() + v.key().size();
-          if (auto [ptr, ec] = std::from_chars(v.key().data(), end, value); ec != std::errc{} || ptr != end)
-            fail(vpath, "the key must be an integer (the first operand's value)");
+          if (auto [ptr, ec] = std::from_chars(v.key().data(), end, value);
+              ec != std::errc{} || ptr != end || value < 1 || value > 3)
+            fail(vpath, "the key must be a channel select 1, 2 or 3");
           check_keys(*v, vpath, {"true_us", "false_us"});
           t.by_operand.push_back({value, us_to_ns(member(*v, "true_us", vpath), vpath + ".true_us"),
                                   us_to_ns(member(*v, "false_us", vpath), vpath + ".false_us")});

@@ -164,6 +164,22 @@ TEST(TimingProfiles, UserProfileOverridesAndValidates) {
                    "instructions": {"XIC": {"true_us": 1, "false_us": 0, "source": "NOPE"}}})",
                "unknown source \"NOPE\"");
   expect_error(R"({"schema": "softslc-timing-profile-1", "processor": "5/03", "extra": 1})", "unknown key \"extra\"");
+  // by_operand: run charges it only at SVC (docs/timing.md), so scantime and run agree.
+  expect_error(R"({"schema": "softslc-timing-profile-1", "processor": "ML1100",
+                   "instructions": {"TON": {"true_us": 4, "false_us": 2, "source": "EST",
+                                            "by_operand": {"1": {"true_us": 9, "false_us": 1}}}}})",
+               "instructions.TON.by_operand: only SVC's channel select");
+  expect_error(R"({"schema": "softslc-timing-profile-1", "processor": "ML1100",
+                   "instructions": {"SVC": {"true_us": 90, "false_us": 1, "source": "EST",
+                                            "by_operand": {"4": {"true_us": 9, "false_us": 1}}}}})",
+               "instructions.SVC.by_operand.4: the key must be a channel select 1, 2 or 3");
+  auto svc = load_timing_profile(nlohmann::json::parse(R"({
+    "schema": "softslc-timing-profile-1", "processor": "ML1100",
+    "instructions": {"SVC": {"true_us": 90, "false_us": 1, "source": "EST",
+                             "by_operand": {"2": {"true_us": 50, "false_us": 0.5}}}}
+  })"));
+  EXPECT_EQ(svc.instruction(Opcode::SVC_CH).for_operand(2, true), 50'000);
+  EXPECT_EQ(svc.instruction(Opcode::SVC_CH).for_operand(1, true), 90'000);
 }
 
 }  // namespace

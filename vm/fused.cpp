@@ -780,10 +780,9 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
   std::uint64_t n = 0;
   Exit out;
   for (std::uint32_t s = r->first;;) {
-    const Segment& sg = segments_[s];
+    const Segment* sg = &segments_[s];
     std::uint32_t result;
-    if (sg.shape == kWordSegment) {
-      Stop stop;
+    if (sg->shape == kWordSegment) {
       // The word-rung loop, direct-threaded: each record's first word holds its rung kernel's
       // number, and every kernel ends by jumping to the next record's kernel through kRungKernels
       // (its own indirect jump, so the pattern of shapes is predicted per kernel), with no
@@ -791,7 +790,7 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
       // (kEndOfSegment). A fixed-count kernel advances by its record size, a constant. (This
       // loop is written here, not in a function: GCC does not inline a function holding a table
       // of label addresses, and a call per segment costs more.)
-      const std::uint32_t* const first = wrecords_.data() + sg.rec;
+      const std::uint32_t* first = wrecords_.data() + sg->rec;
       const std::uint32_t* rec = first;
       const Shape* const shapes = shapes_.data();
       const Shape* sh = nullptr;
@@ -867,41 +866,35 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
         result = completed(rec) | kRunsGeneral;
         goto word_done;
       }
-      // The rung ran to its JSR or RET: counted, and the interpreter takes the transfer. A
-      // transfer rung ends its segment (the rung after it starts one), so this is seldom a walk.
-      stop.exit = {rec[sh->stride - 2] | kTransfer, rec[sh->stride - 1]};
-      stop.call = sh->call ? rec + sh->stride - 2 - kCallWords : nullptr;
-      if ((rec[sh->stride] & kKernelMask) == kEndOfSegment) [[likely]] {
-        n += sg.instructions;
-        result = sg.rungs | kTransfer;
-      } else {
-        n += sh->instructions;
-        result = (completed(rec) + 1) | kTransfer;
-      }
-      goto word_done;
-    word_segment_end:
-      n += sg.instructions;
-      result = sg.rungs;
-    word_done:
-      // A transfer is always its run's last rung: the run continues in the subroutine, or after
-      // the JSR the RET returns to, or stops there for run_routine (vm/fused.h, "Calls").
-      if (result & kTransfer) [[unlikely]] {
+      {
+        // The rung ran to its JSR or RET: counted (a transfer rung ends its segment, since the
+        // rung after it starts one, so this is seldom a walk). A transfer is always its run's
+        // last rung: the run continues in the subroutine, or after the JSR the RET returns to, or
+        // stops there for run_routine (vm/fused.h, "Calls"); a word segment continues there
+        // without leaving the word-rung loop.
+        if ((rec[sh->stride] & kKernelMask) == kEndOfSegment) [[likely]] {
+          n += sg->instructions;
+        } else {
+          n += sh->instructions;
+          completed(rec);
+        }
+        const Exit exit{rec[sh->stride - 2] | kTransfer, rec[sh->stride - 1]};
         std::int32_t next_run;
-        std::uint32_t at;
-        if (stop.call != nullptr) {
-          next_run = static_cast<std::int32_t>(stop.call[1]);
+        std::uint32_t at = 0;  // a JSR's: not read (the subroutine's first SOR is looked up only if the run stops there)
+        if (sh->call) {
+          const std::uint32_t* const call = rec + sh->stride - 2 - kCallWords;
+          next_run = static_cast<std::int32_t>(call[1]);
           // Fault 0030h, or a subroutine that does not start fused: the JSR handler's work.
           if (next_run < 0 || calls.depth == calls.room) {
-            out = stop.exit;
+            out = exit;
             break;
           }
-          calls.call[calls.depth++] = {stop.call[2], calls.file, stop.exit.rung, static_cast<std::int32_t>(stop.call[3])};
-          calls.file = stop.call[0];
-          at = 0;  // not read: the subroutine's first SOR is looked up below only if the run stops there
+          calls.call[calls.depth++] = {call[2], calls.file, exit.rung, static_cast<std::int32_t>(call[3])};
+          calls.file = call[0];
         } else {
           // A RET with no call of this run outstanding: run_routine returns (or ends the scan).
           if (calls.depth == 0) {
-            out = stop.exit;
+            out = exit;
             break;
           }
           const FusedCall& c = calls.call[--calls.depth];
@@ -921,25 +914,32 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
           break;
         }
         s = r->first;
-        continue;
+        sg = &segments_[s];
+        if (sg->shape != kWordSegment) continue;
+        first = rec = wrecords_.data() + sg->rec;
+        goto* kRungKernels[*rec & kKernelMask];
       }
+    word_segment_end:
+      n += sg->instructions;
+      result = sg->rungs;
+    word_done:;
     } else {
-      const Shape& sh = shapes_[sg.shape];
-      result = kKernels[sh.kernel](*this, sg, w, t, limit, scan);
+      const Shape& sh = shapes_[sg->shape];
+      result = kKernels[sh.kernel](*this, *sg, w, t, limit, scan);
       n += std::uint64_t{sh.instructions} * (result & ~kRunsGeneral);
     }
     const std::uint32_t done = result & ~kRunsGeneral;
     if (result & kRunsGeneral) [[unlikely]] {
-      out = {sor_[sg.first_rung + done] | kRunsGeneral, 0};
+      out = {sor_[sg->first_rung + done] | kRunsGeneral, 0};
       break;
     }
-    if (++s == r->last && done == sg.rungs) {
+    if (++s == r->last && done == sg->rungs) {
       out = {r->next, 0};
       break;
     }
     // The next rung's SOR: the general path raises the watchdog fault or runs the interrupt there.
     if (t >= limit) [[unlikely]] {
-      out = {sor_[sg.first_rung + done], 0};
+      out = {sor_[sg->first_rung + done], 0};
       break;
     }
   }

@@ -256,12 +256,6 @@ class FusedProgram {
   template <unsigned N, bool Wide, unsigned Coil>
   static std::uint32_t run_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w, Nanoseconds& t,
                                    Nanoseconds limit, const FusedScan& scan);
-  // Where a word segment stopped at a taken transfer: the exit, and for a JSR the record's call
-  // words (kCallWords, vm/fused.h "Calls").
-  struct Stop {
-    Exit exit;
-    const std::uint32_t* call = nullptr;
-  };
   // A fused JSR's record ends in its call words, then the transfer's code offset and rung number:
   // the subroutine's file, the run at its first rung (or -1), the return offset (the next rung's
   // SOR, or EOF) and the run that starts there (or -1).

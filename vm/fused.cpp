@@ -880,7 +880,8 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
         }
         const Exit exit{rec[sh->stride - 2] | kTransfer, rec[sh->stride - 1]};
         std::int32_t next_run;
-        std::uint32_t at = 0;  // a JSR's: not read (the subroutine's first SOR is looked up only if the run stops there)
+        // For a JSR not read: the subroutine's first SOR is looked up only if the run stops there.
+        std::uint32_t at = 0;
         if (sh->call) {
           const std::uint32_t* const call = rec + sh->stride - 2 - kCallWords;
           next_run = static_cast<std::int32_t>(call[1]);

@@ -44,15 +44,20 @@
 // each begin with their rung kernel's number and shape's index, and one direct-threaded loop in
 // execute() runs them: each kernel ends with its own jump to the next record's kernel (no call,
 // `switch` or end test per rung; the segment ends with an end record whose kernel leaves the loop,
-// and a kernel for fixed counts steps over a record of constant size). Because a timer is its rung's last instruction (only
-// BNDs may follow it), the virtual time it sees (a timer's 10 ms tick) is the rung's start plus
-// the rung's whole charge, exactly the general path's. A timer element with a negative PRE or
-// ACC (fault 0034h) is noticed before the rung writes anything; the run then returns that rung's
-// SOR marked kRunsGeneral and the general path executes the rung and raises the fault. LBL, SBR
-// and INT are no-ops (charged, counted) in either kind of rung. Floats, longs, indexed, indirect
-// and M-file operands, and LIM/MEQ/MUL/DIV/... leave the rung to the general path. (A timer's
-// steps are functions in vm/word_ops.h, not lambdas capturing its words: GCC built those
-// closures on the stack on every call of the word-rung loop.)
+// and a kernel for fixed counts steps over a record of constant size). Because a timer is its
+// rung's last instruction (only BNDs may follow it), the virtual time it sees (a timer's 10 ms
+// tick) is the rung's start plus the rung's whole charge, exactly the general path's. A timer
+// element with a negative PRE or ACC (fault 0034h) is noticed before the rung writes anything; the
+// run then returns that rung's SOR marked kRunsGeneral and the general path executes the rung and
+// raises the fault. LBL, SBR and INT are no-ops (charged, counted) in either kind of rung. Floats,
+// longs, indexed, indirect and M-file operands, and LIM/MEQ/MUL/DIV/... leave the rung to the
+// general path. (A timer's steps are functions in vm/word_ops.h, not lambdas capturing its words:
+// GCC built those closures on the stack on every call of the word-rung loop.)
+//
+// A contact network next to a word rung of its run (the rung before or after it has a compare, an
+// action or a transfer) is built as a word rung too, with a word-rung record and its own shape
+// (the same tables), so the word-rung loop runs it with a jump instead of leaving for a segment
+// and a kernel call of its own; a stretch of contact networks keeps its one-shape segments.
 //
 // Transfers (issue 20). A word rung may end in a JSR or RET (followed by nothing but BNDs), after
 // its action if it has one (COP NXB JSR: a file copy and a subroutine call in parallel legs). The
@@ -73,10 +78,11 @@
 // the JSR's rung number, and the run that starts at the return: the FusedCall) and, unless the
 // watchdog or an interrupt point is reached at the subroutine's first SOR, continues there. A taken
 // RET with a call of the run outstanding returns into the run after the JSR's rung the same way
-// (after the same check at that SOR). Every other case stops the run where the general path would
-// act: the nesting limit (the JSR is returned, and run_routine raises 0030h), a subroutine or a
-// return rung that is not fused (the run stops at its SOR, or at the file's EOF), a rung handed
-// back (kRunsGeneral), or the watchdog. The calls still outstanding then are returned in
+// (after the same check at that SOR); when the run it enters starts with word rungs, the
+// word-rung loop goes straight on to their records. Every other case stops the run where the
+// general path would act: the nesting limit (the JSR is returned, and run_routine raises
+// 0030h), a subroutine or a return rung that is not fused (the run stops at its SOR, or at the
+// file's EOF), a rung handed back (kRunsGeneral), or the watchdog. The calls still outstanding then are returned in
 // FusedCalls, and run_routine pushes their frames (a fused run holds no branch and no false MCR
 // zone, so the frames are the JSR handler's). The mixed program's scan thus runs as one call of
 // execute() instead of one per JSR and return. A fused JSR's record carries the call's targets

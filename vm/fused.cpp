@@ -56,7 +56,7 @@ constexpr unsigned recorded_operands(Opcode op) {
   return n;
 }
 // An action's row is an Output whose operands are only recorded kinds and literals, and whose
-// element or destination comes where its kernel (run_word_segment) expects it.
+// element or destination comes where its kernel (word_rung) expects it.
 constexpr bool row_is_action(Opcode op, unsigned sources, OperandKind last) {
   const InstructionSpec& s = spec(op);
   if (s.role != Role::Output || recorded_operands(op) != sources + 1) return false;
@@ -101,17 +101,38 @@ constexpr bool is_coil(FusedRule r) {
   return r == FusedRule::Energize || r == FusedRule::Latch || r == FusedRule::Unlatch;
 }
 
-// The actions a word rung may end in, in the order of run_word_segment's cases.
+// The actions a word rung may end in, in the order of the word-rung loop's kernels (execute).
 constexpr Op kActions[] = {Op::SOR, Op::TON, Op::TOF, Op::RTO, Op::CTU, Op::CTD,
                            Op::RES, Op::MOV, Op::ADD, Op::SUB, Op::COP};
 constexpr bool is_timer(Op a) { return a == Op::TON || a == Op::TOF || a == Op::RTO; }
-// Per action, run_word_segment has cases for 0-2 contacts and 0-1 compares with no coils (the
-// common rungs: straight-line code), then one for any counts (loops).
+// Per action, the word-rung loop has kernels for 0-2 contacts and 0-1 compares with no coils, and
+// for 1-2 contacts with one coil (the common rungs, and a contact network built as a word rung:
+// straight-line code), then one for any counts (loops).
 constexpr unsigned kAnyCount = 0xFF;
-constexpr unsigned kWordVariants = 7;
+constexpr unsigned kWordVariants = 9;
 constexpr unsigned word_variant(unsigned contacts, unsigned compares, unsigned coils) {
-  return coils == 0 && contacts <= 2 && compares <= 1 ? contacts * 2 + compares : kWordVariants - 1;
+  if (coils == 0 && contacts <= 2 && compares <= 1) return contacts * 2 + compares;
+  if (coils == 1 && contacts >= 1 && contacts <= 2 && compares == 0) return 5 + contacts;
+  return kWordVariants - 1;
 }
+// The words an action's operands take in a record, from its row as Builder::take_action records
+// them: element, source and destination operands, and a file instruction's length literal.
+constexpr unsigned action_words(Op a) {
+  if (a == Op::SOR) return 0;
+  const InstructionSpec& row = spec(to_opcode(a));
+  unsigned n = 0;
+  for (unsigned i = 0; i < row.operand_count; ++i)
+    n += recorded(row.operands[i].kind) || (row_has_file(row) && row.operands[i].kind == OperandKind::Literal) ? 1 : 0;
+  return n;
+}
+// The record size of a word rung with no coils and no transfer, NC contacts and NM compares: a
+// constant in the word-rung loop's fixed-count kernels (Builder::build_shape checks it).
+constexpr unsigned fixed_word_stride(Op a, unsigned nc, unsigned nm, unsigned nk) {
+  return 1 + nc + 2 * nm + nk + action_words(a);
+}
+static_assert(fixed_word_stride(Op::TON, 1, 0, 0) == 3 && fixed_word_stride(Op::MOV, 0, 1, 0) == 5 &&
+              fixed_word_stride(Op::ADD, 1, 0, 0) == 5 && fixed_word_stride(Op::COP, 1, 0, 0) == 5 &&
+              fixed_word_stride(Op::SOR, 1, 0, 1) == 3);
 
 // A read operand in a word-rung record: a word index, or an immediate (vm/fused.h).
 constexpr std::uint32_t kImmediate = 0x80000000u;
@@ -160,9 +181,9 @@ class FusedProgram::Builder {
  public:
   Builder(FusedProgram& out, const std::vector<Nanoseconds>& cost) : out_(out), cost_(cost) {}
 
-  // Appends the rung [sor, end)'s record and returns its shape, or returns -1 (and appends
-  // nothing) when it is neither a pure contact network nor a word rung (vm/fused.h).
-  std::int64_t add_rung(const std::uint32_t* code, std::uint32_t sor, std::uint32_t end) {
+  // Reads the rung [sor, end): true when it is a pure contact network or a word rung (vm/fused.h),
+  // which add() then appends. Appends nothing.
+  bool parse(const std::uint32_t* code, std::uint32_t sor, std::uint32_t end) {
     key_.clear();
     contacts_.clear();
     coils_.clear();
@@ -175,84 +196,97 @@ class FusedProgram::Builder {
       const std::uint32_t h = code[pc];
       const Op op = bc::op_of(h);
       // Only BNDs follow a transfer: after a taken JSR the general path resumes at the next SOR.
-      if (transfer_ != Op::SOR && op != Op::BND) return -1;
+      if (transfer_ != Op::SOR && op != Op::BND) return false;
       // After the action only branch structure and a transfer: every condition and coil is
       // evaluated before the action writes.
       if (action_ != Op::SOR && op != Op::NXB && op != Op::BND &&
           !(is_instruction(op) && fused_rule(to_opcode(op)) == FusedRule::Transfer))
-        return -1;
+        return false;
       switch (op) {
         case Op::BST: ++depth; break;
         case Op::NXB: break;
         case Op::BND: --depth; break;
         default: {
-          if (!is_instruction(op)) return -1;
+          if (!is_instruction(op)) return false;
           const FusedRule rule = fused_rule(to_opcode(op));
-          if (rule == FusedRule::None) return -1;
+          if (rule == FusedRule::None) return false;
           if (rule == FusedRule::NoOp) break;
           // DYN (run-time address, M-file) and FLOAT keep the rung general.
-          if (bc::flags_of(h) & (bc::kFlagDyn | bc::kFlagFloat)) return -1;
+          if (bc::flags_of(h) & (bc::kFlagDyn | bc::kFlagFloat)) return false;
           const std::uint32_t* o = code + pc + 1;
           if (rule == FusedRule::Compare) {
-            if (!readable(o[0]) || !readable(o[1]) || conditions() == kMaxContacts) return -1;
+            if (!readable(o[0]) || !readable(o[1]) || conditions() == kMaxContacts) return false;
             // Conditions are evaluated before any coil writes (as contacts are).
             for (std::uint32_t c : coils_)
-              if (reads_word(o[0], bc::word_of_bit(c)) || reads_word(o[1], bc::word_of_bit(c))) return -1;
+              if (reads_word(o[0], bc::word_of_bit(c)) || reads_word(o[1], bc::word_of_bit(c))) return false;
             compares_.push_back(o[0]);
             compares_.push_back(o[1]);
             break;
           }
           if (rule == FusedRule::Action) {
-            if (!take_action(op, h, o)) return -1;
+            if (!take_action(op, h, o)) return false;
             action_ = op;
             break;
           }
           if (rule == FusedRule::Transfer) {
             // A timer sees the scan time of its whole rung, which a JSR's charge would change.
-            if (is_timer(action_)) return -1;
+            if (is_timer(action_)) return false;
             transfer_ = op;
             transfer_at_ = pc;
             // A JSR's subroutine file (an immediate).
             if (op == Op::JSR) call_file_ = static_cast<std::uint32_t>(bc::imm_of(o[0]));
             break;
           }
-          if (bc::count_of(h) != 1 || bc::mode_of(o[0]) != bc::kBit) return -1;
+          if (bc::count_of(h) != 1 || bc::mode_of(o[0]) != bc::kBit) return false;
           const std::uint32_t bit = o[0];
           if (is_contact(rule)) {
-            if (conditions() == kMaxContacts) return -1;
+            if (conditions() == kMaxContacts) return false;
             // Every contact is gathered before any coil writes: a contact that reads a bit an
             // earlier coil of this rung writes must see the new value, so such a rung stays general.
             for (std::uint32_t c : coils_)
-              if (c == bit) return -1;
+              if (c == bit) return false;
             contacts_.push_back(bit);
           } else {
-            if (coils_.size() == kMaxCoils) return -1;
+            if (coils_.size() == kMaxCoils) return false;
             coils_.push_back(bit);
           }
           break;
         }
       }
-      if (depth < 0 || depth > kMaxBranchDepth) return -1;
+      if (depth < 0 || depth > kMaxBranchDepth) return false;
       key_.push_back(h);
       pc += 1 + bc::count_of(h);
     }
-    if (depth != 0) return -1;
+    if (depth != 0) return false;
     rung_number_ = bc::aux_of(code[sor]);
+    sor_at_ = sor;
     end_ = end;
-    auto [it, inserted] = shape_index_.try_emplace(key_, static_cast<std::uint32_t>(out_.shapes_.size()));
+    // A word record's first word holds the shape index in 24 bits (kShapeShift).
+    return out_.shapes_.size() < kMaxWordShapes;
+  }
+
+  // The rung parse() read is a word rung: compares, an action or a transfer.
+  bool word_rung() const { return !compares_.empty() || action_ != Op::SOR || transfer_ != Op::SOR; }
+
+  // Appends the record of the rung parse() accepted and returns its shape. `as_word`: a contact
+  // network is built as a word rung (run in the word-rung loop beside word rungs, instead of as a
+  // segment of its own; the FusedProgram constructor decides).
+  std::uint32_t add(bool as_word) {
+    as_word_ = as_word;
+    auto& index = as_word && !word_rung() ? word_form_index_ : shape_index_;
+    auto [it, inserted] = index.try_emplace(key_, static_cast<std::uint32_t>(out_.shapes_.size()));
     if (inserted) build_shape();
     const Shape& shape = out_.shapes_[it->second];
     if (shape.word)
       append_word_record(it->second);
     else
       append_record(shape);
-    out_.sor_.push_back(sor);
+    out_.sor_.push_back(sor_at_);
     return it->second;
   }
 
  private:
   unsigned conditions() const { return static_cast<unsigned>(contacts_.size() + compares_.size() / 2); }
-  bool word_rung() const { return !compares_.empty() || action_ != Op::SOR || transfer_ != Op::SOR; }
 
   // A read operand the kernels take directly: a 16-bit word or an immediate.
   static bool readable(std::uint32_t o) { return bc::mode_of(o) == bc::kWord || bc::mode_of(o) == bc::kImm; }
@@ -291,7 +325,7 @@ class FusedProgram::Builder {
 
   void append_word_record(std::uint32_t shape) {
     auto& r = out_.wrecords_;
-    r.push_back(shape);
+    r.push_back((shape << kShapeShift) | out_.shapes_[shape].kernel);
     r.insert(r.end(), contacts_.begin(), contacts_.end());
     for (std::uint32_t o : compares_) r.push_back(encode(o));
     r.insert(r.end(), coils_.begin(), coils_.end());
@@ -348,7 +382,7 @@ class FusedProgram::Builder {
     s.contacts = static_cast<std::uint8_t>(nc);
     s.compares = static_cast<std::uint8_t>(n - nc);
     s.coils = static_cast<std::uint8_t>(coils_.size());
-    s.word = word_rung();
+    s.word = word_rung() || as_word_;
     s.action = action_;
     s.transfer = transfer_ != Op::SOR;
     s.call = transfer_ == Op::JSR;
@@ -374,8 +408,12 @@ class FusedProgram::Builder {
                                             (s.transfer ? 2 : 0) + (s.call ? kCallWords : 0));
       unsigned a = 0;
       while (kActions[a] != action_) ++a;
-      s.kernel = static_cast<std::uint8_t>((a * 2 + (s.transfer ? 1 : 0)) * kWordVariants +
-                                           word_variant(nc, n - nc, s.coils));
+      unsigned variant = word_variant(nc, n - nc, s.coils);
+      // The fixed-count kernels advance by fixed_word_stride; a record of another size (none is
+      // expected: the layout above is the one take_action records) runs the any-count kernel.
+      if (variant != kWordVariants - 1 && !s.transfer && s.stride != fixed_word_stride(action_, nc, n - nc, s.coils))
+        variant = kWordVariants - 1;
+      s.kernel = static_cast<std::uint8_t>((a * 2 + (s.transfer ? 1 : 0)) * kWordVariants + variant);
     } else {
       s.stride = static_cast<std::uint16_t>(n * k + (n + 1) / 2 + coils_.size() * (k + 1));
       // A single coil has a kernel of its own per FusedRule (1 OTE, 2 OTL, 3 OTU); 0 is any count.
@@ -431,12 +469,15 @@ class FusedProgram::Builder {
   FusedProgram& out_;
   const std::vector<Nanoseconds>& cost_;
   std::map<std::vector<std::uint32_t>, std::uint32_t> shape_index_;
+  std::map<std::vector<std::uint32_t>, std::uint32_t> word_form_index_;  // contact networks built as word rungs
   std::vector<std::uint32_t> key_, contacts_, coils_, compares_, action_operands_;
   Op action_ = Op::SOR;
   Op transfer_ = Op::SOR;           // JSR or RET ending the rung, or SOR
   std::uint32_t transfer_at_ = 0;   // its code offset
   std::uint32_t rung_number_ = 0;   // the rung's number in its file
+  std::uint32_t sor_at_ = 0;        // the rung's SOR
   std::uint32_t end_ = 0;           // the next rung's SOR, or the file's EOF
+  bool as_word_ = false;            // add(): a contact network built as a word rung
   std::uint32_t call_file_ = 0;     // a JSR's subroutine file
 };
 
@@ -450,6 +491,7 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
   s24_ = program.layout->status_word(status::kIndex);
   cop_per_word_ = per_word[static_cast<std::size_t>(Opcode::COP)];
   Builder b(*this, cost);
+  Builder peek(*this, cost);  // reads the next rung, appending nothing
   file_first_rung_.assign(256, 0);
   std::uint32_t total = 0;
   for (const CompiledFile& f : program.files) {
@@ -469,21 +511,36 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
     const std::uint32_t base = file_first_rung_[static_cast<std::size_t>(f.number)];
     std::int32_t open = -1;        // the run being extended
     bool after_transfer = false;   // the rung before ended in a JSR or RET
+    bool after_word = false;       // the rung before is a word rung of this run
     for (std::size_t r = 0; r < f.rungs.size(); ++r) {
       const std::uint32_t sor = f.rungs[r].offset;
       const std::uint32_t end = r + 1 < f.rungs.size() ? f.rungs[r + 1].offset : f.end - 1;  // f.end - 1: EOF
       // A label rung is a jump target: it starts a run, so a JMP to it lands on fused rungs.
       if (sor + 1 < end && bc::op_of(code[sor + 1]) == Op::LBL) open = -1;
       const std::size_t records_before = records_.size(), wrecords_before = wrecords_.size();
-      const std::int64_t shape = b.add_rung(code, sor, end);
-      if (shape < 0) {
+      if (!b.parse(code, sor, end)) {
         open = -1;
         after_transfer = false;
+        after_word = false;
         continue;
       }
+      // A contact network beside a word rung of its run is built as a word rung: in the word-rung
+      // loop it costs a jump, where a segment of its own costs a kernel call (the mixed bench's
+      // subroutine starts with one). Only a true word rung before or after counts, so a stretch of
+      // contact networks keeps its segment of one shape.
+      const bool word_rung = b.word_rung();
+      bool as_word = false;
+      if (!word_rung) {
+        const std::uint32_t next_end = r + 2 < f.rungs.size() ? f.rungs[r + 2].offset : f.end - 1;
+        as_word = (open >= 0 && after_word) ||
+                  (r + 1 < f.rungs.size() && peek.parse(code, end, next_end) && peek.word_rung());
+      }
+      const std::int64_t shape = b.add(as_word);
+      after_word = word_rung;
       ++fused_rungs_;
       const bool word = shapes_[static_cast<std::size_t>(shape)].word;
-      if (word) ++word_rungs_;
+      if (word_rung) ++word_rungs_;
+      if (as_word) ++word_form_rungs_;
       const auto at = static_cast<std::uint32_t>(word ? wrecords_before : records_before);
       const auto rung_index = static_cast<std::uint32_t>(sor_.size() - 1);
       if (open < 0) {
@@ -525,7 +582,7 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
   // The call words of every fused JSR (vm/fused.h, "Calls"): the run at the subroutine's first
   // rung, when the JSR's code offset is that rung's SOR, and the run at the rung after the JSR.
   for (const auto& [at, next_rung] : calls) {
-    std::uint32_t* c = wrecords_.data() + at + shapes_[wrecords_[at]].stride - 2 - kCallWords;
+    std::uint32_t* c = wrecords_.data() + at + shapes_[wrecords_[at] >> kShapeShift].stride - 2 - kCallWords;
     const CompiledFile* target = program.file(static_cast<int>(c[0]));
     const std::uint32_t* jo = code + c[kCallWords] + 1;
     if (target != nullptr && !target->rungs.empty() && target->rungs[0].offset == bc::payload_of(jo[1]))
@@ -533,6 +590,19 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
     if (static_cast<std::int32_t>(c[1]) >= 0) ++linked_calls_;
     if (next_rung >= 0) c[3] = static_cast<std::uint32_t>(run_of_rung_[static_cast<std::size_t>(next_rung)]);
   }
+  // Each word segment's records are followed by its end record, so the word-rung loop needs no
+  // end test per rung: the end record's kernel leaves the loop.
+  std::vector<std::uint32_t> laid;
+  laid.reserve(wrecords_.size() + segments_.size());
+  for (Segment& sg : segments_) {
+    if (sg.shape != kWordSegment) continue;
+    const auto at = static_cast<std::uint32_t>(laid.size());
+    laid.insert(laid.end(), wrecords_.begin() + sg.rec, wrecords_.begin() + sg.rec_end);
+    sg.rec = at;
+    sg.rec_end = static_cast<std::uint32_t>(laid.size());
+    laid.push_back(kEndOfSegment);
+  }
+  wrecords_ = std::move(laid);
   for (Shape& sh : shapes_) {
     sh.cost = costs_.data() + sh.cost_at;
     sh.on = on_.data() + sh.on_at;
@@ -610,10 +680,10 @@ std::uint32_t FusedProgram::run_segment(const FusedProgram& p, const Segment& se
 }
 
 // One word rung whose record (after its shape word) is `rec`: its action is A (SOR: none), with
-// NC contacts, NM compares and no coils, or (NC = NM = kAnyCount) any counts, and when Transfer
+// NC contacts, NM compares and NK coils, or (NC = NM = NK = kAnyCount) any counts, and when Transfer
 // a JSR or RET last. Adds its charge to t; returns kRungGeneral, having changed nothing, when the
 // general path must run it, kRungTransfer when its JSR or RET is taken.
-template <Op A, unsigned NC, unsigned NM, bool Transfer>
+template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
 [[gnu::always_inline]] inline unsigned FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
                                     std::uint16_t* w, Nanoseconds& t, const FusedScan& scan) {
   constexpr bool fixed = NC != kAnyCount;
@@ -621,7 +691,7 @@ template <Op A, unsigned NC, unsigned NM, bool Transfer>
   const std::uint16_t* const on = sh.on;
   const unsigned nc = fixed ? NC : sh.contacts;
   const unsigned nm = fixed ? NM : sh.compares;
-  const unsigned coils = fixed ? 0 : sh.coils;
+  const unsigned coils = fixed ? NK : sh.coils;
   const unsigned n = nc + nm;
   // The coils' FusedRules, then the compares' masks (word_ops::compare_mask).
   const std::uint8_t* const rules = sh.rules;
@@ -688,73 +758,6 @@ template <Op A, unsigned NC, unsigned NM, bool Transfer>
   return kRungDone;
 }
 
-[[gnu::always_inline]] inline std::uint32_t FusedProgram::run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
-                                             Nanoseconds& elapsed, std::uint64_t& count, Nanoseconds limit,
-                                             const FusedScan& scan, Stop& stop) {
-  const std::uint32_t* const first = p.wrecords_.data() + segment.rec;
-  const std::uint32_t* const end = p.wrecords_.data() + segment.rec_end;
-  const std::uint32_t* rec = first;
-  Nanoseconds t = elapsed;
-  const Shape* const shapes = p.shapes_.data();
-  // The rungs before `at` and their instructions: a segment that stops early counts them then,
-  // so a rung adds nothing to the count as it runs.
-  auto completed = [&](const std::uint32_t* at) {
-    std::uint32_t rungs = 0;
-    for (const std::uint32_t* r = first; r != at; r += shapes[r[0]].stride, ++rungs) count += shapes[r[0]].instructions;
-    return rungs;
-  };
-  for (;;) {
-    const Shape& sh = shapes[rec[0]];
-    unsigned result = kRungDone;
-    // One case per action, transfer or not, and contact/compare count (Builder::build_shape
-    // numbers them; none is larger than kLastWordKernel).
-    static_assert(kLastWordKernel == (std::size(kActions) * 2 - 1) * kWordVariants + kWordVariants - 1);
-    if (sh.kernel > kLastWordKernel) __builtin_unreachable();
-    switch (sh.kernel) {
-#define SOFTSLC_WORD_RUNG(A, T, V, NC, NM)                                                         \
-  case ((A) * 2 + (T)) * kWordVariants + (V):                                                      \
-    result = word_rung<kActions[A], NC, NM, (T) != 0>(p, sh, rec + 1, w, t, scan); \
-    break;
-#define SOFTSLC_WORD_RUNGS_T(A, T)                                                                             \
-  SOFTSLC_WORD_RUNG(A, T, 0, 0, 0) SOFTSLC_WORD_RUNG(A, T, 1, 0, 1) SOFTSLC_WORD_RUNG(A, T, 2, 1, 0)           \
-  SOFTSLC_WORD_RUNG(A, T, 3, 1, 1) SOFTSLC_WORD_RUNG(A, T, 4, 2, 0) SOFTSLC_WORD_RUNG(A, T, 5, 2, 1)           \
-  SOFTSLC_WORD_RUNG(A, T, 6, kAnyCount, kAnyCount)
-#define SOFTSLC_WORD_RUNGS(A) SOFTSLC_WORD_RUNGS_T(A, 0) SOFTSLC_WORD_RUNGS_T(A, 1)
-      // A timer never precedes a transfer (Builder::add_rung): no such cases.
-      SOFTSLC_WORD_RUNGS(0) SOFTSLC_WORD_RUNGS_T(1, 0) SOFTSLC_WORD_RUNGS_T(2, 0) SOFTSLC_WORD_RUNGS_T(3, 0)
-      SOFTSLC_WORD_RUNGS(4) SOFTSLC_WORD_RUNGS(5) SOFTSLC_WORD_RUNGS(6) SOFTSLC_WORD_RUNGS(7) SOFTSLC_WORD_RUNGS(8)
-      SOFTSLC_WORD_RUNGS(9) SOFTSLC_WORD_RUNGS(10)
-#undef SOFTSLC_WORD_RUNGS
-#undef SOFTSLC_WORD_RUNGS_T
-#undef SOFTSLC_WORD_RUNG
-      default: result = kRungGeneral; break;  // not built (a timer then a transfer): the general path
-    }
-    if (result != kRungDone) [[unlikely]] {
-      elapsed = t;
-      if (result == kRungGeneral) return completed(rec) | kRunsGeneral;
-      // The rung ran to its JSR or RET: counted, and the interpreter takes the transfer. A
-      // transfer rung ends its segment (the rung after it starts one), so this is seldom a walk.
-      stop.exit = {rec[sh.stride - 2] | kTransfer, rec[sh.stride - 1]};
-      stop.call = sh.call ? rec + sh.stride - 2 - kCallWords : nullptr;
-      if (rec + sh.stride == end) [[likely]] {
-        count += segment.instructions;
-        return segment.rungs | kTransfer;
-      }
-      count += sh.instructions;
-      return (completed(rec) + 1) | kTransfer;
-    }
-    rec += sh.stride;
-    if (rec == end) break;
-    if (t >= limit) [[unlikely]] {
-      elapsed = t;
-      return completed(rec);
-    }
-  }
-  elapsed = t;
-  count += segment.instructions;
-  return segment.rungs;
-}
-
 // Kernel (N * 2 + Wide) * 4 + Coil, as Builder::build_shape numbers it.
 const FusedProgram::Kernel FusedProgram::kKernels[] = {
 #define SOFTSLC_FUSED_KERNELS(N)                                                                          \
@@ -766,7 +769,7 @@ const FusedProgram::Kernel FusedProgram::kKernels[] = {
 #undef SOFTSLC_FUSED_KERNELS
 };
 static_assert(std::size(kActions) * 2 * kWordVariants <= 256, "a shape's kernel index is one byte");
-static_assert(std::size(kActions) == 11, "run_word_segment has a case for every action");
+static_assert(std::size(kActions) == 11, "the word-rung loop has a kernel for every action");
 static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every contact count");
 
 FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed,
@@ -777,30 +780,122 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
   std::uint64_t n = 0;
   Exit out;
   for (std::uint32_t s = r->first;;) {
-    const Segment& sg = segments_[s];
+    const Segment* sg = &segments_[s];
     std::uint32_t result;
-    if (sg.shape == kWordSegment) {
-      Stop stop;
-      result = run_word_segment(*this, sg, w, t, n, limit, scan, stop);
-      // A transfer is always its run's last rung: the run continues in the subroutine, or after
-      // the JSR the RET returns to, or stops there for run_routine (vm/fused.h, "Calls").
-      if (result & kTransfer) [[unlikely]] {
+    if (sg->shape == kWordSegment) {
+      // The word-rung loop, direct-threaded: each record's first word holds its rung kernel's
+      // number, and every kernel ends by jumping to the next record's kernel through kRungKernels
+      // (its own indirect jump, so the pattern of shapes is predicted per kernel), with no
+      // `switch`, bounds test or end test: the segment's end record has a kernel of its own
+      // (kEndOfSegment). A fixed-count kernel advances by its record size, a constant. (This
+      // loop is written here, not in a function: GCC does not inline a function holding a table
+      // of label addresses, and a call per segment costs more.)
+      const std::uint32_t* first = wrecords_.data() + sg->rec;
+      const std::uint32_t* rec = first;
+      const Shape* const shapes = shapes_.data();
+      const Shape* sh = nullptr;
+      unsigned rung = kRungDone;
+      // The rungs before `at` and their instructions: a segment that stops early counts them
+      // then, so a rung adds nothing to the count as it runs.
+      auto completed = [&](const std::uint32_t* at) {
+        std::uint32_t rungs = 0;
+        for (const std::uint32_t* q = first; q != at; q += shapes[*q >> kShapeShift].stride, ++rungs)
+          n += shapes[*q >> kShapeShift].instructions;
+        return rungs;
+      };
+      // Kernel ((A * 2 + T) * kWordVariants + V), as Builder::build_shape numbers them, then
+      // kEndOfSegment; the builder makes no other kernel number.
+      static_assert(kLastWordKernel == (std::size(kActions) * 2 - 1) * kWordVariants + kWordVariants - 1);
+#define SOFTSLC_WORD_LABEL(A, T, V) &&word_##A##_##T##_##V
+#define SOFTSLC_WORD_LABELS_T(A, T)                                                                        \
+  SOFTSLC_WORD_LABEL(A, T, 0), SOFTSLC_WORD_LABEL(A, T, 1), SOFTSLC_WORD_LABEL(A, T, 2),                 \
+      SOFTSLC_WORD_LABEL(A, T, 3), SOFTSLC_WORD_LABEL(A, T, 4), SOFTSLC_WORD_LABEL(A, T, 5),             \
+      SOFTSLC_WORD_LABEL(A, T, 6), SOFTSLC_WORD_LABEL(A, T, 7), SOFTSLC_WORD_LABEL(A, T, 8)
+#define SOFTSLC_NO_WORD_LABELS                                                                             \
+  &&word_not_built, &&word_not_built, &&word_not_built, &&word_not_built, &&word_not_built,              \
+      &&word_not_built, &&word_not_built, &&word_not_built, &&word_not_built
+#define SOFTSLC_WORD_LABELS(A) SOFTSLC_WORD_LABELS_T(A, 0), SOFTSLC_WORD_LABELS_T(A, 1)
+      // A timer never precedes a transfer (Builder::parse): those kernels are not built.
+      static const void* const kRungKernels[kKernelMask + 1] = {
+          SOFTSLC_WORD_LABELS(0),       SOFTSLC_WORD_LABELS_T(1, 0), SOFTSLC_NO_WORD_LABELS,
+          SOFTSLC_WORD_LABELS_T(2, 0), SOFTSLC_NO_WORD_LABELS,      SOFTSLC_WORD_LABELS_T(3, 0),
+          SOFTSLC_NO_WORD_LABELS,      SOFTSLC_WORD_LABELS(4),      SOFTSLC_WORD_LABELS(5),
+          SOFTSLC_WORD_LABELS(6),      SOFTSLC_WORD_LABELS(7),      SOFTSLC_WORD_LABELS(8),
+          SOFTSLC_WORD_LABELS(9),      SOFTSLC_WORD_LABELS(10),     &&word_segment_end};
+#undef SOFTSLC_WORD_LABELS
+#undef SOFTSLC_NO_WORD_LABELS
+#undef SOFTSLC_WORD_LABELS_T
+#undef SOFTSLC_WORD_LABEL
+      goto* kRungKernels[*rec & kKernelMask];
+      // One rung kernel: word_rung for the action, transfer and counts; then the next record's.
+#define SOFTSLC_WORD_RUNG(A, T, V, NC, NM, NK)                                                           \
+  word_##A##_##T##_##V:                                                                                  \
+    sh = shapes + (*rec >> kShapeShift);                                                                  \
+    rung = word_rung<kActions[A], NC, NM, NK, (T) != 0>(*this, *sh, rec + 1, w, t, scan);                 \
+    if (rung != kRungDone) [[unlikely]]                                                                   \
+      goto word_stopped;                                                                                  \
+    rec += (T) == 0 && (NC) != kAnyCount ? fixed_word_stride(kActions[A], NC, NM, NK) : sh->stride;      \
+    if (t >= limit) [[unlikely]]                                                                          \
+      goto word_limit;                                                                                    \
+    goto* kRungKernels[*rec & kKernelMask];
+#define SOFTSLC_WORD_RUNGS_T(A, T)                                                                             \
+  SOFTSLC_WORD_RUNG(A, T, 0, 0, 0, 0) SOFTSLC_WORD_RUNG(A, T, 1, 0, 1, 0) SOFTSLC_WORD_RUNG(A, T, 2, 1, 0, 0)  \
+  SOFTSLC_WORD_RUNG(A, T, 3, 1, 1, 0) SOFTSLC_WORD_RUNG(A, T, 4, 2, 0, 0) SOFTSLC_WORD_RUNG(A, T, 5, 2, 1, 0)  \
+  SOFTSLC_WORD_RUNG(A, T, 6, 1, 0, 1) SOFTSLC_WORD_RUNG(A, T, 7, 2, 0, 1)                                      \
+  SOFTSLC_WORD_RUNG(A, T, 8, kAnyCount, kAnyCount, kAnyCount)
+#define SOFTSLC_WORD_RUNGS(A) SOFTSLC_WORD_RUNGS_T(A, 0) SOFTSLC_WORD_RUNGS_T(A, 1)
+      SOFTSLC_WORD_RUNGS(0) SOFTSLC_WORD_RUNGS_T(1, 0) SOFTSLC_WORD_RUNGS_T(2, 0) SOFTSLC_WORD_RUNGS_T(3, 0)
+      SOFTSLC_WORD_RUNGS(4) SOFTSLC_WORD_RUNGS(5) SOFTSLC_WORD_RUNGS(6) SOFTSLC_WORD_RUNGS(7) SOFTSLC_WORD_RUNGS(8)
+      SOFTSLC_WORD_RUNGS(9) SOFTSLC_WORD_RUNGS(10)
+#undef SOFTSLC_WORD_RUNGS
+#undef SOFTSLC_WORD_RUNGS_T
+#undef SOFTSLC_WORD_RUNG
+    word_not_built:
+      // Never reached (no record names these kernels); the general path would run the rung.
+      sh = shapes + (*rec >> kShapeShift);
+      rung = kRungGeneral;
+      goto word_stopped;
+    word_limit:
+      // The watchdog or an interrupt point: at the end record the segment is complete, and
+      // execute() tests the limit again before the next segment.
+      if ((*rec & kKernelMask) == kEndOfSegment) goto word_segment_end;
+      result = completed(rec);
+      goto word_done;
+    word_stopped:
+      if (rung == kRungGeneral) {
+        result = completed(rec) | kRunsGeneral;
+        goto word_done;
+      }
+      {
+        // The rung ran to its JSR or RET: counted (a transfer rung ends its segment, since the
+        // rung after it starts one, so this is seldom a walk). A transfer is always its run's
+        // last rung: the run continues in the subroutine, or after the JSR the RET returns to, or
+        // stops there for run_routine (vm/fused.h, "Calls"); a word segment continues there
+        // without leaving the word-rung loop.
+        if ((rec[sh->stride] & kKernelMask) == kEndOfSegment) [[likely]] {
+          n += sg->instructions;
+        } else {
+          n += sh->instructions;
+          completed(rec);
+        }
+        const Exit exit{rec[sh->stride - 2] | kTransfer, rec[sh->stride - 1]};
         std::int32_t next_run;
-        std::uint32_t at;
-        if (stop.call != nullptr) {
-          next_run = static_cast<std::int32_t>(stop.call[1]);
+        // For a JSR not read: the subroutine's first SOR is looked up only if the run stops there.
+        std::uint32_t at = 0;
+        if (sh->call) {
+          const std::uint32_t* const call = rec + sh->stride - 2 - kCallWords;
+          next_run = static_cast<std::int32_t>(call[1]);
           // Fault 0030h, or a subroutine that does not start fused: the JSR handler's work.
           if (next_run < 0 || calls.depth == calls.room) {
-            out = stop.exit;
+            out = exit;
             break;
           }
-          calls.call[calls.depth++] = {stop.call[2], calls.file, stop.exit.rung, static_cast<std::int32_t>(stop.call[3])};
-          calls.file = stop.call[0];
-          at = 0;  // not read: the subroutine's first SOR is looked up below only if the run stops there
+          calls.call[calls.depth++] = {call[2], calls.file, exit.rung, static_cast<std::int32_t>(call[3])};
+          calls.file = call[0];
         } else {
           // A RET with no call of this run outstanding: run_routine returns (or ends the scan).
           if (calls.depth == 0) {
-            out = stop.exit;
+            out = exit;
             break;
           }
           const FusedCall& c = calls.call[--calls.depth];
@@ -820,25 +915,32 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
           break;
         }
         s = r->first;
-        continue;
+        sg = &segments_[s];
+        if (sg->shape != kWordSegment) continue;
+        first = rec = wrecords_.data() + sg->rec;
+        goto* kRungKernels[*rec & kKernelMask];
       }
+    word_segment_end:
+      n += sg->instructions;
+      result = sg->rungs;
+    word_done:;
     } else {
-      const Shape& sh = shapes_[sg.shape];
-      result = kKernels[sh.kernel](*this, sg, w, t, limit, scan);
+      const Shape& sh = shapes_[sg->shape];
+      result = kKernels[sh.kernel](*this, *sg, w, t, limit, scan);
       n += std::uint64_t{sh.instructions} * (result & ~kRunsGeneral);
     }
     const std::uint32_t done = result & ~kRunsGeneral;
     if (result & kRunsGeneral) [[unlikely]] {
-      out = {sor_[sg.first_rung + done] | kRunsGeneral, 0};
+      out = {sor_[sg->first_rung + done] | kRunsGeneral, 0};
       break;
     }
-    if (++s == r->last && done == sg.rungs) {
+    if (++s == r->last && done == sg->rungs) {
       out = {r->next, 0};
       break;
     }
     // The next rung's SOR: the general path raises the watchdog fault or runs the interrupt there.
     if (t >= limit) [[unlikely]] {
-      out = {sor_[sg.first_rung + done], 0};
+      out = {sor_[sg->first_rung + done], 0};
       break;
     }
   }

@@ -41,16 +41,23 @@
 // indices (a read operand is a word index or an immediate; there is no operand-mode test), in code
 // instantiated per action and per small contact/compare count. Word rungs alternate shapes (TON,
 // then CTU, then MOV ...), so consecutive word rungs of any shapes form one segment whose records
-// each begin with their shape's index, and one loop runs them with a `switch` per rung on the
-// shape's kernel number (no call per rung). Because a timer is its rung's last instruction (only
-// BNDs may follow it), the virtual time it sees (a timer's 10 ms tick) is the rung's start plus
-// the rung's whole charge, exactly the general path's. A timer element with a negative PRE or
-// ACC (fault 0034h) is noticed before the rung writes anything; the run then returns that rung's
-// SOR marked kRunsGeneral and the general path executes the rung and raises the fault. LBL, SBR
-// and INT are no-ops (charged, counted) in either kind of rung. Floats, longs, indexed, indirect
-// and M-file operands, and LIM/MEQ/MUL/DIV/... leave the rung to the general path. (A timer's
-// steps are functions in vm/word_ops.h, not lambdas capturing its words: GCC built those
-// closures on the stack on every call of the word-rung loop.)
+// each begin with their rung kernel's number and shape's index, and one direct-threaded loop in
+// execute() runs them: each kernel ends with its own jump to the next record's kernel (no call,
+// `switch` or end test per rung; the segment ends with an end record whose kernel leaves the loop,
+// and a kernel for fixed counts steps over a record of constant size). Because a timer is its
+// rung's last instruction (only BNDs may follow it), the virtual time it sees (a timer's 10 ms
+// tick) is the rung's start plus the rung's whole charge, exactly the general path's. A timer
+// element with a negative PRE or ACC (fault 0034h) is noticed before the rung writes anything; the
+// run then returns that rung's SOR marked kRunsGeneral and the general path executes the rung and
+// raises the fault. LBL, SBR and INT are no-ops (charged, counted) in either kind of rung. Floats,
+// longs, indexed, indirect and M-file operands, and LIM/MEQ/MUL/DIV/... leave the rung to the
+// general path. (A timer's steps are functions in vm/word_ops.h, not lambdas capturing its words:
+// GCC built those closures on the stack on every call of the word-rung loop.)
+//
+// A contact network next to a word rung of its run (the rung before or after it has a compare, an
+// action or a transfer) is built as a word rung too, with a word-rung record and its own shape
+// (the same tables), so the word-rung loop runs it with a jump instead of leaving for a segment
+// and a kernel call of its own; a stretch of contact networks keeps its one-shape segments.
 //
 // Transfers (issue 20). A word rung may end in a JSR or RET (followed by nothing but BNDs), after
 // its action if it has one (COP NXB JSR: a file copy and a subroutine call in parallel legs). The
@@ -71,10 +78,11 @@
 // the JSR's rung number, and the run that starts at the return: the FusedCall) and, unless the
 // watchdog or an interrupt point is reached at the subroutine's first SOR, continues there. A taken
 // RET with a call of the run outstanding returns into the run after the JSR's rung the same way
-// (after the same check at that SOR). Every other case stops the run where the general path would
-// act: the nesting limit (the JSR is returned, and run_routine raises 0030h), a subroutine or a
-// return rung that is not fused (the run stops at its SOR, or at the file's EOF), a rung handed
-// back (kRunsGeneral), or the watchdog. The calls still outstanding then are returned in
+// (after the same check at that SOR); when the run it enters starts with word rungs, the
+// word-rung loop goes straight on to their records. Every other case stops the run where the
+// general path would act: the nesting limit (the JSR is returned, and run_routine raises
+// 0030h), a subroutine or a return rung that is not fused (the run stops at its SOR, or at the
+// file's EOF), a rung handed back (kRunsGeneral), or the watchdog. The calls still outstanding then are returned in
 // FusedCalls, and run_routine pushes their frames (a fused run holds no branch and no false MCR
 // zone, so the frames are the JSR handler's). The mixed program's scan thus runs as one call of
 // execute() instead of one per JSR and return. A fused JSR's record carries the call's targets
@@ -195,6 +203,8 @@ class FusedProgram {
   std::size_t segments() const { return segments_.size(); }
   // Fused rungs with a compare or an action (word rungs).
   std::size_t word_rungs() const { return word_rungs_; }
+  // Contact networks built as word rungs, beside a word rung of their run (run in the word-rung loop).
+  std::size_t word_form_rungs() const { return word_form_rungs_; }
   // Fused rungs ending in a JSR or RET.
   std::size_t transfer_rungs() const { return transfer_rungs_; }
   // Fused JSRs whose subroutine starts with a fused run (a run enters it itself).
@@ -210,7 +220,7 @@ class FusedProgram {
     std::uint8_t contacts = 0;
     std::uint8_t compares = 0;        // word rungs: compares, after the contacts in v
     std::uint8_t coils = 0;
-    bool word = false;                // a word rung: records in wrecords_, run_word_segment
+    bool word = false;                // a word rung: records in wrecords_, run by execute()'s word-rung loop
     Op action = Op::SOR;              // word rungs: the action, or SOR for none
     bool transfer = false;            // word rungs: ends in a JSR or RET (kTransfer)
     bool call = false;                // ... in a JSR, whose record carries the call's targets
@@ -218,7 +228,7 @@ class FusedProgram {
     std::uint16_t action_aux = 0;     // its header aux (RES: the element's FileType)
     std::uint16_t instructions = 0;  // instruction-table instructions in the rung
     std::uint16_t stride = 0;        // record size, in 16-bit units
-    std::uint8_t kernel = 0;         // index into the kernel table, or (word rungs) run_word_segment's case
+    std::uint8_t kernel = 0;         // index into the kernel table, or (word rungs) the word-rung loop's rung kernel
     std::uint32_t cost_at = 0;       // first of 2^contacts entries in costs_
     std::uint32_t on_at = 0;         // first of coils * 2^contacts entries in on_
     std::uint32_t rules_at = 0;      // first of coils entries in rules_, then (word rungs) compares Op bytes
@@ -235,7 +245,7 @@ class FusedProgram {
     std::uint32_t rungs = 0;       // rungs in the segment
     std::uint32_t shape = 0;       // or kWordSegment
     std::uint32_t first_rung = 0;  // index in sor_ of the first rung
-    // Word segments: one past the last record in wrecords_, and the instructions of all its rungs
+    // Word segments: the segment's end record (kEndOfSegment) in wrecords_, and the instructions of all its rungs
     // (added once when the segment completes; a segment that stops early counts its rungs then).
     std::uint32_t rec_end = 0;
     std::uint32_t instructions = 0;
@@ -252,31 +262,24 @@ class FusedProgram {
   template <unsigned N, bool Wide, unsigned Coil>
   static std::uint32_t run_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w, Nanoseconds& t,
                                    Nanoseconds limit, const FusedScan& scan);
-  // A segment of word rungs, each of its own shape: one loop that switches per rung on the
-  // shape's kernel number, a case per action and small contact/compare count (word_rung), so
-  // consecutive rungs of different shapes cost no call. Adds the instructions to `count`;
-  // returns the rungs completed, with kRunsGeneral set when it stopped before a rung the
-  // general path must run, or kTransfer (and `exit` set) after a rung whose JSR or RET is taken.
-  // Where a word segment stopped at a taken transfer: the exit, and for a JSR the record's call
-  // words (kCallWords, vm/fused.h "Calls").
-  struct Stop {
-    Exit exit;
-    const std::uint32_t* call = nullptr;
-  };
-  static std::uint32_t run_word_segment(const FusedProgram& p, const Segment& segment, std::uint16_t* w,
-                                        Nanoseconds& t, std::uint64_t& count, Nanoseconds limit, const FusedScan& scan,
-                                        Stop& stop);
   // A fused JSR's record ends in its call words, then the transfer's code offset and rung number:
   // the subroutine's file, the run at its first rung (or -1), the return offset (the next rung's
   // SOR, or EOF) and the run that starts there (or -1).
   static constexpr unsigned kCallWords = 4;
   // word_rung's results.
   enum WordRungResult : unsigned { kRungDone = 0, kRungGeneral = 1, kRungTransfer = 2 };
-  template <Op A, unsigned NC, unsigned NM, bool Transfer>
+  template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
   static unsigned word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
                         Nanoseconds& t, const FusedScan& scan);
-  // The largest Shape::kernel of a word rung (run_word_segment's last case).
-  static constexpr unsigned kLastWordKernel = 153;
+  // The largest Shape::kernel of a word rung (the word-rung loop's last rung kernel), and the
+  // kernel number of the one-word record that ends every word segment (the loop's exit).
+  static constexpr unsigned kLastWordKernel = 197;
+  static constexpr unsigned kEndOfSegment = kLastWordKernel + 1;
+  // A word-rung record's first word: its kernel number in the low byte, its shape's index above.
+  static constexpr unsigned kShapeShift = 8;
+  static constexpr std::uint32_t kKernelMask = 0xFF;
+  // Shapes a program may have while its word rungs are fused (the index's 24 bits).
+  static constexpr std::uint32_t kMaxWordShapes = 1u << (32 - kShapeShift);
   // Segment::shape of a segment of word rungs (each record names its shape).
   static constexpr std::uint32_t kWordSegment = 0xFFFFFFFFu;
   using Kernel = std::uint32_t (*)(const FusedProgram&, const Segment&, std::uint16_t*, Nanoseconds&, Nanoseconds,
@@ -292,13 +295,14 @@ class FusedProgram {
   //   coils * (k + 1)  each coil's word index and bit mask
   // The bench rung (four contacts, one coil) is 16 bytes.
   std::vector<std::uint16_t> records_;
-  // Word-rung records, 32-bit units: the shape's index, each contact's and coil's bit operand word (vm/bytecode.h,
+  // Word-rung records, 32-bit units: the rung's kernel number and its shape's index (kShapeShift),
+  // each contact's and coil's bit operand word (vm/bytecode.h,
   // mode BIT), two read operands per compare, then the action's table operands other than
   // literals and time bases (COP: its two file operands' word indices and its length as an
   // immediate), in instruction-box order, then for a JSR its call words (kCallWords), then for a
   // transfer its code offset and rung number.
   // A read operand is a word index, or an immediate with bit 31 set and its value in bits 0-30
-  // (kImmediate).
+  // (kImmediate). Each word segment's records are followed by one word, kEndOfSegment.
   std::vector<std::uint32_t> wrecords_;
   std::uint32_t s0_ = 0, s2_ = 0, s5_ = 0, s24_ = 0;  // S:0, S:2, S:5 and S:24 word indices
   Nanoseconds cop_per_word_ = 0;                       // COP's per-word charge
@@ -314,6 +318,7 @@ class FusedProgram {
   std::vector<std::uint32_t> file_first_rung_;    // file number -> index of its rung 0 in run_of_rung_
   std::size_t fused_rungs_ = 0;
   std::size_t word_rungs_ = 0;
+  std::size_t word_form_rungs_ = 0;
   std::size_t transfer_rungs_ = 0;
   std::size_t linked_calls_ = 0;
 };

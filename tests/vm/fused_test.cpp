@@ -409,6 +409,11 @@ std::string random_word_program(Rng& rng) {
     } else if (kind == 2) {
       // An MCR zone around a word rung: inside a false zone it runs (false) on the general path.
       s += "SOR XIC " + random_bit(rng) + " MCR EOR\nSOR " + random_word_rung(rng) + " EOR\nSOR MCR EOR\n";
+    } else if (kind == 3 || kind == 4) {
+      // A contact network (branches, one or more coils) between word rungs: built as a word rung
+      // and run in the word-rung loop (FusedProgram::word_form_rungs).
+      int budget = 6;
+      s += "SOR " + random_elements(rng, budget) + "EOR\n";
     } else {
       s += "SOR " + random_word_rung(rng) + " EOR\n";
     }
@@ -423,14 +428,16 @@ std::string random_word_program(Rng& rng) {
 
 TEST(Fused, WordRungShapesMatchTheGeneralPath) {
   const SlowDistinctCosts model;
-  std::size_t word_total = 0, rungs_total = 0, faults = 0, tick_crossings = 0;
+  std::size_t word_total = 0, word_form_total = 0, rungs_total = 0, faults = 0, tick_crossings = 0;
   for (unsigned seed = 1; seed <= 80; ++seed) {
     Rng rng(seed);
     rng.words = 2;
     const std::string text = random_word_program(rng);
     const CompiledProgram p = build(text);
     Machine fused(p, model, true), general(p, model, false);
-    word_total += fused_program(p, fused).word_rungs();
+    const FusedProgram fp = fused_program(p, fused);
+    word_total += fp.word_rungs();
+    word_form_total += fp.word_form_rungs();
     for (const auto& f : p.files) rungs_total += f.rungs.size();
     const auto& L = *p.layout;
     // Counters near +32767 and -32768 (CTU/CTD wrap, OV and UN), S:2/14 on for some seeds
@@ -469,6 +476,7 @@ TEST(Fused, WordRungShapesMatchTheGeneralPath) {
   // The comparison means something only if most rungs were fused word rungs, some scans
   // faulted (overflow trap, negative preset, watchdog) and the scans crossed tick boundaries.
   EXPECT_GT(word_total * 2, rungs_total);
+  EXPECT_GT(word_form_total, 80u);
   EXPECT_GT(faults, 50u);
   EXPECT_GT(tick_crossings, 500u);
 }
@@ -651,17 +659,22 @@ std::string random_call_program(Rng& rng, unsigned seed) {
 
 TEST(Fused, CallsTakenInsideARunMatchTheGeneralPath) {
   const SlowDistinctCosts model;
-  std::size_t linked = 0;
+  std::size_t linked = 0, word_form = 0;
   std::map<std::uint16_t, std::size_t> faults;
   for (unsigned seed = 1; seed <= 80; ++seed) {
     Rng rng(seed);
     rng.words = 2;
     const std::string text = random_call_program(rng, seed);
     const CompiledProgram p = build(text);
-    linked += fused_program(p, Machine(p, model, true)).linked_calls();
+    const FusedProgram fp = fused_program(p, Machine(p, model, true));
+    linked += fp.linked_calls();
+    // File 3's first rung (SBR, a contact, OTE) is a contact network built as a word rung when
+    // a word rung follows it, so calls into file 3 continue in the word-rung loop.
+    word_form += fp.word_form_rungs();
     compare_transfer_scans(text, seed, rng, faults);
   }
   EXPECT_GT(linked, 80u * 8);
+  EXPECT_GT(word_form, 40u);
   for (std::uint16_t code : {std::uint16_t{0x0030}, std::uint16_t{0x0034}, std::uint16_t{0x0022}})
     EXPECT_GT(faults[code], 5u) << std::hex << code;
 }

@@ -34,11 +34,16 @@ unsigned checksum_read(Controller& plc, const char* address = "N7:0") {
   return static_cast<unsigned>(plc.get_int(address)) & 0xFFFFu;
 }
 
+// N7:0 after one scan of a MicroLogix 1400 running `ladder` (program files from LADDER 2 on).
+unsigned checksum_of(const std::string& ladder) {
+  Controller plc = Controller::from_text("START Bul.1766\nLADDER 2\n" + ladder);
+  plc.scan(1);
+  return checksum_read(plc);
+}
+
 TEST(MicroLogixRpc, ProcMemReadsTheChecksumOfTheLadderImage) {
   // Image "LADDER 2\nSOR RPC 0 N7:0 EOR\n": CRC-32 ED3E73D3h, folded ED3Eh ^ 73D3h = 9EEDh.
-  Controller plc = Controller::from_text("START Bul.1766\nLADDER 2\nSOR RPC 0 N7:0 EOR\n");
-  plc.scan(1);
-  EXPECT_EQ(checksum_read(plc), 0x9EEDu);
+  EXPECT_EQ(checksum_of("SOR RPC 0 N7:0 EOR\n"), 0x9EEDu);
 }
 
 TEST(MicroLogixRpc, TheChecksumChangesWithARungAndNotWithDataOrComments) {
@@ -67,14 +72,8 @@ TEST(MicroLogixRpc, TheChecksumChangesWithARungAndNotWithDataOrComments) {
 TEST(MicroLogixRpc, ARungInASubroutineFileCountsToo) {
   // Files 2 and 3: "LADDER 2\nSOR RPC 0 N7:0 EOR\nSOR JSR 3 EOR\nLADDER 3\nSOR MOV 5 N7:1 EOR\n" gives
   // 44F2h; the same with MOV 6 gives BB11h.
-  Controller five = Controller::from_text(
-      "START Bul.1766\nLADDER 2\nSOR RPC 0 N7:0 EOR\nSOR JSR 3 EOR\nLADDER 3\nSOR MOV 5 N7:1 EOR\n");
-  five.scan(1);
-  EXPECT_EQ(checksum_read(five), 0x44F2u);
-  Controller six = Controller::from_text(
-      "START Bul.1766\nLADDER 2\nSOR RPC 0 N7:0 EOR\nSOR JSR 3 EOR\nLADDER 3\nSOR MOV 6 N7:1 EOR\n");
-  six.scan(1);
-  EXPECT_EQ(checksum_read(six), 0xBB11u);
+  EXPECT_EQ(checksum_of("SOR RPC 0 N7:0 EOR\nSOR JSR 3 EOR\nLADDER 3\nSOR MOV 5 N7:1 EOR\n"), 0x44F2u);
+  EXPECT_EQ(checksum_of("SOR RPC 0 N7:0 EOR\nSOR JSR 3 EOR\nLADDER 3\nSOR MOV 6 N7:1 EOR\n"), 0xBB11u);
 }
 
 TEST(MicroLogixRpc, AFalseRungLeavesTheDestination) {

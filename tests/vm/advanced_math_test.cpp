@@ -466,8 +466,8 @@ TEST(InstructionRules, RpcOperandRules) {
   // RM 7-23: PROC-MEM or MEM-MOD, and "the integer file address where to copy the selected program
   // checksum"; the SLC 5/03, 5/04 and 5/05 columns.
   EXPECT_EQ(check_errors("SOR RPC 0 N7:0 RPC 1 N10:5 EOR"), "");
-  EXPECT_NE(check_errors("SOR RPC 0 F8:0 EOR").find("RPC writes its checksum to an N word"), std::string::npos);
-  EXPECT_NE(check_errors("SOR RPC 0 B3:0 EOR").find("RPC writes its checksum to an N word"), std::string::npos);
+  for (std::string_view rung : {"SOR RPC 0 F8:0 EOR", "SOR RPC 0 B3:0 EOR"})
+    EXPECT_NE(check_errors(rung).find("RPC writes its checksum to an N word"), std::string::npos) << rung;
   EXPECT_NE(check_errors("SOR RPC 2 N7:0 EOR").find("out of range"), std::string::npos);
   EXPECT_NE(check_errors("SOR RPC 0 N7:0 EOR", "START 1747-L524\n").find("RPC is not available on the SLC 5/02"),
             std::string::npos);

@@ -126,6 +126,9 @@ enum class Requirement : std::uint8_t {
   // p. 146 on).
   MicroLogixPto,
   MicroLogixPtox,
+  // RPC: the SLC 5/03 OS302, 5/04 OS401 and 5/05 (1747-RM001G p. 7-23, the same processors as RHC)
+  // and the MicroLogix 1400 (1766-RM001A p. 239, whose execution-time table names the 1400 only).
+  ProgramChecksum,
 };
 
 struct OperandSpec {

@@ -108,6 +108,12 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::ChannelSelectService: return is_modular_503_or_later(family) || is_micrologix_1100_class();
     case Requirement::MicroLogixPto: return is_micrologix_1100_class() && micrologix != MicroLogixModel::ML1400;
     case Requirement::MicroLogixPtox: return micrologix == MicroLogixModel::ML1400;
+    // RM001G p. 7-23 marks the 5/03, 5/04 and 5/05 columns; which operating system brought RPC is not on
+    // the page (it "requires RSLogix 500 software, version 7.10 or higher"), so the Series C condition
+    // of RHC and TDF (RM A-8) is assumed [U]. 1766-RM001A p. 239 gives the 1400's execution time; the
+    // 1100, 1200 and 1500 pages were not reached, so they stay refused.
+    case Requirement::ProgramChecksum:
+      return (is_modular_503_or_later(family) && series >= 'C') || micrologix == MicroLogixModel::ML1400;
   }
   return false;
 }
@@ -169,7 +175,9 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::SlcOs302:
       if (is_micrologix())
         return "is supported in its SLC 5/03-5/05 form only (1747-RM001 p. 7-15); the MicroLogix form "
-               "(1762/1763/1764/1766-RM001) is not supported by softslc yet; this program's processor is " + have;
+               "(1762/1763/1764/1766-RM001) is not supported by softslc: its reference pages (the clock's width "
+               "and tick, the operand file types) were not reached (docs/semantics.md \"Free-running clock\"); "
+               "this program's processor is " + have;
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001)";
     case Requirement::ChannelSelectService:
@@ -198,6 +206,11 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
                "device block 7 data size node target, RM 12-5) and SVC none; this program's processor is " + have;
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001G p. 12-5)";
+    case Requirement::ProgramChecksum:
+      return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
+             " (1747-RM001G p. 7-23, 1766-RM001A p. 239" +
+             (is_micrologix() ? "; the MicroLogix 1100, 1200 and 1500 reference pages for RPC were not reached" : "") +
+             ")";
     case Requirement::MicroLogixPto:
     case Requirement::MicroLogixPtox:
       return "drives the pulse train output of the " + std::string(requirement_processors(r)) +
@@ -233,6 +246,7 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::ChannelSelectService: return "SLC 5/03, 5/04, 5/05, MicroLogix 1100, 1200, 1400, 1500";
     case Requirement::MicroLogixPto: return "MicroLogix 1100, 1200, 1500";
     case Requirement::MicroLogixPtox: return "MicroLogix 1400";
+    case Requirement::ProgramChecksum: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05, MicroLogix 1400";
   }
   return {};
 }

@@ -716,6 +716,12 @@ class Checker {
       check_swap(in);
     if ((in.opcode == Opcode::RHC || in.opcode == Opcode::TDF) && in.operands.size() == s.operand_count)
       check_clock_operands(in);
+    // RPC copies the checksum "into the designated destination integer file location" (1747-RM001G
+    // p. 7-23, 1766-RM001A p. 239): an N word.
+    if (in.opcode == Opcode::RPC && in.operands.size() == s.operand_count && in.operands[1].is_address() &&
+        in.operands[1].address.type != FileType::Integer)
+      error(in.operands[1].pos, "RPC writes its checksum to an N word (1747-RM001G p. 7-23), not " +
+                                    in.operands[1].spelling);
     if (in.opcode == Opcode::PID && in.operands.size() == 3) check_pid(in);
     if ((in.opcode == Opcode::IID || in.opcode == Opcode::IIE || in.opcode == Opcode::RPI) &&
         in.operands.size() == 1 && in.operands[0].kind == Operand::Kind::Integer && (in.operands[0].integer & 1))
@@ -1486,7 +1492,7 @@ std::span<const std::string_view> real_mnemonics_without_rows() {
   // reaches unknown_instruction_message).
   static constexpr std::string_view kReal[] = {
       // MicroLogix only: high-speed counter and outputs, real-time clock adjust, data logging, LCD.
-      "DLG", "GCD", "HSC", "HSD", "HSE", "LCD", "PWM", "RPC"};
+      "DLG", "GCD", "HSC", "HSD", "HSE", "LCD", "PWM"};
   return kReal;
 }
 

@@ -250,6 +250,7 @@ struct CompiledProgram {
   std::vector<SlotConfig> slots;
   std::vector<ForceBlock> forces;
   int max_branch_depth = 0;  // deepest BST nesting of any rung
+  std::uint16_t program_checksum = 0;  // what RPC reads (program_checksum() in vm/compiler.h)
 
   const CompiledFile* file(int number) const {
     if (number < 0 || number > 255 || file_index[static_cast<std::size_t>(number)] < 0) return nullptr;

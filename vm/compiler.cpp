@@ -1,6 +1,7 @@
 #include "vm/compiler.h"
 
 #include "vm/message_network.h"
+#include "vm/state_file.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <map>
 
 #include "parser/checker.h"
+#include "parser/formatter.h"
 #include "parser/loader.h"
 #include "parser/limits.h"
 
@@ -90,6 +92,7 @@ class Compiler {
       out_.initial_words = std::move(init_);
       out_.slots = prog_.slots;
       out_.forces = prog_.forces;
+      out_.program_checksum = program_checksum(prog_);
       r.program = std::move(out_);
     }
     return r;
@@ -1238,6 +1241,19 @@ class Compiler {
 
 CompileResult compile(const Program& program, const CompileOptions& options) {
   return Compiler(program, options).run();
+}
+
+std::uint16_t program_checksum(const Program& program) {
+  std::vector<const ProgramFile*> files;
+  for (const ProgramFile& f : program.files) files.push_back(&f);
+  std::sort(files.begin(), files.end(), [](const ProgramFile* a, const ProgramFile* b) { return a->number < b->number; });
+  std::string image;
+  for (const ProgramFile* f : files) {
+    image += "LADDER " + std::to_string(f->number) + "\n";
+    for (const Rung& r : f->rungs) image += format_rung(r) + "\n";
+  }
+  const std::uint32_t crc = crc32(image.data(), image.size());
+  return static_cast<std::uint16_t>((crc >> 16) ^ (crc & 0xFFFFu));
 }
 
 }  // namespace softslc

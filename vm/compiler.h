@@ -59,6 +59,14 @@ struct CompileResult {
 
 CompileResult compile(const Program& program, const CompileOptions& options = {});
 
+// The checksum RPC reads (1747-RM001G p. 7-23: "a 16-bit value that is calculated for the entire
+// ladder logic image, excluding the data table values"). The manuals do not give the algorithm;
+// softslc's (docs/semantics.md "RPC"): CRC-32 (IEEE) of the program files in file-number order, each
+// as "LADDER n" and its rungs' canonical text (format_rung) one per line, folded to 16 bits (high
+// half XOR low half). Any change to a rung changes the text; data, comments, symbols, file names
+// and the chassis do not enter it.
+std::uint16_t program_checksum(const Program& program);
+
 // The message the default hook gives for a module instruction.
 std::string module_instruction_unsupported(Opcode op);
 

@@ -2154,6 +2154,12 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       case Op::TDF:
         if (rung) free_running_clock(op, o, elapsed);
         break;
+      // RPC (RM001G p. 7-23, 1766-RM001A p. 239): PROC-MEM reads the checksum of the program in RAM,
+      // computed once at compile time; MEM-MOD reads a memory module, which softslc has none of: 0
+      // (docs/semantics.md "RPC", decision).
+      case Op::RPC:
+        if (rung) st_bits(o[1], static_cast<std::int16_t>(bc::imm_of(o[0]) == 0 ? prog_.program_checksum : 0));
+        break;
       // ---- ASCII and strings ----
       case Op::ACI:
       case Op::AIC:

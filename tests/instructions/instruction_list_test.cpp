@@ -47,9 +47,9 @@ constexpr ManualEntry kSlc505Instructions[] = {
     // Chapter 6, Program Flow Control Instructions (JSR/SBR/RET p. 6-4).
     {"JMP", "ch. 6"}, {"LBL", "ch. 6"}, {"JSR", "6-4"}, {"SBR", "6-4"}, {"RET", "6-4"}, {"MCR", "ch. 6"},
     {"TND", "ch. 6"}, {"SUS", "ch. 6"}, {"IIM", "ch. 6"}, {"IOM", "ch. 6"}, {"REF", "ch. 6"},
-    // Chapter 7, Application Specific Instructions (RHC 7-15, TDF 7-15 .. 7-17, FBC/DDT 7-18).
+    // Chapter 7, Application Specific Instructions (RHC 7-15, TDF 7-15 .. 7-17, FBC/DDT 7-18, RPC 7-23).
     {"BSL", "ch. 7"}, {"BSR", "ch. 7"}, {"SQO", "ch. 7"}, {"SQC", "ch. 7"}, {"SQL", "ch. 7"}, {"RHC", "7-15"},
-    {"TDF", "7-15..7-17"}, {"FBC", "7-18"}, {"DDT", "7-18"},
+    {"TDF", "7-15..7-17"}, {"FBC", "7-18"}, {"DDT", "7-18"}, {"RPC", "7-23"},
     // Block transfers through a 1747-SN (the manual's BTR/BTW operation, seeds 002; 1747-SN p. 5-5).
     {"BTR", "BTR/BTW section"}, {"BTW", "BTR/BTW section"},
     // Chapter 9, PID (p. 9-1).

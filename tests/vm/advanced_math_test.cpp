@@ -387,6 +387,36 @@ TEST(FreeRunningClock, AFloatStampRhcCannotHaveWrittenSetsOverflow) {
   EXPECT_TRUE(plc.b("B3:1/0"));
 }
 
+// ---- RPC (RM 7-23) --------------------------------------------------------------------------------------------
+
+TEST(ReadProgramChecksum, ProcMemReadsTheLadderImageChecksumAndMemModZero) {
+  // RM 7-23: "a 16-bit value that is calculated for the entire ladder logic image, excluding the data
+  // table values". softslc's algorithm (docs/semantics.md "RPC"): CRC-32 of "LADDER 2\nSOR RPC 0 N7:0
+  // EOR\nSOR RPC 1 N7:1 EOR\n" is 2912F261h (computed by hand with Python's zlib.crc32, outside
+  // softslc), folded high XOR low to 16 bits: 2912h ^ F261h = DB73h. MEM-MOD reads 0: softslc has no
+  // memory module.
+  Plc plc("SOR RPC 0 N7:0 EOR\nSOR RPC 1 N7:1 EOR");
+  plc.set("N7:1", 555);
+  plc.run_scans(1);
+  EXPECT_EQ(static_cast<std::uint16_t>(plc.i("N7:0")), 0xDB73);
+  EXPECT_EQ(plc.i("N7:1"), 0);
+}
+
+TEST(ReadProgramChecksum, AnEditedRungChangesItAndTheProcessorDoesNot) {
+  // "The checksum changes any time program edits are made" (RM 7-23): the one-rung image
+  // "LADDER 2\nSOR RPC 0 N7:0 EOR\n" folds to 9EEDh, with an XIC S:1/15 in front 263Eh (zlib.crc32, by hand).
+  // The START line is not ladder logic: a MicroLogix 1400 reads the same 9EEDh (tests/micrologix).
+  Plc plain("SOR RPC 0 N7:0 EOR");
+  plain.run_scans(1);
+  EXPECT_EQ(static_cast<std::uint16_t>(plain.i("N7:0")), 0x9EED);
+  Plc edited("SOR XIC S:1/15 RPC 0 N7:0 EOR");
+  edited.run_scans(1);
+  EXPECT_EQ(static_cast<std::uint16_t>(edited.i("N7:0")), 0x263E);
+  Plc on_505("SOR RPC 0 N7:0 EOR", {}, "START 1747-L552\n");
+  on_505.run_scans(1);
+  EXPECT_EQ(static_cast<std::uint16_t>(on_505.i("N7:0")), 0x9EED);
+}
+
 // ---- check: integer-only operands and processor availability ----------------------------------------------
 
 std::string check_errors(std::string_view body, std::string_view header = kHeader) {
@@ -430,6 +460,17 @@ TEST(InstructionRules, RhcAndTdfOperandRules) {
             std::string::npos);
   const std::string ml = check_errors("SOR RHC N7:0 EOR", "START Bul.1766\n");
   EXPECT_NE(ml.find("MicroLogix form"), std::string::npos) << ml;
+}
+
+TEST(InstructionRules, RpcOperandRules) {
+  // RM 7-23: PROC-MEM or MEM-MOD, and "the integer file address where to copy the selected program
+  // checksum"; the SLC 5/03, 5/04 and 5/05 columns.
+  EXPECT_EQ(check_errors("SOR RPC 0 N7:0 RPC 1 N10:5 EOR"), "");
+  for (std::string_view rung : {"SOR RPC 0 F8:0 EOR", "SOR RPC 0 B3:0 EOR"})
+    EXPECT_NE(check_errors(rung).find("RPC writes its checksum to an N word"), std::string::npos) << rung;
+  EXPECT_NE(check_errors("SOR RPC 2 N7:0 EOR").find("out of range"), std::string::npos);
+  EXPECT_NE(check_errors("SOR RPC 0 N7:0 EOR", "START 1747-L524\n").find("RPC is not available on the SLC 5/02"),
+            std::string::npos);
 }
 
 TEST(InstructionRules, SwpOperandRules) {

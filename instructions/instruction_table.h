@@ -126,6 +126,9 @@ enum class Requirement : std::uint8_t {
   // p. 146 on).
   MicroLogixPto,
   MicroLogixPtox,
+  // DLG and the DLS file: the MicroLogix 1100, 1400 and 1500 LRP (AG-UM008C p. 3-58, 1766-RM001A
+  // p. 518); not the 1000, the 1200 or the 1500 LSP.
+  MicroLogixDataLog,
 };
 
 struct OperandSpec {

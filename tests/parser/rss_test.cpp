@@ -259,9 +259,9 @@ TEST(RssReader, HeaderSectorCountsBeyondTheFileAreRefused) {
 
 // A known RSLogix mnemonic softslc lacks is named as not supported; a typo stays unknown.
 TEST(RssReader, InstructionsSoftslcLacksAreNamedNotSupported) {
-  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 DLG N7:0 EOR\n", "t.slc");
+  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 RCP N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("instruction DLG is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
+  EXPECT_NE(r.render_diagnostics().find("instruction RCP is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
   auto typo = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 QQQ N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(typo.ok());
   EXPECT_NE(typo.render_diagnostics().find("unknown instruction 'QQQ'"), std::string::npos) << typo.render_diagnostics();

@@ -129,6 +129,9 @@ enum class Requirement : std::uint8_t {
   // RPC: the SLC 5/03 OS302, 5/04 OS401 and 5/05 (1747-RM001G p. 7-23, the same processors as RHC)
   // and the MicroLogix 1400 (1766-RM001A p. 239, whose execution-time table names the 1400 only).
   ProgramChecksum,
+  // DLG and the DLS file: the MicroLogix 1100, 1400 and 1500 LRP (AG-UM008C p. 3-58, 1766-RM001A
+  // p. 518); not the 1000, the 1200 or the 1500 LSP.
+  MicroLogixDataLog,
 };
 
 struct OperandSpec {

@@ -114,6 +114,7 @@ bool ProcessorModel::supports(Requirement r) const {
     // 1100, 1200 and 1500 pages were not reached, so they stay refused.
     case Requirement::ProgramChecksum:
       return (is_modular_503_or_later(family) && series >= 'C') || micrologix == MicroLogixModel::ML1400;
+    case Requirement::MicroLogixDataLog: return has_data_logging();
   }
   return false;
 }
@@ -218,6 +219,9 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
               : is_micrologix_1100_class()          ? " (the " + display_name + "'s is PTO, 1763-RM001C p. 128)"
                                                     : "") +
              "; this program's processor is " + have;
+    case Requirement::MicroLogixDataLog:
+      return "is not available on the " + have + "; data logging needs " + std::string(requirement_processors(r)) +
+             " (AG-UM008C p. 3-58, 1766-RM001A p. 518)";
   }
   return {};
 }
@@ -247,6 +251,7 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::MicroLogixPto: return "MicroLogix 1100, 1200, 1500";
     case Requirement::MicroLogixPtox: return "MicroLogix 1400";
     case Requirement::ProgramChecksum: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05, MicroLogix 1400";
+    case Requirement::MicroLogixDataLog: return "MicroLogix 1100, 1400, 1500 LRP";
   }
   return {};
 }

@@ -65,6 +65,21 @@ struct ProcessorModel {
     if (!is_micrologix_1100_class()) return 0;
     return micrologix == MicroLogixModel::ML1400 ? 8 : 4;
   }
+  // Data logging (DLG, the DLS file, DATALOG queues): the MicroLogix 1100 and 1500 LRP (AG-UM008C
+  // p. 3-58) and the 1400 (1766-RM001A p. 518).
+  bool has_data_logging() const {
+    return micrologix == MicroLogixModel::ML1100 || micrologix == MicroLogixModel::ML1400 ||
+           micrologix == MicroLogixModel::ML1500LRP;
+  }
+  // Bytes of data log memory: 128 K on the 1100 (1763-RM001C p. 433) and the 1400 (1766-RM001A
+  // p. 518), 48 K on the 1500 LRP (AG-UM008C p. 3-58); 0 elsewhere.
+  std::int32_t data_log_bytes() const {
+    if (!has_data_logging()) return 0;
+    return (micrologix == MicroLogixModel::ML1500LRP ? 48 : 128) * 1024;
+  }
+  // The longest formatted record: 80 characters on the 1100 and 1500 LRP (1763-RM001C p. 435,
+  // AG-UM008C p. 3-61), 109 on the 1400 (1766-RM001A p. 519).
+  int data_log_max_characters() const { return micrologix == MicroLogixModel::ML1400 ? 109 : 80; }
   // L (32-bit long integer) files: MicroLogix 1100, 1200, 1400, 1500 (not the 1000, not SLC).
   bool has_long_files() const { return is_micrologix_1100_class(); }
   // The 0.001 s timer time base: MicroLogix 1100/1200/1400/1500 (the SLC and the MicroLogix

@@ -39,7 +39,7 @@ constexpr std::array kNamedWords{
 };
 
 constexpr std::array<std::string_view, kFunctionFileCount> kFunctionFileNames{
-    "RTC", "HSC", "PTOX", "PWMX", "STI", "EII", "BHI", "MMI", "DAT", "TPI", "CS", "IOS", "LCD", "PTO"};
+    "RTC", "HSC", "PTOX", "PWMX", "STI", "EII", "BHI", "MMI", "DAT", "TPI", "CS", "IOS", "LCD", "PTO", "DLS"};
 
 // The RTC element's named words and bits (1762-RM001C p. 3-3 Table 3.2; see rtc:: in address.h).
 constexpr std::array<std::string_view, rtc::kDayOfWeek + 1> kRtcWords{"YR", "MON", "DAY", "HR", "MIN", "SEC", "DOW"};
@@ -191,14 +191,26 @@ constexpr std::array kHscSubElements{
 
 bool is_hsc(int id) { return id == static_cast<int>(FunctionFile::HSC); }
 
+// The DLS element's named words and bits (see dls:: in address.h). OV is cleared by the user ("Once
+// set, the OV bit remains set until you clear (0) it", AG-UM008C p. 3-65); EN, DN, FSZ and RST are the
+// controller's [U] (docs/semantics.md "Data logging").
+constexpr std::array kDlsSubElements{
+    FunctionSubElement{"FSZ", dls::kFileSize, -1, false}, FunctionSubElement{"RST", dls::kRecordsStored, -1, false},
+    FunctionSubElement{"EN", dls::kBits, dls::kEnableBit, false}, FunctionSubElement{"DN", dls::kBits, dls::kDoneBit, false},
+    FunctionSubElement{"OV", dls::kBits, dls::kOverflowBit, true},
+};
+
+bool is_dls(int id) { return id == static_cast<int>(FunctionFile::DLS); }
+
 // The table of named sub-elements of the STI, the EII or the HSC; empty for the others.
 std::span<const FunctionSubElement> sub_elements(int id) {
   if (is_sti(id)) return kStiSubElements;
   if (is_eii(id)) return kEiiSubElements;
   if (is_hsc(id)) return kHscSubElements;
+  if (is_dls(id)) return kDlsSubElements;
   return {};
 }
-bool has_sub_elements(int id) { return is_sti(id) || is_eii(id) || is_hsc(id); }
+bool has_sub_elements(int id) { return is_sti(id) || is_eii(id) || is_hsc(id) || is_dls(id); }
 
 }  // namespace
 
@@ -207,6 +219,7 @@ std::string_view function_file_name(int id) {
 }
 
 int function_file_id(std::string_view name) {
+  if (name == "DLS0") name = "DLS";  // the manuals' spelling of the one DLS file
   for (std::size_t i = 0; i < kFunctionFileNames.size(); ++i)
     if (kFunctionFileNames[i] == name) return static_cast<int>(i);
   return -1;
@@ -215,14 +228,16 @@ int function_file_id(std::string_view name) {
 bool function_file_simulated(int id) { return is_rtc(id) || has_sub_elements(id) || is_pulse_train(id); }
 int function_file_elements(int id) {
   if (is_pulse_train(id)) return id == static_cast<int>(FunctionFile::PTOX) ? pto::kPtoxElements : pto::kPtoElements;
-  return is_rtc(id) || is_sti(id) ? 1 : is_hsc(id) ? 6 : is_eii(id) ? eii::kMaxElements : 0;
+  return is_rtc(id) || is_sti(id) ? 1 : is_hsc(id) ? 6 : is_eii(id) ? eii::kMaxElements : is_dls(id) ? dls::kMaxQueues : 0;
 }
 int function_file_words_per_element(int id) {
   if (is_pulse_train(id)) return pulse_train_layout(id).words;
-  return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : is_eii(id) ? eii::kWords : is_hsc(id) ? hsc::kWords : 0;
+  return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : is_eii(id) ? eii::kWords : is_hsc(id) ? hsc::kWords
+         : is_dls(id) ? dls::kWords : 0;
 }
 
 bool is_pulse_train_file(int id) { return is_pulse_train(id); }
+bool is_data_log_status_file(int id) { return is_dls(id); }
 
 bool function_word_is_long(int id, int word) {
   if (is_hsc(id)) return hsc::is_long_word(word);
@@ -423,8 +438,10 @@ std::string to_string(const Address& a) {
   if (a.indexed) s += '#';
   if (is_function_file(a.type)) {
     // RTC:0.YR, RTC:0/DS, RTC:0.SEC/1: no file number, named words and bits where they exist.
+    // DLS0:0/DN keeps the file number the manuals write it with (1763-RM001C p. 440).
     const int id = a.file;
     s += function_file_name(id);
+    if (is_dls(id)) s += '0';
     s += ':' + std::to_string(a.element);
     auto bit_name = a.bit >= 0 ? function_bit_name(id, a.word, a.bit) : std::string_view{};
     if (!bit_name.empty()) return s + '/' + std::string(bit_name);

@@ -51,8 +51,10 @@ enum class FileType : std::uint8_t {
 // instead of a syntax error.
 // PTO is the MicroLogix 1100/1200/1500 pulse train output file, PTOX the MicroLogix 1400's
 // (1766-RM001A p. 146); both are simulated (docs/semantics.md "The PTO function file").
-enum class FunctionFile : std::uint8_t { RTC, HSC, PTOX, PWMX, STI, EII, BHI, MMI, DAT, TPI, CS, IOS, LCD, PTO };
-inline constexpr int kFunctionFileCount = 14;
+// DLS is the Data Log Status file (1763-RM001C p. 440, AG-UM008C p. 3-64): one element per configured
+// data log queue, written DLS0:q as the manuals write it (docs/semantics.md "Data logging").
+enum class FunctionFile : std::uint8_t { RTC, HSC, PTOX, PWMX, STI, EII, BHI, MMI, DAT, TPI, CS, IOS, LCD, PTO, DLS };
+inline constexpr int kFunctionFileCount = 15;
 // "RTC", "HSC", ... for a FunctionFile number; "?" when out of range.
 std::string_view function_file_name(int id);
 // The FunctionFile number of a name ("RTC" -> 0), or -1.
@@ -119,6 +121,19 @@ inline constexpr std::uint16_t kErrorInvalidFile = 1;
 // rest [U]. The bit positions are softslc's decision [U]: UIX, UIE, UIL, UIP, EIE, AS, ED at the
 // STI's positions (its TIE is the EII's EIE), and ES (edge select, 1 = rising edge) at bit 14, the
 // only other bit of RSLogix's default 0x4002 (docs/semantics.md "The EII function file").
+// The Data Log Status file (AG-UM008C p. 3-65 Table 3.13, 1763-RM001C p. 440, 1766-RM001A p. 526):
+// 3-word elements, one per data log queue. Word 0: EN bit 15, DN bit 13, OV bit 12 (bit-addressed
+// only); word 1 FSZ (records allocated), word 2 RST (records stored). The 1400's CQ (bit 11) is not
+// simulated (docs/semantics.md "Data logging").
+namespace dls {
+inline constexpr int kBits = 0, kFileSize = 1, kRecordsStored = 2;
+inline constexpr int kWords = 3;
+inline constexpr int kMaxQueues = 256;  // queues 0-255 (1763-RM001C p. 433)
+inline constexpr int kEnableBit = 15, kDoneBit = 13, kOverflowBit = 12;
+}  // namespace dls
+// Whether `id` is the DLS file.
+bool is_data_log_status_file(int id);
+
 namespace eii {
 inline constexpr int kProgramFile = 0, kErrorCode = 1, kBits = 2, kInputSelect = 3;
 inline constexpr int kWords = 4;

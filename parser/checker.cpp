@@ -45,6 +45,7 @@ class Checker {
     check_jsr_targets();
     check_data_blocks();
     check_sti_function_file();
+    check_data_logs();
     check_forces();
     check_osr_storage();
   }
@@ -306,6 +307,21 @@ class Checker {
       return;
     }
     if (is_pulse_train_file(a.file) && !check_pulse_train_name(a.file, pos)) return;
+    if (is_data_log_status_file(a.file)) {
+      // "The DLS file does not exist until a data log queue has been configured" (1763-RM001C p. 440).
+      if (!proc.has_data_logging())
+        error(pos, "the Data Log Status file " + to_string(a) + " exists on the " +
+                       std::string(requirement_processors(Requirement::MicroLogixDataLog)) + " only (AG-UM008C p. 3-58); "
+                       "this program's processor is " + proc.display_name);
+      else if (!program_.find_data_log(a.element))
+        error(pos, to_string(a) + ": data log queue " + std::to_string(a.element) +
+                       " is not configured (no DATALOG " + std::to_string(a.element) +
+                       "); the DLS file has an element for each configured queue only (1763-RM001C p. 440)");
+      else if (a.word == dls::kBits && a.bit < 0)
+        error(pos, to_string(a) + ": word 0 of a DLS element is addressable by bit only (EN, DN, OV; AG-UM008C p. 3-64)");
+      if (a.word >= dls::kWords) error(pos, to_string(a) + ": DLS elements have words 0-2 (FSZ is 1, RST is 2)");
+      return;
+    }
     if (a.file == static_cast<int>(FunctionFile::HSC)) {
       if (a.element >= proc.hsc_count())
         error(pos, to_string(a) + ": the " + proc.display_name + " has " + std::to_string(proc.hsc_count()) +
@@ -323,6 +339,71 @@ class Checker {
     if (a.word >= function_file_words_per_element(a.file))
       error(pos, to_string(a) + ": " + name + " elements have words 0-" +
                      std::to_string(function_file_words_per_element(a.file) - 1));
+  }
+
+  // DATALOG statements: the queue configuration RSLogix keeps in the project (1763-RM001C pp.
+  // 433-437, 1766-RM001A pp. 518-523, AG-UM008C pp. 3-58..3-63). Each record's formatted string
+  // fits the controller's limit and all queues fit its data log memory.
+  void check_data_logs() {
+    const auto& proc = program_.processor;
+    std::int64_t bytes = 0;
+    std::set<int> seen;
+    for (auto& q : program_.data_logs) {
+      const std::string name = "DATALOG " + std::to_string(q.number);
+      if (!proc.has_data_logging()) {
+        error(q.pos, name + ": data logging is available on the " +
+                         std::string(requirement_processors(Requirement::MicroLogixDataLog)) +
+                         " only (AG-UM008C p. 3-58, 1766-RM001A p. 518); this program's processor is " + proc.display_name);
+        continue;
+      }
+      if (q.number < 0 || q.number >= dls::kMaxQueues) {
+        error(q.pos, name + ": queue numbers are 0-255 (1763-RM001C p. 433)");
+        continue;
+      }
+      if (!seen.insert(q.number).second) error(q.pos, name + " is configured twice");
+      if (q.records < 1) error(q.pos, name + ": a queue holds at least 1 record");
+      int characters = (q.date ? 10 : 0) + (q.time ? 8 : 0);
+      int record_bytes = 2 + (q.date ? 2 : 0) + (q.time ? 2 : 0);  // + the 2-byte integrity check
+      int items = (q.date ? 1 : 0) + (q.time ? 1 : 0);
+      for (std::size_t i = 0; i < q.fields.size(); ++i) {
+        const Address& a = q.fields[i];
+        const SourcePos pos = q.field_pos[i];
+        const std::string what = name + " field " + to_string(a);
+        if (a.is_indirect() || a.indexed || a.has_bit() || a.type == FileType::String || is_function_file(a.type) ||
+            is_mfile(a.type) || (is_structured(a.type) && a.word < 0)) {
+          error(pos, what + ": a field is a direct word (N7:11, T4:5.ACC, I1:3.0), long word (L14:0) or, on the "
+                            "MicroLogix 1400, floating-point (F8:0) address (1763-RM001C p. 434, 1766-RM001A p. 519); "
+                            "softslc does not log bits, strings or function files");
+          continue;
+        }
+        if (a.type == FileType::Float && proc.micrologix != MicroLogixModel::ML1400) {
+          error(pos, what + ": the " + proc.display_name + " logs words and long words only (1763-RM001C p. 434; the "
+                            "MicroLogix 1400 adds float, 1766-RM001A p. 519)");
+          continue;
+        }
+        check_address(a, pos, OperandKind::Source, MFileAccess::NoM);
+        const bool long_word = a.type == FileType::Long, real = a.type == FileType::Float;
+        characters += real ? 13 : long_word ? 11 : 6;
+        record_bytes += long_word || real ? 4 : 2;
+        ++items;
+      }
+      if (items == 0) {
+        error(q.pos, name + ": a record needs a date or time stamp or a field");
+        continue;
+      }
+      characters += items - 1;  // a delimiter between items
+      if (characters > proc.data_log_max_characters())
+        error(q.pos, name + ": the formatted record is " + std::to_string(characters) + " characters; the " +
+                         proc.display_name + " allows " + std::to_string(proc.data_log_max_characters()) +
+                         " (date 10, time 8, word 6, long word 11, float 13, 1 per delimiter: 1763-RM001C p. 435, "
+                         "1766-RM001A p. 519)");
+      bytes += static_cast<std::int64_t>(std::max(q.records, 0)) * record_bytes;
+    }
+    if (proc.has_data_logging() && bytes > proc.data_log_bytes())
+      error(program_.data_logs.front().pos,
+            "the DATALOG queues need " + std::to_string(bytes) + " bytes; the " + proc.display_name + " has " +
+                std::to_string(proc.data_log_bytes()) + " bytes of data log memory (records x record size, a record "
+                "2 bytes per word, date and time, 4 per long word, plus a 2-byte integrity check: 1763-RM001C p. 435)");
   }
 
   // The pulse train output file is PTO on the MicroLogix 1100, 1200 and 1500 and PTOX on the 1400
@@ -345,7 +426,8 @@ class Checker {
     if (is_pulse_train_file(a.file)) return check_pulse_train_write(op, os, where);
     const bool hsc = a.file == static_cast<int>(FunctionFile::HSC);
     const bool eii = a.file == static_cast<int>(FunctionFile::EII);
-    if (a.file != static_cast<int>(FunctionFile::STI) && !hsc && !eii) return;
+    const bool dls = is_data_log_status_file(a.file);
+    if (a.file != static_cast<int>(FunctionFile::STI) && !hsc && !eii && !dls) return;
     const std::string name(function_file_name(a.file));
     if (os.kind == OperandKind::File)
       return error(op.pos, where + ": the " + name + " function file is written one sub-element at a time (MOV, OTL, "
@@ -354,6 +436,7 @@ class Checker {
       error(op.pos, where + ": " + to_string(a) + " is read only to the user program (" +
                         (hsc   ? "1762-RM001C ch. 5; docs/semantics.md \"The HSC function file\")"
                          : eii ? "1763-RM001C p. 275; docs/semantics.md \"The EII function file\")"
+                         : dls ? "only OV is the program's to clear, AG-UM008C p. 3-65; docs/semantics.md \"Data logging\")"
                                : "1763-RM001C pp. 270-272; docs/semantics.md \"MicroLogix\")"));
   }
 
@@ -689,6 +772,12 @@ class Checker {
                                     "docs/semantics.md \"The HSC function file\")");
     if (in.opcode == Opcode::SVC_CH && in.operands[0].kind == Operand::Kind::Integer && proc.supports(s.requires_))
       check_channel_select(in.operands[0]);
+    // "You must configure a data log queue before programming a DLG instruction" (AG-UM008C p. 3-64).
+    if (in.opcode == Opcode::DLG && in.operands[0].kind == Operand::Kind::Integer && proc.supports(s.requires_) &&
+        !program_.find_data_log(static_cast<int>(in.operands[0].integer)))
+      error(in.operands[0].pos, "DLG " + in.operands[0].spelling + ": data log queue " + in.operands[0].spelling +
+                                    " is not configured (a queue must be configured before a DLG names it, AG-UM008C "
+                                    "p. 3-64); add DATALOG " + in.operands[0].spelling + " RECORDS n DELIMITER COMMA <fields>");
     if (s.role == Role::Leading && !first_in_rung)
       error(in.pos, mnemonic_of(in) + " must be the first instruction of its rung");
     if (in.opcode == Opcode::SBR && (file_number < 3 || rung_index != 0))
@@ -1492,7 +1581,7 @@ std::span<const std::string_view> real_mnemonics_without_rows() {
   // reaches unknown_instruction_message).
   static constexpr std::string_view kReal[] = {
       // MicroLogix only: high-speed counter and outputs, real-time clock adjust, data logging, LCD.
-      "DLG", "GCD", "HSC", "HSD", "HSE", "LCD", "PWM"};
+      "GCD", "HSC", "HSD", "HSE", "LCD", "PWM", "RCP"};
   return kReal;
 }
 

@@ -232,6 +232,15 @@ std::string format_program(const Program& p) {
   }
   for (const auto& d : p.data) format_data(d, out);
   for (const auto& f : p.forces) format_force(f, out);
+  for (const auto& q : p.data_logs) {
+    out += "DATALOG " + std::to_string(q.number) + " RECORDS " + std::to_string(q.records);
+    if (q.date) out += " DATE";
+    if (q.time) out += " TIME";
+    out += q.delimiter == '\t' ? " DELIMITER TAB" : q.delimiter == ' ' ? " DELIMITER SPACE" : " DELIMITER COMMA";
+    for (const auto& f : q.fields) out += " " + to_string(f);
+    out += '\n';
+  }
+  if (!p.data_logs.empty()) out += '\n';
   for (const auto& s : p.symbols) {
     if (s.automax) {
       out += std::string(keyword_of(s.automax->kind)) + " " + s.name + s.automax->suffix;

@@ -88,7 +88,10 @@ struct file_type_function
               TAO_PEGTL_STRING("DAT"), TAO_PEGTL_STRING("TPI"), TAO_PEGTL_STRING("CS"), TAO_PEGTL_STRING("IOS"),
               TAO_PEGTL_STRING("LCD")>,
           at<one<':'>>> {};
-struct file_type : sor<file_type_function, file_type_st, file_type_m, file_type_letter> {};
+// The Data Log Status file is written with its file number, DLS0:0/DN (1763-RM001C p. 440); DLS:0
+// is accepted too. The name is the whole match, so the '0' is no file number (action<file_type>).
+struct file_type_data_log : seq<TAO_PEGTL_STRING("DLS"), opt<one<'0'>>, at<one<':'>>> {};
+struct file_type : sor<file_type_function, file_type_data_log, file_type_st, file_type_m, file_type_letter> {};
 
 // The word address inside brackets (no nesting, no expressions).
 struct ref_type : file_type {};
@@ -326,6 +329,21 @@ struct io_def_stmt : seq<sor<kw_iodef, kw_riodef>, ws, must<def_name>, opt_ws, m
                          opt_ws> {};
 struct mem_def_stmt : seq<kw_memdef, ws, must<def_name>, opt<ws, def_note>, opt_ws> {};
 
+// A data log queue (docs/program-format.md "Data log queues"):
+// DATALOG 0 RECORDS 12 DATE TIME DELIMITER COMMA N7:11 L14:0 T4:5.ACC I1:3.0 B3:2
+struct kw_datalog : TAO_PEGTL_STRING("DATALOG") {};
+struct datalog_queue : digits {};
+struct kw_records : TAO_PEGTL_STRING("RECORDS") {};
+struct datalog_records : digits {};
+struct datalog_date : seq<TAO_PEGTL_STRING("DATE"), token_end> {};
+struct datalog_time : seq<TAO_PEGTL_STRING("TIME"), token_end> {};
+struct kw_delimiter : TAO_PEGTL_STRING("DELIMITER") {};
+struct datalog_delimiter : seq<sor<TAO_PEGTL_STRING("COMMA"), TAO_PEGTL_STRING("TAB"), TAO_PEGTL_STRING("SPACE")>, token_end> {};
+struct datalog_field : address {};
+struct datalog_stmt : seq<kw_datalog, ws, must<datalog_queue>, ws, must<kw_records>, ws, must<datalog_records>,
+                          opt<ws, datalog_date>, opt<ws, datalog_time>, ws, must<kw_delimiter>, ws,
+                          must<datalog_delimiter>, star<ws, not_at<eof>, must<datalog_field>>, opt_ws> {};
+
 // A free comment line (section headings, "% Rung: 0 %" markers, rung comments).
 struct comment_stmt : seq<comment, opt_ws> {};
 
@@ -334,7 +352,7 @@ struct statement_end : eof {};
 struct rung_stmt : seq<rung, opt_ws> {};
 struct statement : seq<opt_ws, sor<start_stmt, slot_stmt, project_stmt, ladder_stmt, rung_stmt, data_stmt,
                                    force_stmt, symbol_stmt, desc_stmt, io_def_stmt, mem_def_stmt,
-                                   comment_stmt>, must<statement_end>> {};
+                                   datalog_stmt, comment_stmt>, must<statement_end>> {};
 
 }  // namespace softslc::grammar
 

@@ -52,6 +52,13 @@ template <> inline constexpr auto error_message<data_start> = "expected the firs
 template <> inline constexpr auto error_message<data_item> = "expected a number, a quoted string or a '% label %'";
 template <> inline constexpr auto error_message<force_item> = "expected a hexadecimal force word or a '% label %'";
 template <> inline constexpr auto error_message<symbol_address> = "expected an address";
+template <> inline constexpr auto error_message<datalog_queue> = "expected the data log queue number (0-255) after DATALOG";
+template <> inline constexpr auto error_message<kw_records> = "expected RECORDS and the number of records after the queue number";
+template <> inline constexpr auto error_message<datalog_records> = "expected the number of records after RECORDS";
+template <> inline constexpr auto error_message<kw_delimiter> =
+    "expected [DATE] [TIME] DELIMITER COMMA|TAB|SPACE after the number of records";
+template <> inline constexpr auto error_message<datalog_delimiter> = "expected COMMA, TAB or SPACE after DELIMITER";
+template <> inline constexpr auto error_message<datalog_field> = "expected the address of a field to log (N7:11, L14:0, T4:5.ACC)";
 template <> inline constexpr auto error_message<symbol_def_name> = "expected a symbol name (letters, digits, '_')";
 template <> inline constexpr auto error_message<symbol_description> = "expected a description between '%' signs";
 template <> inline constexpr auto error_message<def_name> =

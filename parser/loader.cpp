@@ -187,7 +187,18 @@ struct LoadState {
     return open_branches.empty() ? rung.elements : open_branches.back()->legs.back();
   }
 
-  void on_address(const Address& a, SourcePos) { symbol.address = a; }
+  // DATALOG in progress: its field addresses go to `datalog`, not to `symbol`.
+  bool in_datalog = false;
+  DataLogQueue datalog;
+
+  void on_address(const Address& a, SourcePos pos) {
+    if (in_datalog) {
+      datalog.fields.push_back(a);
+      datalog.field_pos.push_back(pos);
+    } else {
+      symbol.address = a;
+    }
+  }
 };
 
 // ---- Actions ---------------------------------------------------------------------------------------
@@ -1019,6 +1030,7 @@ template <> struct action<force_stmt> {
 template <> struct action<kw_symbol> {
   template <typename Input>
   static void apply(const Input& in, LoadState& s) {
+    s.in_datalog = false;
     s.symbol = {};
     s.symbol.pos = pos_of(in);
   }
@@ -1038,6 +1050,48 @@ template <> struct action<symbol_stmt> {
   static void apply(const Input&, LoadState& s) { s.program.symbols.push_back(std::move(s.symbol)); }
 };
 template <> struct action<desc_stmt> : action<symbol_stmt> {};
+
+// ---- DATALOG (data log queue configuration) -----------------------------------------------------
+
+template <> struct action<kw_datalog> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    s.in_datalog = true;
+    s.datalog = {};
+    s.datalog.pos = pos_of(in);
+  }
+};
+template <> struct action<datalog_queue> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.datalog.number = to_int(in); }
+};
+template <> struct action<datalog_records> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) { s.datalog.records = to_int(in); }
+};
+template <> struct action<datalog_date> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) { s.datalog.date = true; }
+};
+template <> struct action<datalog_time> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) { s.datalog.time = true; }
+};
+template <> struct action<datalog_delimiter> {
+  template <typename Input>
+  static void apply(const Input& in, LoadState& s) {
+    const auto t = in.string_view();
+    s.datalog.delimiter = t.starts_with("TAB") ? '\t' : t.starts_with("SPACE") ? ' ' : ',';
+  }
+};
+template <> struct action<datalog_field> : address_action {};
+template <> struct action<datalog_stmt> {
+  template <typename Input>
+  static void apply(const Input&, LoadState& s) {
+    s.program.data_logs.push_back(std::move(s.datalog));
+    s.in_datalog = false;
+  }
+};
 
 // ---- IODEF / RIODEF / MEMDEF (AutoMax symbol definitions) -----------------------------------------
 
@@ -1135,7 +1189,7 @@ std::string_view first_token(std::string_view line) {
 bool is_statement_keyword(std::string_view t) {
   static constexpr std::string_view kKeywords[] = {"START", "SLOT", "PROJECT", "LADDER", "SOR",
                                                    "DATA",  "FORCE", "SYMBOL", "DESC", "IODEF",
-                                                   "RIODEF", "MEMDEF"};
+                                                   "RIODEF", "MEMDEF", "DATALOG"};
   for (auto k : kKeywords)
     if (k == t) return true;
   return false;

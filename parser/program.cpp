@@ -36,6 +36,12 @@ const Symbol* Program::find_symbol(std::string_view name) const {
   return nullptr;
 }
 
+const DataLogQueue* Program::find_data_log(int number) const {
+  for (const auto& q : data_logs)
+    if (q.number == number) return &q;
+  return nullptr;
+}
+
 namespace {
 
 struct Comparer {
@@ -116,6 +122,14 @@ bool same_program(const Program& a, const Program& b, std::string* first_differe
     for (std::size_t w = 0; w < x.words.size(); ++w)
       if (x.words[w].on != y.words[w].on || x.words[w].off != y.words[w].off)
         return c.fail("FORCE block " + std::to_string(i) + " word " + std::to_string(w) + " differs");
+  }
+  if (a.data_logs.size() != b.data_logs.size()) return c.fail("DATALOG count differs");
+  for (std::size_t i = 0; i < a.data_logs.size(); ++i) {
+    const auto& x = a.data_logs[i];
+    const auto& y = b.data_logs[i];
+    if (x.number != y.number || x.records != y.records || x.date != y.date || x.time != y.time ||
+        x.delimiter != y.delimiter || x.fields != y.fields)
+      return c.fail("DATALOG " + std::to_string(x.number) + " differs");
   }
   if (a.symbols.size() != b.symbols.size()) return c.fail("symbol count differs");
   for (std::size_t i = 0; i < a.symbols.size(); ++i)

@@ -135,6 +135,20 @@ struct ForceBlock {
   SourcePos pos;
 };
 
+// A data log queue (the DATALOG statement, docs/program-format.md "Data log queues"): what DLG q
+// captures into queue q. RSLogix keeps this in the project's Data Log configuration (1763-RM001C
+// p. 437); the text form is softslc's.
+struct DataLogQueue {
+  int number = 0;        // 0-255
+  int records = 0;       // records allocated (DLS0:q.FSZ)
+  bool date = false;     // the record starts with a date stamp (mm/dd/yyyy)
+  bool time = false;     // then a time stamp (hh:mm:ss)
+  char delimiter = ',';  // between the fields of the retrieved record: ',', '\t' or ' '
+  std::vector<Address> fields;
+  std::vector<SourcePos> field_pos;
+  SourcePos pos;
+};
+
 struct Symbol {
   std::string name;
   Address address;
@@ -157,10 +171,12 @@ struct Program {
   std::vector<DataBlock> data;
   std::vector<ForceBlock> forces;
   std::vector<Symbol> symbols;         // in definition order (a DESC line gives a nameless entry)
+  std::vector<DataLogQueue> data_logs;  // DATALOG statements, in the order written
 
   const ProgramFile* find_file(int number) const;
   const SlotConfig* find_slot(int slot) const;
   const Symbol* find_symbol(std::string_view name) const;
+  const DataLogQueue* find_data_log(int number) const;
 };
 
 // Semantic equality of two programs: same processor, configuration, rungs, data and symbols.

@@ -235,6 +235,16 @@ struct CompiledFile {
   std::vector<CompiledRung> rungs;
 };
 
+// A DATALOG queue with its fields resolved against the layout (vm/ml_data_log.h runs it).
+struct CompiledDataLog {
+  int number = 0;
+  int records = 0;
+  bool date = false;
+  bool time = false;
+  char delimiter = ',';
+  std::vector<Location> fields;
+};
+
 struct CompiledProgram {
   ProcessorModel processor;
   std::string source_name;
@@ -251,6 +261,7 @@ struct CompiledProgram {
   std::vector<ForceBlock> forces;
   int max_branch_depth = 0;  // deepest BST nesting of any rung
   std::uint16_t program_checksum = 0;  // what RPC reads (program_checksum() in vm/compiler.h)
+  std::vector<CompiledDataLog> data_logs;  // DATALOG queues (MicroLogix 1100, 1400, 1500 LRP)
 
   const CompiledFile* file(int number) const {
     if (number < 0 || number > 255 || file_index[static_cast<std::size_t>(number)] < 0) return nullptr;

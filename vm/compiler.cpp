@@ -83,6 +83,7 @@ class Compiler {
     if (errors_.empty()) build_layout();
     if (errors_.empty()) load_data();
     if (errors_.empty()) emit_program();
+    if (errors_.empty()) compile_data_logs();
     CompileResult r;
     r.errors = std::move(errors_);
     if (r.errors.empty()) {
@@ -308,6 +309,9 @@ class Compiler {
       }
     }
     cur_file_ = cur_rung_ = -1;
+    // A DATALOG field is a use of its file as an operand is (N7:11 makes N7 at least 12 long).
+    for (const auto& q : prog_.data_logs)
+      for (std::size_t i = 0; i < q.fields.size(); ++i) note_address(q.fields[i], 1, q.field_pos[i]);
   }
 
   void build_layout() {
@@ -388,6 +392,19 @@ class Compiler {
         next += f.words();
       }
     }
+    // The Data Log Status file: "The DLS file does not exist until a data log queue has been
+    // configured" (1763-RM001C p. 440); an element for each queue up to the highest configured.
+    if (proc_.has_data_logging() && !prog_.data_logs.empty()) {
+      int highest = 0;
+      for (const auto& q : prog_.data_logs) highest = std::max(highest, std::clamp(q.number, 0, dls::kMaxQueues - 1));
+      FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(FunctionFile::DLS)];
+      f.present = true;
+      f.type = FileType::Function;
+      f.base = next;
+      f.elements = static_cast<std::uint32_t>(highest + 1);
+      f.words_per_element = static_cast<std::uint8_t>(dls::kWords);
+      next += f.words();
+    }
     layout_.total_words = next;
     if (next > bc::kMaxWordIndex) error({}, "the data table is too large to address");
     else layout_.index_files();
@@ -441,6 +458,12 @@ class Compiler {
         set_init(events.base + e * eii::kWords + eii::kBits, eii::kDefaultBits);
         set_init(events.base + e * eii::kWords + eii::kInputSelect, static_cast<std::uint16_t>(e));
       }
+    // Each configured queue's DLS0:q.FSZ: "the number of records ... set when the data log queue is
+    // configured" (AG-UM008C p. 3-65).
+    if (const FileLayout& f = layout_.function_file(FunctionFile::DLS); f.present)
+      for (const auto& q : prog_.data_logs)
+        if (q.number >= 0 && static_cast<std::uint32_t>(q.number) < f.elements)
+          set_init(f.base + static_cast<std::uint32_t>(q.number) * dls::kWords + dls::kFileSize, static_cast<std::uint16_t>(q.records));
     // Every PTO/PTOX element's OUT is -1 (no output) until configured: the .RSS record and the export
     // hold -1 in every unused element (docs/micrologix-function-files-sources.md section 6.3).
     for (const FunctionFile pulse_train : {FunctionFile::PTO, FunctionFile::PTOX})
@@ -1218,6 +1241,29 @@ class Compiler {
         continue;
       }
       out_.code[c.at] = bc::operand(bc::kTarget, target->begin);
+    }
+  }
+
+  // DATALOG queues: each field resolved to its place in the data table (vm/ml_data_log.h).
+  void compile_data_logs() {
+    if (!layout_.function_file(FunctionFile::DLS).present) return;
+    for (const auto& q : prog_.data_logs) {
+      CompiledDataLog c;
+      c.number = q.number;
+      c.records = q.records;
+      c.date = q.date;
+      c.time = q.time;
+      c.delimiter = q.delimiter;
+      for (std::size_t i = 0; i < q.fields.size(); ++i) {
+        std::string err;
+        auto loc = layout_.locate(q.fields[i], &err);
+        if (!loc) {
+          error(q.field_pos[i], "DATALOG " + std::to_string(q.number) + ": " + err);
+          continue;
+        }
+        c.fields.push_back(*loc);
+      }
+      out_.data_logs.push_back(std::move(c));
     }
   }
 

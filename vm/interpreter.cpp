@@ -76,6 +76,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
           cost_[static_cast<std::size_t>(Opcode::SVC_CH) * 2 + static_cast<std::size_t>(rung)];
   max_depth_ = std::clamp(program.processor.max_subroutine_depth(), 1, kMaxCallDepth);
   pulse_trains_.attach(program);
+  data_logs_.attach(program);
   const auto& L = *program.layout;
   s0_ = L.status_word(status::kArith);
   s2_ = L.status_word(status::kControl);
@@ -2305,6 +2306,9 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       case Op::PTO:
       case Op::PTOX:
         pulse_trains_.scan(static_cast<int>(bc::imm_of(o[0])), rung, scan_start_ + elapsed, w_);
+        break;
+      case Op::DLG:
+        data_logs_.scan(static_cast<int>(bc::imm_of(o[0])), rung, w_);
         break;
       case Op::HSL:
       case Op::RAC:

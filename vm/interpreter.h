@@ -50,6 +50,7 @@
 #include "vm/bytecode.h"
 #include "vm/data_table.h"
 #include "vm/faults.h"
+#include "vm/ml_data_log.h"
 #include "vm/ml_pto.h"
 #include "vm/ml_hsc.h"
 #include "vm/module.h"
@@ -174,6 +175,11 @@ class Interpreter {
   // Fused rungs (vm/fused.h) are on by default; off, every rung takes the general path. The
   // result is the same either way; tests compare the two.
   void set_fusion(bool on) { fusion_ = on; }
+
+  // The MicroLogix data log queues (DLG; vm/ml_data_log.h).
+  DataLogs& data_logs() { return data_logs_; }
+  const DataLogs& data_logs() const { return data_logs_; }
+  std::uint16_t* words() { return w_; }
 
   // ---- Interrupts (docs/semantics.md "Program control and interrupts") ----
   // At the end of a program scan (and, with `entering_run`, before the first scan in Run): reads
@@ -416,6 +422,8 @@ class Interpreter {
   std::uint16_t* w_;
   // The MicroLogix pulse train outputs (PTO/PTOX function file), scanned by the PTO/PTOX handler.
   PulseTrainOutputs pulse_trains_;
+  // The MicroLogix data log queues (DLG, DLS0:q), in battery-backed memory outside the data table.
+  DataLogs data_logs_;
   const std::uint32_t* code_;
   std::vector<Nanoseconds> cost_;
   std::array<std::uint8_t, kOpCount> countable_{};

@@ -340,6 +340,13 @@ RuntimeStatus Runtime::set_mode(Mode m) {
   return {};
 }
 
+std::optional<std::string> Runtime::retrieve_data_log_record(int queue) {
+  return interp_->data_logs().retrieve(queue, interp_->words());
+}
+std::vector<std::string> Runtime::data_log_records(int queue) const { return interp_->data_logs().records(queue); }
+std::vector<int> Runtime::data_log_queues() const { return interp_->data_logs().queues(); }
+void Runtime::keep_data_logs_of(const Runtime& other) { interp_->data_logs().keep_records_of(other.interp_->data_logs()); }
+
 void Runtime::clear_fault() {
   if (!fault_ && mode_ != Mode::Faulted) return;
   fault_.reset();

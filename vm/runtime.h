@@ -133,6 +133,18 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void clear_fault();
   const std::optional<FaultInfo>& fault() const { return fault_; }
 
+  // ---- MicroLogix data logging (docs/semantics.md "Data logging: DLG and the DLS file") ----
+  // Retrieval as a communications read does it (1763-RM001C p. 442): the oldest record of data log
+  // queue `queue` as its text (date, time, fields, the queue's delimiter), removed from the queue
+  // (DLS0:q.RST decremented, DN cleared). nullopt when the queue is empty or not configured.
+  std::optional<std::string> retrieve_data_log_record(int queue);
+  // The records of a queue as text, oldest first, left in place; the configured queue numbers.
+  std::vector<std::string> data_log_records(int queue) const;
+  std::vector<int> data_log_queues() const;
+  // Takes over the records of `other`'s queues (a power cycle: the data log memory is battery-backed,
+  // 1763-RM001C p. 433). Both runtimes run the same program.
+  void keep_data_logs_of(const Runtime& other);
+
   // ---- Running ----
   // Runs n scan cycles (in Test mode: n single scans). Stops early when a scan faults. Returns
   // the number of scans run.

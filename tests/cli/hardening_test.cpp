@@ -363,10 +363,10 @@ TEST(HardeningCheckIsRun, UnknownAndUnsupportedInstructions) {
   EXPECT_EQ(t.exit_code, 1);
   EXPECT_TRUE(contains(t.out, "typo.slc:3:16: error: unknown instruction 'FOO'")) << t.out;
   EXPECT_FALSE(contains(t.out, "rung has no output instruction")) << t.out;
-  auto hsl = temp_file("dlg.slc", "START 1747-L532\nLADDER 2 MAIN\nSOR DLG EOR\n");
-  auto p = run("check " + hsl.string());
+  auto rcp = temp_file("rcp.slc", "START 1747-L532\nLADDER 2 MAIN\nSOR RCP EOR\n");
+  auto p = run("check " + rcp.string());
   EXPECT_EQ(p.exit_code, 1);
-  EXPECT_TRUE(contains(p.out, "dlg.slc:3:5: error: instruction DLG is not supported by softslc yet")) << p.out;
+  EXPECT_TRUE(contains(p.out, "rcp.slc:3:5: error: instruction RCP is not supported by softslc yet")) << p.out;
 }
 
 // `check` accepted a file of 65,536 rungs, which `run` refuses (rungs are numbered in 16 bits).

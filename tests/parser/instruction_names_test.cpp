@@ -24,7 +24,7 @@ TEST(InstructionNames, TheListOfRealMnemonicsAgreesWithTheTable) {
   for (std::string_view m : {"SWP", "RHC", "TDF", "PID", "SUS", "REF", "STD", "STE", "STS", "INT", "IID", "IIE",
                              "RPI", "DDV", "SQR", "SCP", "TOD", "FRD", "ENC", "DCD", "CPT", "FBC", "DDT",
                              "ABL", "ACB", "ACI", "ACL", "ACN", "AEX", "AHL", "AIC", "ARD", "ARL", "ASC", "ASR",
-                             "AWA", "AWT", "MSG", "SVC", "RPC"}) {
+                             "AWA", "AWT", "MSG", "SVC", "RPC", "DLG"}) {
     const auto list = real_mnemonics_without_rows();
     EXPECT_EQ(std::find(list.begin(), list.end(), m), list.end()) << m << " has a row and is still listed";
   }

@@ -259,9 +259,9 @@ TEST(RssReader, HeaderSectorCountsBeyondTheFileAreRefused) {
 
 // A known RSLogix mnemonic softslc lacks is named as not supported; a typo stays unknown.
 TEST(RssReader, InstructionsSoftslcLacksAreNamedNotSupported) {
-  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 DLG N7:0 EOR\n", "t.slc");
+  auto r = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 RCP N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("instruction DLG is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
+  EXPECT_NE(r.render_diagnostics().find("instruction RCP is not supported by softslc yet"), std::string::npos) << r.render_diagnostics();
   auto typo = softslc::load_program("START Bul.1763\nLADDER 2\nSOR XIC B3:0/0 QQQ N7:0 EOR\n", "t.slc");
   ASSERT_FALSE(typo.ok());
   EXPECT_NE(typo.render_diagnostics().find("unknown instruction 'QQQ'"), std::string::npos) << typo.render_diagnostics();
@@ -269,7 +269,7 @@ TEST(RssReader, InstructionsSoftslcLacksAreNamedNotSupported) {
 
 // Diagnostics about a converted project name the program file and rung. Every fixture now loads,
 // so the 2080-MOT-HSC driver's LAD 2 rung 1 (`XIC T4:0/DN PTO 0`) is given an instruction softslc
-// does not have (DLG, same length: the lines stay where they were) in its converted text.
+// does not have (HSD, same length: the lines stay where they were) in its converted text.
 TEST(RssReader, DiagnosticsNameTheProgramFileAndRung) {
   fs::path f = kFixtures / "drbitboy-PLC_reject_timing" / "20230719_MicroLogix_1100_driver_of_Micro8xx_2080-MOT-HSC.RSS";
   if (!fs::exists(f)) GTEST_SKIP() << "no fixture " << f;
@@ -277,10 +277,10 @@ TEST(RssReader, DiagnosticsNameTheProgramFileAndRung) {
   ASSERT_TRUE(rr.text) << rr.error;
   const auto at = rr.text->find("XIC T4:0/DN PTO 0 EOR");
   ASSERT_NE(at, std::string::npos);
-  rr.text->replace(at + 12, 3, "DLG");
+  rr.text->replace(at + 12, 3, "HSD");
   auto r = softslc::load_converted_project(std::move(*rr.text), rr.origins, f.filename().string());
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 1: instruction DLG is not supported by softslc yet"), std::string::npos)
+  EXPECT_NE(r.render_diagnostics().find("program file 2 rung 1: instruction HSD is not supported by softslc yet"), std::string::npos)
       << r.render_diagnostics();
 }
 

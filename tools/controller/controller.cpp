@@ -103,8 +103,26 @@ void Controller::apply(const ControllerCall& c, bool record) {
       rt.data().set_word(loc->word + static_cast<std::uint32_t>(c.word), static_cast<std::uint16_t>(c.integer));
       break;
     }
+    case ControllerCall::Kind::RetrieveDataLog: rt.retrieve_data_log_record(static_cast<int>(c.integer)); break;
   }
   if (record && keep_journal_) journal_.push_back(c);
+}
+
+std::optional<std::string> Controller::retrieve_data_log_record(int queue) {
+  if (!loaded_->program.find_data_log(queue))
+    throw ControllerError("retrieve_data_log_record: data log queue " + std::to_string(queue) + " is not configured");
+  auto text = runtime_->retrieve_data_log_record(queue);
+  ControllerCall c;
+  c.kind = ControllerCall::Kind::RetrieveDataLog;
+  c.integer = queue;
+  if (keep_journal_) journal_.push_back(c);
+  return text;
+}
+
+std::vector<std::string> Controller::data_log_records(int queue) const {
+  if (!loaded_->program.find_data_log(queue))
+    throw ControllerError("data_log_records: data log queue " + std::to_string(queue) + " is not configured");
+  return runtime_->data_log_records(queue);
 }
 
 void Controller::set(std::string_view target, std::int64_t value) {

@@ -46,10 +46,10 @@ class ControllerError : public std::runtime_error {
 
 // One state-changing call, as a snapshot journal records it.
 struct ControllerCall {
-  enum class Kind : std::uint8_t { Set, SetFloat, Force, Unforce, Scans, RunFor, SetMode, ClearFault, Inject, SetWord };
+  enum class Kind : std::uint8_t { Set, SetFloat, Force, Unforce, Scans, RunFor, SetMode, ClearFault, Inject, SetWord, RetrieveDataLog };
   Kind kind = Kind::Scans;
   std::string target;  // address (symbols resolved) or device
-  std::int64_t integer = 0;  // Set, SetWord: value; Force: 0/1; Scans: how many; RunFor: nanoseconds
+  std::int64_t integer = 0;  // Set, SetWord: value; Force: 0/1; Scans: how many; RunFor: nanoseconds; RetrieveDataLog: queue
   int word = 0;              // SetWord: the word within the element
   double real = 0.0;         // SetFloat
   Mode mode = Mode::Run;     // SetMode
@@ -144,6 +144,14 @@ class Controller {
   Mode mode() const;
   const std::optional<FaultInfo>& fault() const;
   void clear_fault();
+
+  // ---- MicroLogix data logging (docs/semantics.md "Data logging: DLG and the DLS file") ----
+  // Reads and removes the oldest record of data log queue `queue`, as a communications read does
+  // (1763-RM001C p. 442): its text, e.g. "01/10/2000,20:00:00,2315,103457,200,8190,4465"; nullopt
+  // when the queue is empty. Throws ControllerError for a queue the program does not configure.
+  std::optional<std::string> retrieve_data_log_record(int queue);
+  // The records of a queue as text, oldest first, left in place.
+  std::vector<std::string> data_log_records(int queue) const;
 
   // ---- Bench devices (docs/bench-format.md) ----
   void inject(std::string_view device, std::string_view change, std::vector<std::string> args = {});

@@ -402,6 +402,11 @@ int run_run(const RunOptions& o) {
     }
     prints.emplace_back(text, *a);
   }
+  for (int q : o.logs)
+    if (!program.find_data_log(q)) {
+      std::cerr << "softslc run: --log " << q << ": the program configures no data log queue " << q << " (DATALOG)\n";
+      return kUsage;
+    }
   Nanoseconds checkpoint = 0;
   if (!o.checkpoint.empty()) {
     std::string error;
@@ -552,11 +557,20 @@ int run_run(const RunOptions& o) {
     if (suspended)  // only when it happened, so the usual output keeps its keys
       j["suspended"] = {{"id", rt.value("S:7").as_int()}, {"file", rt.value("S:8").as_int()}};
     j["scan_time_us"] = {{"last", to_us(rt.stats().last)}, {"max", to_us(rt.stats().max)}, {"avg", to_us(rt.stats().avg())}};
+    if (!o.logs.empty()) {  // only when asked, so the usual output keeps its keys
+      j["logs"] = nlohmann::ordered_json::object();
+      for (int q : o.logs) j["logs"][std::to_string(q)] = rt.data_log_records(q);
+    }
     std::cout << json_text(j) << "\n";
   } else {
     for (const auto& [text, a] : prints) {
       auto v = rt.get(a);
       std::cout << text << " = " << (v ? v->to_string() : std::string("?")) << "\n";
+    }
+    for (int q : o.logs) {
+      const auto records = rt.data_log_records(q);
+      std::cout << "log " << q << ": " << records.size() << " record" << (records.size() == 1 ? "" : "s") << "\n";
+      for (const auto& rec : records) std::cout << "  " << rec << "\n";
     }
     if (fault)
       std::cout << "fault: " << fault_code_text(fault->code) << " file " << fault->file << " rung " << fault->rung << ": "

@@ -53,6 +53,7 @@ struct RunOptions {
   std::string for_duration;              // "" = not given
   std::vector<std::string> sets;         // ADDR=VALUE, applied before the first scan
   std::vector<std::string> prints;       // ADDR or symbol, printed in order
+  std::vector<int> logs;                 // data log queues whose records are printed (DATALOG)
   bool json = false;
   std::string processor;                 // CATALOG[:SERIES] overriding START
   std::string timing;                    // user timing profile

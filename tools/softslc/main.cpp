@@ -53,6 +53,8 @@ int run_main(int argc, char** argv) {
   run_cmd->add_option("--for", run.for_duration, "virtual time to run: 250ms, 1.5s, 2m")->excludes(scans_opt);
   run_cmd->add_option("--set", run.sets, "ADDR=VALUE before the first scan (I: addresses set field inputs)");
   run_cmd->add_option("--print", run.prints, "address or symbol to print after the run, in order");
+  run_cmd->add_option("--log", run.logs,
+                      "MicroLogix data log queue whose records to print after the run, oldest first (left in the queue)");
   run_cmd->add_flag("--json", run.json, "print one JSON object");
   run_cmd->add_option("--processor", run.processor, "processor catalog (CATALOG or CATALOG:SERIES) overriding START");
   run_cmd->add_option("--timing", run.timing, "timing profile JSON overriding the built-in figures");

@@ -312,6 +312,7 @@ class Session {
       case Step::Kind::RunUntil: return run_until(s, context);
       case Step::Kind::Expect: return expect(s, context);
       case Step::Kind::ExpectWords: return expect_words(s, context);
+      case Step::Kind::ExpectLog: return expect_log(s, context);
       case Step::Kind::Mode:
         if (auto st = rt_->set_mode(s.mode); !st) return refused(s, context, st.message);
         return std::nullopt;
@@ -415,6 +416,23 @@ class Session {
     return f;
   }
 
+  // expect log Q == "TEXT" | none: a communications read of the queue's oldest record, which
+  // removes it (docs/semantics.md "Data logging: DLG and the DLS file").
+  std::optional<Failure> expect_log(const Step& s, const std::string& context) {
+    const auto record = rt_->retrieve_data_log_record(static_cast<int>(s.count));
+    const auto shown = [](const std::string& t) {
+      std::string out = "\"";
+      for (char c : t) out += c == '\t' ? std::string("\\t") : std::string(1, c);
+      return out + "\"";
+    };
+    if (s.none ? !record : record && *record == s.name) return std::nullopt;
+    Failure f = step_failure(s, context);
+    f.expected = s.condition_text;
+    f.actual = "log " + std::to_string(s.count) + " == " + (record ? shown(*record) : std::string("none"));
+    note_fault(f);
+    return f;
+  }
+
   std::optional<Failure> restore(const Step& s, const std::string& context) {
     const Snapshot& snap = *s.snapshot;
     if (auto f = start(*snap.program, snap.initial_mode, s.loc, s.text)) return f;
@@ -458,6 +476,8 @@ class Session {
     for (const auto& file : program_->program.files)
       for (const auto& rung : file.rungs) collect_ote_bits(rung.elements, ote_bits);
     for (const auto& a : ote_bits) fresh.set(a, Value::bit(false));
+    // The MicroLogix data log queues are battery-backed too (1763-RM001C p. 433).
+    fresh.keep_data_logs_of(*rt_);
     for (int slot = 0; slot < kMaxSlots; ++slot) {
       Module* before = rt_->module(slot);
       Module* after = fresh.module(slot);

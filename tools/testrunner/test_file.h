@@ -117,6 +117,7 @@ struct Step {
     Snapshot,     // snapshot NAME
     Restore,      // restore NAME
     Device,       // device NAME CHANGE [ARGS...]: Runtime::inject
+    ExpectLog,    // expect log Q == "TEXT" | none: Runtime::retrieve_data_log_record
   };
   Kind kind = Kind::Scan;
   Location loc;
@@ -128,7 +129,8 @@ struct Step {
   Nanoseconds duration = 0;
   Condition condition;
   Mode mode = Mode::Run;
-  std::string name;                           // Snapshot / Restore; Device: the device
+  std::string name;                           // Snapshot / Restore; Device: the device; ExpectLog: the record
+  bool none = false;                          // ExpectLog: the queue is expected empty
   Location name_loc;                          // Device
   std::string change;                         // Device: "offline", "cable removed", ...
   std::vector<std::string> args;              // Device

@@ -263,7 +263,17 @@ struct run_line : seq<kw_run, ws, must<run_what>> {};
 struct words_equal : op_eq {};
 struct word_values : seq<value, star<ws, value>> {};
 struct expect_words : seq<address_range, opt_ws, must<words_equal>, opt_ws, must<word_values>> {};
-struct expectation : sor<expect_words, condition> {};
+// expect log Q == "01/10/2000,20:00:00,2315" | none: retrieves the oldest record of MicroLogix data
+// log queue Q (removing it, as a communications read does) and compares its text; `none`: the queue
+// is empty. In the text \t stands for a TAB delimiter.
+struct kw_log : TAO_PEGTL_KEYWORD("log") {};
+struct log_queue : seq<plus<digit>, token_end> {};
+struct log_text : star<not_one<'"'>> {};
+struct log_quoted : seq<one<'"'>, log_text, must<quote_close>> {};
+struct log_none : TAO_PEGTL_KEYWORD("none") {};
+struct log_expected : sor<log_quoted, log_none> {};
+struct expect_log : seq<kw_log, ws, must<log_queue>, opt_ws, must<words_equal>, opt_ws, must<log_expected>> {};
+struct expectation : sor<expect_log, expect_words, condition> {};
 struct expect_line : seq<kw_expect, ws, must<expectation>> {};
 // mode program|run|test
 struct step_mode_name : sor<kw_mode_program, kw_mode_run, kw_mode_test> {};

@@ -71,6 +71,8 @@ template <> inline constexpr auto error_message<within_clause> =
     "expected 'within DURATION' after the condition (run until MOTOR == 0 within 2s)";
 template <> inline constexpr auto error_message<run_what> =
     "expected " SOFTSLC_DURATION_EXAMPLES " or 'until CONDITION within DURATION' after 'run'";
+template <> inline constexpr auto error_message<log_queue> = "expected the data log queue number after 'expect log'";
+template <> inline constexpr auto error_message<log_expected> = "expected the record as a quoted string, or none";
 template <> inline constexpr auto error_message<words_equal> =
     "expected '==' and one value per element after a range (expect N11:0..2 == 1 2 3)";
 template <> inline constexpr auto error_message<word_values> = "expected one value per element of the range after '=='";

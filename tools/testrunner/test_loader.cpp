@@ -289,6 +289,11 @@ class Checker {
       case Step::Kind::RunUntil:
       case Step::Kind::Expect: check_condition(s.condition, p, probe); return;
       case Step::Kind::Device: check_device(s.name, s.name_loc, p, probe); return;
+      case Step::Kind::ExpectLog:
+        if (!p.program.find_data_log(static_cast<int>(s.count)))
+          error(s.loc, "data log queue " + std::to_string(s.count) + " is not configured by the program (no DATALOG " +
+                           std::to_string(s.count) + ")");
+        return;
       default: return;
     }
   }

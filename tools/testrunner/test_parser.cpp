@@ -84,6 +84,10 @@ struct LineState {
   std::optional<Condition> condition;
   bool unforce_all = false;
   bool words = false;  // expect FILE:a..b == ...
+  bool log = false;    // expect log Q == "TEXT" | none
+  int log_queue = 0;
+  std::string log_text;
+  bool log_none = false;
 
   void add_operand(Operand o) { operands.push_back(std::move(o)); }
   void add_condition(Condition c) { condition = std::move(c); }
@@ -570,10 +574,45 @@ template <> struct action<expect_words> {
   template <typename Input>
   static void apply(const Input&, LineState& s) { s.words = true; }
 };
+template <> struct action<log_queue> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    s.log = true;
+    const auto t = in.string_view();
+    s.log_queue = t.size() > 3 ? 256 : std::stoi(std::string(t));
+    if (s.log_queue > 255) throw pegtl::parse_error("data log queues are 0-255", in);
+  }
+};
+template <> struct action<log_text> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    // \t stands for the TAB delimiter.
+    std::string text;
+    const auto t = in.string_view();
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (t[i] == '\\' && i + 1 < t.size() && t[i + 1] == 't') {
+        text += '\t';
+        ++i;
+      } else {
+        text += t[i];
+      }
+    }
+    s.log_text = std::move(text);
+  }
+};
+template <> struct action<log_none> {
+  template <typename Input>
+  static void apply(const Input&, LineState& s) { s.log_none = true; }
+};
 template <> struct action<expect_line> {
   template <typename Input>
   static void apply(const Input& in, LineState& s) {
-    if (s.words) {
+    if (s.log) {
+      Step& step = begin_step(in, s, Step::Kind::ExpectLog);
+      step.count = s.log_queue;
+      step.name = s.log_text;
+      step.none = s.log_none;
+    } else if (s.words) {
       Step& step = begin_step(in, s, Step::Kind::ExpectWords);
       step.target = s.operands.at(0).data;
       step.values = literals_from(s.operands, 1);
@@ -829,7 +868,7 @@ std::string condition_text_of(const Step& s) {
     t.remove_prefix(std::min(t.find_first_of(" \t"), t.size()));
     t.remove_prefix(std::min(t.find_first_not_of(" \t"), t.size()));
   };
-  if (s.kind == Step::Kind::Expect || s.kind == Step::Kind::ExpectWords) {
+  if (s.kind == Step::Kind::Expect || s.kind == Step::Kind::ExpectWords || s.kind == Step::Kind::ExpectLog) {
     skip_word();
     return std::string(t);
   }

@@ -339,6 +339,67 @@ std::string function_sub_element_names(int id) {
   return {};
 }
 
+namespace {
+// The MG element's named words (1762-RM001C p. 21-4, 1766-RM001A pp. 399-400) and bits (word 17:
+// 1762-RM001C p. 21-6; word 16: [U], address.h namespace mg).
+struct MessageName {
+  std::string_view name;
+  int word;
+};
+constexpr std::array kMessageWords{
+    MessageName{"RBL", mg::kRemoteBridgeLink}, MessageName{"LBN", mg::kLocalBridgeNode},
+    MessageName{"RBN", mg::kRemoteBridgeNode}, MessageName{"CHN", mg::kChannel},
+    MessageName{"NOD", mg::kNode},             MessageName{"MTO", mg::kTimeout},
+    MessageName{"TFN", mg::kTargetFile},       MessageName{"ELE", mg::kTargetElement},
+    MessageName{"ERR", mg::kError},
+};
+struct MessageBit {
+  std::string_view name;
+  int word, bit;
+};
+constexpr std::array kMessageBits{
+    MessageBit{"EN", mg::kControl, mg::kEnableBit}, MessageBit{"TO", mg::kControl, mg::kTimeOutBit},
+    MessageBit{"ST", mg::kStatus, mg::kStartBit},   MessageBit{"DN", mg::kStatus, mg::kDoneBit},
+    MessageBit{"ER", mg::kStatus, mg::kErrorBit},   MessageBit{"EW", mg::kStatus, mg::kWaitingBit},
+    MessageBit{"R", mg::kStatus, mg::kRangeBit},
+};
+}  // namespace
+
+int message_word_number(std::string_view name) {
+  for (const auto& w : kMessageWords)
+    if (w.name == name) return w.word;
+  return -1;
+}
+
+std::string_view message_word_name(int word) {
+  for (const auto& w : kMessageWords)
+    if (w.word == word) return w.name;
+  return {};
+}
+
+bool message_bit_number(std::string_view name, int& word, int& bit) {
+  for (const auto& b : kMessageBits)
+    if (b.name == name) {
+      word = b.word;
+      bit = b.bit;
+      return true;
+    }
+  return false;
+}
+
+std::string_view message_bit_name(int word, int bit) {
+  for (const auto& b : kMessageBits)
+    if (b.word == word && b.bit == bit) return b.name;
+  return {};
+}
+
+bool message_sub_element_writable(int word, int /*bit*/) {
+  // The access column of 1762-RM001C p. 21-4 / 1766-RM001A pp. 399-400: CHN, NOD, MTO, TFN, ELE and
+  // the control bits are read/write, every other sub-element read only.
+  return word == mg::kChannel || word == mg::kNode || word == mg::kTimeout || word == mg::kTargetFile ||
+         word == mg::kTargetElement || word == mg::kControl;
+}
+
 std::string_view file_letter(FileType t) {
   switch (t) {
     case FileType::Output: return "O";
@@ -356,6 +417,8 @@ std::string_view file_letter(FileType t) {
     case FileType::M0: return "M0";
     case FileType::M1: return "M1";
     case FileType::Function: return "FN";
+    case FileType::Message: return "MG";
+    case FileType::Routing: return "RI";
   }
   return "?";
 }
@@ -368,6 +431,8 @@ int words_per_element(FileType t) {
     case FileType::Float:
     case FileType::Long: return 2;
     case FileType::String: return 42;
+    case FileType::Message: return mg::kWords;
+    case FileType::Routing: return ri::kWords;
     default: return 1;
   }
 }
@@ -460,6 +525,13 @@ std::string to_string(const Address& a) {
     }
   } else if (is_io(a.type) || is_mfile(a.type)) {
     s += '.' + std::to_string(a.word_in_element());
+  } else if (is_message_file(a.type) && a.word >= 0) {
+    // MG11:0.NOD, MG11:0/DN (a named bit names its word), MG11:0.19.
+    auto bit_name = a.bit >= 0 ? message_bit_name(a.word, a.bit) : std::string_view{};
+    if (!bit_name.empty()) return s + '/' + std::string(bit_name);
+    auto name = message_word_name(a.word);
+    s += '.';
+    s += name.empty() ? std::to_string(a.word) : std::string(name);
   } else if (a.word >= 0) {
     s += '.' + std::to_string(a.word);
   }

@@ -341,63 +341,49 @@ std::string function_sub_element_names(int id) {
 
 namespace {
 // The MG element's named words (1762-RM001C p. 21-4, 1766-RM001A pp. 399-400) and bits (word 17:
-// 1762-RM001C p. 21-6; word 16: [U], address.h namespace mg).
-struct MessageName {
-  std::string_view name;
-  int word;
-};
-constexpr std::array kMessageWords{
-    MessageName{"RBL", mg::kRemoteBridgeLink}, MessageName{"LBN", mg::kLocalBridgeNode},
-    MessageName{"RBN", mg::kRemoteBridgeNode}, MessageName{"CHN", mg::kChannel},
-    MessageName{"NOD", mg::kNode},             MessageName{"MTO", mg::kTimeout},
-    MessageName{"TFN", mg::kTargetFile},       MessageName{"ELE", mg::kTargetElement},
-    MessageName{"ERR", mg::kError},
-};
-struct MessageBit {
-  std::string_view name;
-  int word, bit;
-};
-constexpr std::array kMessageBits{
-    MessageBit{"EN", mg::kControl, mg::kEnableBit}, MessageBit{"TO", mg::kControl, mg::kTimeOutBit},
-    MessageBit{"ST", mg::kStatus, mg::kStartBit},   MessageBit{"DN", mg::kStatus, mg::kDoneBit},
-    MessageBit{"ER", mg::kStatus, mg::kErrorBit},   MessageBit{"EW", mg::kStatus, mg::kWaitingBit},
-    MessageBit{"R", mg::kStatus, mg::kRangeBit},
+// 1762-RM001C p. 21-6; word 16: [U], address.h namespace mg). `writable`: the tables' access column.
+constexpr std::array kMessageSubElements{
+    FunctionSubElement{"RBL", mg::kRemoteBridgeLink, -1, false}, FunctionSubElement{"LBN", mg::kLocalBridgeNode, -1, false},
+    FunctionSubElement{"RBN", mg::kRemoteBridgeNode, -1, false}, FunctionSubElement{"CHN", mg::kChannel, -1, true},
+    FunctionSubElement{"NOD", mg::kNode, -1, true},              FunctionSubElement{"MTO", mg::kTimeout, -1, true},
+    FunctionSubElement{"TFN", mg::kTargetFile, -1, true},        FunctionSubElement{"ELE", mg::kTargetElement, -1, true},
+    FunctionSubElement{"ERR", mg::kError, -1, false},
+    FunctionSubElement{"EN", mg::kControl, mg::kEnableBit, true}, FunctionSubElement{"TO", mg::kControl, mg::kTimeOutBit, true},
+    FunctionSubElement{"ST", mg::kStatus, mg::kStartBit, false},  FunctionSubElement{"DN", mg::kStatus, mg::kDoneBit, false},
+    FunctionSubElement{"ER", mg::kStatus, mg::kErrorBit, false},  FunctionSubElement{"EW", mg::kStatus, mg::kWaitingBit, false},
+    FunctionSubElement{"R", mg::kStatus, mg::kRangeBit, false},
 };
 }  // namespace
 
 int message_word_number(std::string_view name) {
-  for (const auto& w : kMessageWords)
-    if (w.name == name) return w.word;
+  for (const auto& e : kMessageSubElements)
+    if (e.bit < 0 && e.name == name) return e.word;
   return -1;
 }
 
 std::string_view message_word_name(int word) {
-  for (const auto& w : kMessageWords)
-    if (w.word == word) return w.name;
+  for (const auto& e : kMessageSubElements)
+    if (e.bit < 0 && e.word == word) return e.name;
   return {};
 }
 
 bool message_bit_number(std::string_view name, int& word, int& bit) {
-  for (const auto& b : kMessageBits)
-    if (b.name == name) {
-      word = b.word;
-      bit = b.bit;
-      return true;
-    }
-  return false;
+  return named_bit(kMessageSubElements, name, word, bit);
 }
 
 std::string_view message_bit_name(int word, int bit) {
-  for (const auto& b : kMessageBits)
-    if (b.word == word && b.bit == bit) return b.name;
+  for (const auto& e : kMessageSubElements)
+    if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
   return {};
 }
 
-bool message_sub_element_writable(int word, int /*bit*/) {
-  // The access column of 1762-RM001C p. 21-4 / 1766-RM001A pp. 399-400: CHN, NOD, MTO, TFN, ELE and
-  // the control bits are read/write, every other sub-element read only.
-  return word == mg::kChannel || word == mg::kNode || word == mg::kTimeout || word == mg::kTargetFile ||
-         word == mg::kTargetElement || word == mg::kControl;
+bool message_sub_element_writable(int word, int /*bit: sub-element 16's bits are all read/write*/) {
+  // Sub-element 16 is read/write as a whole ("Control bits ... read/write", 1766-RM001A p. 400); the
+  // others as their named entry (CHN, NOD, MTO, TFN, ELE); unnamed ones are read only.
+  if (word == mg::kControl) return true;
+  for (const auto& e : kMessageSubElements)
+    if (e.bit < 0 && e.word == word) return e.writable;
+  return false;
 }
 
 std::string_view file_letter(FileType t) {

@@ -21,6 +21,8 @@
 #include "parser/formatter.h"
 #include "parser/loader.h"
 #include "tools/controller/controller.h"
+#include "vm/runtime.h"
+#include "vm/state_file.h"
 
 namespace softslc {
 namespace {
@@ -138,6 +140,25 @@ TEST(MicroLogixMessageFile, FmtWritesTheDataBackAndItLoadsTheSame) {
   EXPECT_NE(load_errors("START Bul.1766\nLADDER 2\nSOR MOV MG11:0.NOD N7:0 EOR\nDATA MG11:0\n% MG11:0 % 0 0 0\n")
                 .find("each MG element takes 25 values, its words 0-24 (1762-RM001C p. 21-4)"),
             std::string::npos);
+}
+
+TEST(MicroLogixMessageFile, StateFileSavesAndRestoresThem) {
+  // `--state` keeps the MG and RI words as any data file's: the element written by the program comes back.
+  LoadResult loaded = load_program(data_program(), "t.slc");
+  ASSERT_TRUE(loaded.ok()) << loaded.render_diagnostics();
+  auto made = Runtime::create(*loaded.program);
+  ASSERT_TRUE(made.ok()) << made.render_errors();
+  made.runtime->set_mode(Mode::Run);
+  made.runtime->set("B3:0/0", Value::of_int(1));
+  made.runtime->scan(1);
+  const auto fp = program_fingerprint(*loaded.program);
+  const std::string bytes = encode_state(made.runtime->data(), fp);
+  auto fresh = Runtime::create(*loaded.program);
+  ASSERT_TRUE(fresh.ok()) << fresh.render_errors();
+  const auto r = decode_state(bytes, fp, fresh.runtime->data(), false);
+  ASSERT_TRUE(r.ok) << r.error;
+  EXPECT_EQ(fresh.runtime->value("MG11:0.NOD").integer, 6);
+  EXPECT_EQ(fresh.runtime->value("RI12:0.1").integer, 0x790A);
 }
 
 }  // namespace

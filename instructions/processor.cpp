@@ -194,10 +194,10 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
         return "takes a channel select on the " + have + " (`SVC 1` services channel 0; 1762-RM001C p. 21-26, "
                "1763-RM001B p. 344, 1766-RM001A p. 396)";
       if (is_micrologix())
-        return "is not available on the " + have + " in softslc: the MicroLogix MSG and SVC work on an MG message "
+        return "is not available on the " + have + " in softslc: the MicroLogix MSG works on an MG message "
                "file element and the channel configuration (1763-RM001, 1766-RM001, 1762-RM001 \"Communications "
-               "Instructions\"), which softslc does not simulate; the SLC 5/02-5/05 MSG with an N-file control block "
-               "is supported (1747-RM001G ch. 12)";
+               "Instructions\"); softslc has the MG and RI files but does not send MicroLogix messages yet; the SLC "
+               "5/02-5/05 MSG with an N-file control block is supported (1747-RM001G ch. 12)";
       if (r == Requirement::SlcMessage502 && is_modular_503_or_later(family))
         return "with 8 operands is the SLC 5/02 form (7-word control block, RM 12-5); the " + display_name +
                " MSG takes 11: READ|WRITE device LOCAL|REMOTE block 14 channel data size node target timeout; "

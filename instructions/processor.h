@@ -82,6 +82,15 @@ struct ProcessorModel {
   int data_log_max_characters() const { return micrologix == MicroLogixModel::ML1400 ? 109 : 80; }
   // L (32-bit long integer) files: MicroLogix 1100, 1200, 1400, 1500 (not the 1000, not SLC).
   bool has_long_files() const { return is_micrologix_1100_class(); }
+  // MG (message) files, the MicroLogix MSG's 25-word elements: MicroLogix 1100, 1200, 1400 and 1500
+  // (1763-RM001B p. 347, 1762-RM001C p. 21-4, 1766-RM001A p. 399); the SLC's MSG uses an N-file
+  // control block instead, and the MicroLogix 1000 has no MSG file in its manual (1761-6.3).
+  bool has_message_files() const { return is_micrologix_1100_class(); }
+  // RI (routing information) files, one 20-word element per channel 1 Ethernet MSG: the MicroLogix
+  // 1100 and 1400, whose channel 1 is Ethernet (1763-RM001B p. 384, 1766-RM001A p. 435).
+  bool has_routing_files() const {
+    return micrologix == MicroLogixModel::ML1100 || micrologix == MicroLogixModel::ML1400;
+  }
   // The 0.001 s timer time base: MicroLogix 1100/1200/1400/1500 (the SLC and the MicroLogix
   // 1000 have 0.01 s and 1.0 s only).
   bool has_millisecond_timebase() const { return is_micrologix_1100_class(); }

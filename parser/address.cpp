@@ -354,6 +354,53 @@ std::string function_sub_element_names(int id) {
   return {};
 }
 
+namespace {
+// The MG element's named words (1762-RM001C p. 21-4, 1766-RM001A pp. 399-400) and bits (word 17:
+// 1762-RM001C p. 21-6; word 16: [U], address.h namespace mg). `writable`: the tables' access column.
+constexpr std::array kMessageSubElements{
+    FunctionSubElement{"RBL", mg::kRemoteBridgeLink, -1, false}, FunctionSubElement{"LBN", mg::kLocalBridgeNode, -1, false},
+    FunctionSubElement{"RBN", mg::kRemoteBridgeNode, -1, false}, FunctionSubElement{"CHN", mg::kChannel, -1, true},
+    FunctionSubElement{"NOD", mg::kNode, -1, true},              FunctionSubElement{"MTO", mg::kTimeout, -1, true},
+    FunctionSubElement{"TFN", mg::kTargetFile, -1, true},        FunctionSubElement{"ELE", mg::kTargetElement, -1, true},
+    FunctionSubElement{"ERR", mg::kError, -1, false},
+    FunctionSubElement{"EN", mg::kControl, mg::kEnableBit, true}, FunctionSubElement{"TO", mg::kControl, mg::kTimeOutBit, true},
+    FunctionSubElement{"ST", mg::kStatus, mg::kStartBit, false},  FunctionSubElement{"DN", mg::kStatus, mg::kDoneBit, false},
+    FunctionSubElement{"ER", mg::kStatus, mg::kErrorBit, false},  FunctionSubElement{"EW", mg::kStatus, mg::kWaitingBit, false},
+    FunctionSubElement{"R", mg::kStatus, mg::kRangeBit, false},
+};
+}  // namespace
+
+int message_word_number(std::string_view name) {
+  for (const auto& e : kMessageSubElements)
+    if (e.bit < 0 && e.name == name) return e.word;
+  return -1;
+}
+
+std::string_view message_word_name(int word) {
+  for (const auto& e : kMessageSubElements)
+    if (e.bit < 0 && e.word == word) return e.name;
+  return {};
+}
+
+bool message_bit_number(std::string_view name, int& word, int& bit) {
+  return named_bit(kMessageSubElements, name, word, bit);
+}
+
+std::string_view message_bit_name(int word, int bit) {
+  for (const auto& e : kMessageSubElements)
+    if (e.bit >= 0 && e.word == word && e.bit == bit) return e.name;
+  return {};
+}
+
+bool message_sub_element_writable(int word, int /*bit: sub-element 16's bits are all read/write*/) {
+  // Sub-element 16 is read/write as a whole ("Control bits ... read/write", 1766-RM001A p. 400); the
+  // others as their named entry (CHN, NOD, MTO, TFN, ELE); unnamed ones are read only.
+  if (word == mg::kControl) return true;
+  for (const auto& e : kMessageSubElements)
+    if (e.bit < 0 && e.word == word) return e.writable;
+  return false;
+}
+
 std::string_view file_letter(FileType t) {
   switch (t) {
     case FileType::Output: return "O";
@@ -371,6 +418,8 @@ std::string_view file_letter(FileType t) {
     case FileType::M0: return "M0";
     case FileType::M1: return "M1";
     case FileType::Function: return "FN";
+    case FileType::Message: return "MG";
+    case FileType::Routing: return "RI";
   }
   return "?";
 }
@@ -383,6 +432,8 @@ int words_per_element(FileType t) {
     case FileType::Float:
     case FileType::Long: return 2;
     case FileType::String: return 42;
+    case FileType::Message: return mg::kWords;
+    case FileType::Routing: return ri::kWords;
     default: return 1;
   }
 }
@@ -477,6 +528,13 @@ std::string to_string(const Address& a) {
     }
   } else if (is_io(a.type) || is_mfile(a.type)) {
     s += '.' + std::to_string(a.word_in_element());
+  } else if (is_message_file(a.type) && a.word >= 0) {
+    // MG11:0.NOD, MG11:0/DN (a named bit names its word), MG11:0.19.
+    auto bit_name = a.bit >= 0 ? message_bit_name(a.word, a.bit) : std::string_view{};
+    if (!bit_name.empty()) return s + '/' + std::string(bit_name);
+    auto name = message_word_name(a.word);
+    s += '.';
+    s += name.empty() ? std::to_string(a.word) : std::string(name);
   } else if (a.word >= 0) {
     s += '.' + std::to_string(a.word);
   }

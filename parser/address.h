@@ -43,7 +43,47 @@ enum class FileType : std::uint8_t {
   M0,       // specialty-module output file (module memory, no image in the processor)
   M1,       // specialty-module input file
   Function, // MicroLogix function file (RTC, HSC, STI, ...): Address::file says which
+  Message,  // MG: MicroLogix MSG file, 25-word elements (1762-RM001C p. 21-4)
+  Routing,  // RI: MicroLogix 1100/1400 routing information file, 20-word elements (1766-RM001A p. 435)
 };
+
+// The MicroLogix MSG file element (MG11:0): 25 words, sub-elements 0-24 (1762-RM001C p. 21-4,
+// 1763-RM001B pp. 347-348, 1766-RM001A pp. 399-400; docs/micrologix-msg-sources.md section 2). Named
+// words as the manuals name them (MG11:0.NOD ...); the status bits of word 17 as 1762-RM001C p. 21-6
+// places them (MG11:0/DN is bit 13 of word 17); the control bits of word 16 (EN, TO) at the SLC control
+// word's positions, bit 15 and bit 8 (RM 12-31): the manuals' control-bit table (1762-RM001C p. 21-5,
+// 1763-RM001B p. 351, 1766-RM001A p. 402) was not reached [U]. The user program may write CHN, NOD,
+// MTO, TFN, ELE and the control bits; every other sub-element is "read only" (the tables' access column).
+namespace mg {
+inline constexpr int kWords = 25;
+inline constexpr int kMessagingType = 2, kCommand = 3, kRemoteBridgeLink = 5, kLocalBridgeNode = 6,
+                     kRemoteBridgeNode = 7, kChannel = 8, kNode = 9, kTimeout = 10, kByteCount = 11,
+                     kTargetFileType = 12, kTargetFile = 13, kTargetElement = 14, kTargetSubElement = 15,
+                     kControl = 16, kStatus = 17, kError = 18, kElapsed = 19, kStartTime = 21,
+                     kInternalError = 22, kExtendedError = 23, kRoutingPath = 24;
+// Word 16 (control, [U] positions) and word 17 (status, 1762-RM001C p. 21-6).
+inline constexpr int kEnableBit = 15, kTimeOutBit = 8;
+inline constexpr int kStartBit = 14, kDoneBit = 13, kErrorBit = 12, kWaitingBit = 10, kRangeBit = 0;
+}  // namespace mg
+
+// The MicroLogix routing information file element (RI12:0), 20 words (1766-RM001A p. 435, 1763-RM001B
+// p. 384): 0 subtype (10h normal MultiHop, 11h remote MultiHop to DH+), 1-2 the target IP address in
+// network byte order, 3 IOI size and ASA service code, 4-8 ASA IOI, 9 connection path size, 10-17
+// connection paths, 18-19 reserved. The manuals name no sub-elements: RI12:0.1 is word 1.
+namespace ri {
+inline constexpr int kWords = 20;
+inline constexpr int kSubtype = 0, kIpHigh = 1, kIpLow = 2;
+}  // namespace ri
+// Named words and bits of an MG element: the word number (-1 when unknown); a bit sets `word` and `bit`.
+int message_word_number(std::string_view name);
+std::string_view message_word_name(int word);
+bool message_bit_number(std::string_view name, int& word, int& bit);
+std::string_view message_bit_name(int word, int bit);
+// Whether the user program may write word `word` (bit `bit`, or -1 for the whole word) of an MG element.
+bool message_sub_element_writable(int word, int bit);
+inline bool is_message_file(FileType t) { return t == FileType::Message; }
+// MG and RI: elements of many plain words, written word by word in a DATA block.
+inline bool is_multiword_data(FileType t) { return t == FileType::Message || t == FileType::Routing; }
 
 // The MicroLogix function files, by the names RSLogix gives them (1762-RM001C ch. 3, 1763-RM001,
 // 1766-RM001 "Function Files"). The real-time clock and the selectable timed interrupt are

@@ -440,6 +440,22 @@ class Checker {
                                : "1763-RM001C pp. 270-272; docs/semantics.md \"MicroLogix\")"));
   }
 
+  // A program write into an MG element: only CHN, NOD, MTO, TFN, ELE and the control bits are read/write
+  // (the access column of 1762-RM001C p. 21-4, 1763-RM001B pp. 347-348, 1766-RM001A pp. 399-400); the
+  // status bits (p. 21-6), ERR and the rest are read only. A whole element or a file operand would cover
+  // read-only words too, so an MG element is written one sub-element at a time.
+  void check_message_file_write(const Operand& op, const OperandSpec& os, const std::string& where) {
+    const Address& a = op.address;
+    if (os.kind == OperandKind::File)
+      return error(op.pos, where + ": an MG element is written one sub-element at a time (MOV, OTL, ...); a file "
+                                   "instruction would also write its read-only words (1762-RM001C p. 21-4)");
+    if (a.indirect_word) return;
+    if (a.word < 0 || !message_sub_element_writable(a.word, a.bit))
+      error(op.pos, where + ": " + to_string(a) + " is read only to the user program (1762-RM001C pp. 21-4, 21-6; "
+                                                  "1766-RM001A pp. 399-400: CHN, NOD, MTO, TFN, ELE and the control "
+                                                  "bits EN, TO are read/write)");
+  }
+
   // PTO:0/DN, .OPP, .OUT ... are the PTO sub-system's (read only); OF, TOP, ADP, JF, RP, EH, CS, JP, JC
   // are the program's (1762-RM001C pp. 6-9..6-12; the rest [U], docs/semantics.md "The PTO function file").
   void check_pulse_train_write(const Operand& op, const OperandSpec& os, const std::string& where) {
@@ -483,6 +499,20 @@ class Checker {
         if (!proc.has_long_files())
           error(pos, "L (long integer) files exist on MicroLogix only (the 1100, 1200, 1400 and 1500, not the "
                      "1000); this program's processor is " + proc.display_name);
+        break;
+      case FileType::Message:
+        if (!proc.has_message_files())
+          error(pos, "MG (message) files exist on the MicroLogix 1100, 1200, 1400 and 1500 only (1762-RM001C p. 21-4, "
+                     "1766-RM001A p. 399); the SLC MSG keeps its control block in an N file (1747-RM001G p. 12-31); "
+                     "this program's processor is " + proc.display_name);
+        if (!a.indirect_word && a.word >= mg::kWords) error(pos, "an MG element has sub-elements 0-24 (1762-RM001C p. 21-4)");
+        break;
+      case FileType::Routing:
+        if (!proc.has_routing_files())
+          error(pos, "RI (routing information) files exist on the MicroLogix 1100 and 1400 only, for channel 1 "
+                     "Ethernet messages (1763-RM001B p. 384, 1766-RM001A p. 435); this program's processor is " +
+                     proc.display_name);
+        if (!a.indirect_word && a.word >= ri::kWords) error(pos, "an RI element has words 0-19 (1766-RM001A p. 435)");
         break;
       case FileType::String:
       case FileType::Ascii:
@@ -559,12 +589,6 @@ class Checker {
     if (!keyword_words(os.kind).empty()) return check_keyword(in, op, os);
     resolve(op);
     const std::string where = mnemonic_of(in) + " " + std::string(os.label);
-    if (op.kind == Operand::Kind::Symbol && !op.resolved && op.spelling.starts_with("MG") &&
-        op.spelling.find(':') != std::string::npos) {
-      error(op.pos, where + ": " + op.spelling + " is a MicroLogix message file element (1763-RM001, 1766-RM001); "
-                                               "softslc has no MG files (docs/semantics.md \"MSG and SVC\")");
-      return;
-    }
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
       error(op.pos, "unknown symbol '" + op.spelling + "' (" + where + ")");
       return;
@@ -574,6 +598,8 @@ class Checker {
                                " holds the program's MEMDEF variables; name them instead (docs/automax.md)");
     if (op.is_address() && is_function_file(op.address.type) && os.access != OperandAccess::Read)
       check_function_file_write(op, os, where);
+    if (op.is_address() && is_message_file(op.address.type) && os.access != OperandAccess::Read)
+      check_message_file_write(op, os, where);
     if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
       const Symbol* sym = symbols_.at(op.spelling);
       if (sym->automax && sym->automax->kind == AutomaxDef::Kind::IoDef)
@@ -1317,12 +1343,17 @@ class Checker {
       if (t == FileType::Status && d.start_element + static_cast<int>(d.words.size()) > status_file_words(program_.processor))
         warning(d.pos, "status data beyond S:" + std::to_string(status_file_words(program_.processor) - 1) +
                            " of " + program_.processor.display_name + " is ignored");
+      if (is_multiword_data(t) && d.words.size() % static_cast<std::size_t>(words_per_element(t)) != 0)
+        error(d.pos, "each " + std::string(file_letter(t)) + " element takes " + std::to_string(words_per_element(t)) +
+                         " values, its words 0-" + std::to_string(words_per_element(t) - 1) +
+                         (t == FileType::Message ? " (1762-RM001C p. 21-4)" : " (1766-RM001A p. 435)"));
       if (is_structured(t) && d.words.size() % 3 != 0)
         error(d.pos, "each " + std::string(file_letter(t)) + " element takes three values (CTL, " +
                          (t == FileType::Control ? "LEN, POS" : "PRE, ACC") + ")");
       std::size_t elements = t == FileType::Float    ? d.floats.size()
                              : t == FileType::String ? d.strings.size()
                              : is_structured(t)      ? d.words.size() / 3
+                             : is_multiword_data(t)  ? d.words.size() / static_cast<std::size_t>(words_per_element(t))
                                                      : d.words.size();
       if (!is_io(t) && t != FileType::Status && d.start_element + elements > 256)
         error(d.pos, "DATA runs past element 255 (" + std::to_string(elements) + " elements from " +

@@ -150,6 +150,17 @@ void format_data(const DataBlock& d, std::string& out) {
     out += '\n';
     return;
   }
+  if (is_multiword_data(t)) {
+    // MG and RI: one row per element, its words 0-24 (0-19) in order.
+    const auto per_element = static_cast<std::size_t>(words_per_element(t));
+    for (std::size_t i = 0; i < d.words.size(); i += per_element) {
+      out += "% " + prefix + ":" + std::to_string(d.start_element + static_cast<int>(i / per_element)) + " %";
+      for (std::size_t k = i; k < d.words.size() && k < i + per_element; ++k) out += ' ' + std::to_string(d.words[k]);
+      out += " \n";
+    }
+    out += '\n';
+    return;
+  }
   if (t == FileType::String) {
     for (std::size_t i = 0; i < d.strings.size(); ++i)
       out += "% " + prefix + ":" + std::to_string(d.start_element + i) + " % \"" + d.strings[i] + "\"\n";

@@ -72,6 +72,7 @@ struct word : plus<not_one<' ', '\t', '\r', '\n', '%', '"'>> {};
 // ---- Addresses -----------------------------------------------------------------------------------
 // I:1/3  I:1.0/3  O:2.1/15  S:1/15  B3:0/7  B3/62  N7:10/4  F8:2  T4:0.ACC  T4:0/DN  C5:1/OV
 // R6:0.LEN  #N7:10  N7:[N10:1]  N[N10:0]:5  B3/[N7:0]  M0:1.100/13  M1:3.210  L41:0  ST9:0  RTC:0.YR
+// MG11:0.NOD  MG11:0/DN  RI12:0.1
 
 struct file_type_st : string<'S', 'T'> {};
 struct file_type_m : seq<one<'M'>, one<'0', '1'>> {};
@@ -91,7 +92,11 @@ struct file_type_function
 // The Data Log Status file is written with its file number, DLS0:0/DN (1763-RM001C p. 440); DLS:0
 // is accepted too. The name is the whole match, so the '0' is no file number (action<file_type>).
 struct file_type_data_log : seq<TAO_PEGTL_STRING("DLS"), opt<one<'0'>>, at<one<':'>>> {};
-struct file_type : sor<file_type_function, file_type_data_log, file_type_st, file_type_m, file_type_letter> {};
+// The MicroLogix message (MG11:0) and routing information (RI12:0) files; RI before the R file's letter.
+struct file_type_mg : string<'M', 'G'> {};
+struct file_type_ri : string<'R', 'I'> {};
+struct file_type
+    : sor<file_type_function, file_type_data_log, file_type_st, file_type_m, file_type_mg, file_type_ri, file_type_letter> {};
 
 // The word address inside brackets (no nesting, no expressions).
 struct ref_type : file_type {};
@@ -189,10 +194,7 @@ struct known_mnemonic {
 // Operands: an address, a number, or a symbol name. Symbols may not spell a mnemonic. The MSG
 // target devices 500CPU and 485CIF (RM 12-5) start with digits; they are words of the same kind.
 struct message_device_word : sor<TAO_PEGTL_STRING("500CPU"), TAO_PEGTL_STRING("485CIF")> {};
-// A MicroLogix message file element (MG11:0, 1763/1766-RM001): read so that `check` can refuse it
-// by name; softslc has no MG files.
-struct message_file_element : seq<TAO_PEGTL_STRING("MG"), digits, one<':'>, digits> {};
-struct symbol_name : seq<sor<message_device_word, message_file_element, identifier>, token_end> {};
+struct symbol_name : seq<sor<message_device_word, identifier>, token_end> {};
 struct operand : sor<address, number, symbol_name> {};
 struct operand_token : seq<not_at<eof>, not_at<structure_keyword>, not_at<known_mnemonic>, must<operand>> {};
 struct mnemonic : seq<identifier, token_end> {};

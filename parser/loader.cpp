@@ -114,7 +114,7 @@ std::optional<FileType> file_type_from_letters(std::string_view s) {
       {"O", FileType::Output}, {"I", FileType::Input},    {"S", FileType::Status},   {"B", FileType::Bit},
       {"T", FileType::Timer},  {"C", FileType::Counter},  {"R", FileType::Control},  {"N", FileType::Integer},
       {"F", FileType::Float},  {"L", FileType::Long},     {"ST", FileType::String},  {"A", FileType::Ascii},
-      {"M0", FileType::M0},    {"M1", FileType::M1},
+      {"M0", FileType::M0},    {"M1", FileType::M1},      {"MG", FileType::Message}, {"RI", FileType::Routing},
   };
   for (const auto& [letters, type] : kTypes)
     if (letters == s) return type;
@@ -311,6 +311,9 @@ template <> struct action<word_number> {
   static void apply(const Input& in, AddressBuilder& b) { b.a.word = to_int(in); }
 };
 
+// What an MG element's sub-elements are called (1762-RM001C pp. 21-4, 21-6), for an unknown-name diagnostic.
+constexpr const char* kMessageNames = "words RBL, LBN, RBN, CHN, NOD, MTO, TFN, ELE, ERR and bits EN, TO, ST, DN, ER, EW, R";
+
 // What a function file's sub-elements are called, for an unknown-name diagnostic.
 std::string function_file_hint(int id) {
   if (!function_file_simulated(id)) return " (softslc does not model this function file)";
@@ -327,6 +330,14 @@ template <> struct action<word_name> {
         throw pegtl::parse_error("unknown sub-element '" + in.string() + "' of function file " +
                                      std::string(function_file_name(id)) +
                                      function_file_hint(id),
+                                 in);
+      b.a.word = w;
+      return;
+    }
+    if (is_message_file(b.a.type)) {
+      const int w = message_word_number(in.string_view());
+      if (w < 0)
+        throw pegtl::parse_error("unknown sub-element '" + in.string() + "' of an MG element (" + kMessageNames + ")",
                                  in);
       b.a.word = w;
       return;
@@ -367,6 +378,16 @@ template <> struct action<bit_name> {
         throw pegtl::parse_error("unknown bit name '" + in.string() + "' of function file " +
                                      std::string(function_file_name(id)) +
                                      function_file_hint(id),
+                                 in);
+      b.a.word = word;
+      b.a.bit = bit;
+      return;
+    }
+    if (is_message_file(b.a.type)) {
+      int word = -1, bit = -1;
+      if (b.a.word >= 0 || !message_bit_number(in.string_view(), word, bit))
+        throw pegtl::parse_error("unknown bit name '" + in.string() + "' of an MG element (" + kMessageNames +
+                                     "; a named bit is written MG11:0/DN)",
                                  in);
       b.a.word = word;
       b.a.bit = bit;

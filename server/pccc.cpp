@@ -23,6 +23,9 @@ std::optional<std::uint8_t> type_code(FileType t) {
     // MicroLogix function files (RTC, HSC, ...) are not served over PCCC yet: a typed read of
     // one has no file type to answer with (docs/serve.md, "Not yet").
     case FileType::Function: return std::nullopt;
+    // Nor are the MicroLogix MG and RI files: no source for their typed-read codes was reached.
+    case FileType::Message:
+    case FileType::Routing: return std::nullopt;
   }
   return std::nullopt;
 }

@@ -114,6 +114,8 @@ class Compiler {
     switch (t) {
       case FileType::Float: return proc_.has_float_files();
       case FileType::Long: return proc_.has_long_files();
+      case FileType::Message: return proc_.has_message_files();
+      case FileType::Routing: return proc_.has_routing_files();
       case FileType::String:
       case FileType::Ascii:
         return proc_.family == ProcessorFamily::Slc503 || proc_.family == ProcessorFamily::Slc504 ||
@@ -296,8 +298,9 @@ class Compiler {
       const FileType t = *d.type;
       const std::size_t n = t == FileType::Float    ? d.floats.size()
                             : t == FileType::String ? d.strings.size()
-                            : is_structured(t)      ? (d.words.size() + 2) / 3
-                                                    : d.words.size();
+                            : is_structured(t) || is_multiword_data(t)
+                                ? (d.words.size() + words_per_element(t) - 1) / words_per_element(t)
+                                : d.words.size();
       note_file(d.file, t, static_cast<std::uint32_t>(d.start_element) + static_cast<std::uint32_t>(std::max<std::size_t>(n, 1)),
                 d.pos);
     }

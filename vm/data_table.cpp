@@ -109,6 +109,14 @@ std::optional<Location> DataTableLayout::locate(const Address& a, std::string* e
       return std::nullopt;
     }
     sub = a.word < 0 ? 0 : static_cast<std::uint32_t>(a.word);
+  } else if (is_multiword_data(a.type)) {
+    // MG11:0.18, RI12:0.1: the element's words (1762-RM001C p. 21-4, 1766-RM001A p. 435).
+    if (a.word >= words_per_element(a.type)) {
+      set_error(error, to_string(a) + ": " + std::string(file_letter(a.type)) + " elements have words 0-" +
+                           std::to_string(words_per_element(a.type) - 1));
+      return std::nullopt;
+    }
+    sub = a.word < 0 ? 0 : static_cast<std::uint32_t>(a.word);
   } else if (a.word > 0) {
     set_error(error, to_string(a) + ": " + std::string(file_letter(a.type)) + " elements have no sub-elements");
     return std::nullopt;

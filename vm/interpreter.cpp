@@ -214,9 +214,9 @@ bool Interpreter::resolve_common(const DynOperand& d, Ref& out, std::uint16_t& c
       return false;
     }
     int sub = 0;
-    if (is_structured(d.type) || d.type == FileType::String) {
-      // T/C/R words 0-2; ST words 0 (the length) to 41 (vm/data_table.cpp, the same rule).
-      const int last_word = d.type == FileType::String ? 41 : 2;
+    if (is_structured(d.type) || d.type == FileType::String || is_multiword_data(d.type)) {
+      // T/C/R words 0-2; ST words 0 (the length) to 41; MG 0-24, RI 0-19 (vm/data_table.cpp, the same rule).
+      const int last_word = static_cast<int>(f.words_per_element) - 1;
       sub = d.ptr_word >= 0 ? ptr(d.ptr_word) : std::max(d.word, 0);
       if (sub < 0 || sub > last_word) {
         message = to_string(d.address) + index_note() + ": sub-element " + std::to_string(sub) + " does not exist";

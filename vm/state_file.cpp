@@ -237,7 +237,11 @@ StateLoadResult decode_state(const std::string& bytes, std::uint64_t fingerprint
     std::uint8_t number, type, wpe, reserved;
     if (!in.u8(number) || !in.u8(type) || !in.u8(wpe) || !in.u8(reserved) || !in.u32(rec.elements))
       return refuse("state file is truncated in file record " + std::to_string(i));
-    if (type > static_cast<std::uint8_t>(FileType::M1) || wpe == 0 || reserved != 0 || rec.elements > kMaxElements * 64)
+    // Data files: O to M1, and the MicroLogix MG and RI files (function files are not records).
+    const bool data_file_type = type <= static_cast<std::uint8_t>(FileType::M1) ||
+                                type == static_cast<std::uint8_t>(FileType::Message) ||
+                                type == static_cast<std::uint8_t>(FileType::Routing);
+    if (!data_file_type || wpe == 0 || reserved != 0 || rec.elements > kMaxElements * 64)
       return refuse("state file has an invalid record for file " + std::to_string(number));
     rec.number = number;
     rec.type = static_cast<FileType>(type);

@@ -535,11 +535,13 @@ TEST(MessageCheck, RefusesBadOperandsWithAPosition) {
   EXPECT_EQ(check_errors("SOR MSG WRITE 485CIF N9:0 7 N10:0 5 2 10 EOR", k502), "");
   EXPECT_NE(check_errors(kReadFive, k502).find("on the SLC 5/02 MSG takes 8 operands"), std::string::npos);
   EXPECT_NE(check_errors("SOR MSG WRITE 485CIF N9:0 7 N10:0 5 2 10 EOR").find("is the SLC 5/02 form"), std::string::npos);
-  // The MicroLogix MSG (an MG file element) is refused by name.
+  // The MicroLogix MSG is refused by name; its MG file exists (tests/micrologix/message_file_test.cpp).
   EXPECT_NE(check_errors(kReadFive, "START Bul.1766\n").find("MG message file element"), std::string::npos);
   const std::string ml = check_errors("SOR XIC B3:0/0 MSG MG11:0 EOR", "START Bul.1766\n");
   EXPECT_NE(ml.find("MSG is not available on the MicroLogix 1400"), std::string::npos) << ml;
-  EXPECT_NE(check_errors("SOR XIC B3:0/0 MOV MG11:0 N7:0 EOR", "START Bul.1766\n").find("MG11:0 is a MicroLogix message file element"),
+  EXPECT_NE(ml.find("does not send MicroLogix messages yet"), std::string::npos) << ml;
+  EXPECT_EQ(check_errors("SOR XIC B3:0/0 MOV MG11:0.ERR N7:0 EOR", "START Bul.1766\n"), "");
+  EXPECT_NE(check_errors("SOR XIC B3:0/0 MOV MG11:0.ERR N7:0 EOR").find("MG (message) files exist on the MicroLogix"),
             std::string::npos);
   EXPECT_NE(check_errors("SOR SVC EOR", "START 1747-L511\n").find("SVC is not available"), std::string::npos);
   EXPECT_EQ(check_errors("SOR SVC EOR\nSOR SVC 2 EOR"), "");

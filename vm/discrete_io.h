@@ -28,6 +28,9 @@ class DiscreteIoModule : public Module {
   bool set_field_input(int word, std::uint16_t value, std::uint16_t mask) override;
   std::optional<std::uint16_t> field_input(int word) const override;
   std::optional<std::uint16_t> field_output(int word) const override;
+  // Its inputs change only through set_field_input (a tool, or in DiscreteModule an event after the
+  // input delay) and nothing else happens between scans.
+  bool passive() const override { return true; }
 
  private:
   std::vector<std::uint16_t> field_inputs_;

@@ -213,6 +213,11 @@ class Interpreter {
   // The MicroLogix high-speed counters (vm/ml_hsc.h); no counters on a processor without them.
   MicroLogixHsc& hsc() { return hsc_; }
   const MicroLogixHsc& hsc() const { return hsc_; }
+  // No interrupt can run or become due between scans and at the next rung starts: no STI timing
+  // or waiting, no DII, ISR, EII, HSC, PTO or ASCII port, nothing queued. One of the conditions
+  // under which the runtime may skip scans that repeat the last one (docs/semantics.md "Repeated
+  // scans").
+  bool nothing_pending_between_scans() const;
   // The fault configure_sti raised.
   const FaultInfo& last_fault() const { return fault_; }
 

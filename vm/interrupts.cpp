@@ -683,6 +683,14 @@ void Interpreter::locate_event_interrupts() {
   }
 }
 
+bool Interpreter::nothing_pending_between_scans() const {
+  // An EII fires only on an input edge, which a repeated scan cannot bring (inputs change through
+  // tools between runs, or through module events, which bound the skip); one already queued vetoes.
+  const bool no_isr = std::all_of(isr_file_.begin(), isr_file_.end(), [](int f) { return f == 0; });
+  return sti_.file == 0 && sti_queued_ == 0 && dii_.file == 0 && no_isr && events_queued_ == 0 &&
+         !hsc_.pulses_arriving() && ascii_port_ == nullptr && coverage_ == nullptr;
+}
+
 const EventInterrupt* Interpreter::event_interrupt(bool counter, int number) const {
   for (int i = 0; i < event_count_; ++i)
     if (events_[static_cast<std::size_t>(i)].counter == counter && events_[static_cast<std::size_t>(i)].number == number)

@@ -222,4 +222,10 @@ std::int64_t MicroLogixHsc::pulses_delivered(int counter, std::int64_t now) cons
   return s.before + dt / kNsPerSecond * s.rate + dt % kNsPerSecond * s.rate / kNsPerSecond;
 }
 
+bool MicroLogixHsc::pulses_arriving() const {
+  for (int i = 0; i < count_; ++i)
+    if (counters_[static_cast<std::size_t>(i)].source.rate != 0) return true;
+  return false;
+}
+
 }  // namespace softslc

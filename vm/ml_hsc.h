@@ -56,6 +56,8 @@ class MicroLogixHsc {
   // The pulse source on a counter's input: `rate` pulses a second from `now` (0 stops it). Returns an
   // empty string, or why the rate is refused.
   std::string set_pulse_rate(int counter, std::int64_t rate, std::int64_t now);
+  // Some counter's input has a pulse source running (its accumulator moves with time).
+  bool pulses_arriving() const;
   // Pulses the source has delivered to the counter's input by `now` (counted or not).
   std::int64_t pulses_delivered(int counter, std::int64_t now) const;
 

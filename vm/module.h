@@ -196,6 +196,13 @@ class Module {
 
   virtual void on_mode_change(Mode /*from*/, Mode /*to*/) {}
 
+  // True when the module does nothing of its own between the runtime's calls: given the same output
+  // image, every input scan gives the same image until a tool changes a field input or injects a
+  // change, and whatever it does later in time is an event on the runtime's queue. The runtime may
+  // then skip scans that repeat the last one (docs/semantics.md "Repeated scans"); the default,
+  // false, never allows that.
+  virtual bool passive() const { return false; }
+
   // The ISR for this module's interrupt request has been scanned to completion, or an RPI reset
   // the request (RM 11-27 step 3): the module may request again.
   virtual void interrupt_serviced() {}

@@ -33,6 +33,74 @@ std::uint16_t mode_code(Mode m) {
 std::uint16_t clamp_u8(std::int64_t v) { return static_cast<std::uint16_t>(std::clamp<std::int64_t>(v, 0, 255)); }
 std::uint16_t clamp_u16(std::int64_t v) { return static_cast<std::uint16_t>(std::clamp<std::int64_t>(v, 0, 32767)); }
 
+// Repeated scans (docs/semantics.md "Repeated scans"). The status words the runtime itself changes
+// from one scan to the next while the program changes nothing: S:3 (this scan), S:4 (the free-running
+// clock), S:22/S:23 (maximum and average scan), S:33 (the scan toggle bit 9) and S:35 (last scan).
+constexpr std::array<int, 6> kRuntimeStatusWords = {status::kWatchdog, status::kClock,    status::kMaxScan,
+                                                    status::kAvgScan,  status::kCommBits, status::kLastScanMs};
+
+// The instructions whose effect is a function of the data table, the rung condition and the first
+// pass alone, so that a scan that changed nothing is followed by the same scan. The timers are
+// among them because a probe also requires that no timer is timing (TT). Everything else — I/O,
+// modules, messages, interrupts, ASCII, PID, the clocks, function files, CPT (whose expression
+// names addresses this list does not see) and any instruction added later — rules repeats out
+// until it is listed here.
+bool acts_on_the_table_alone(Opcode op) {
+  switch (op) {
+    case Opcode::XIC: case Opcode::XIO: case Opcode::OTE: case Opcode::OTL: case Opcode::OTU:
+    case Opcode::OSR: case Opcode::ONS: case Opcode::OSR_ML: case Opcode::OSF:
+    case Opcode::TON: case Opcode::TOF: case Opcode::RTO: case Opcode::CTU: case Opcode::CTD: case Opcode::RES:
+    case Opcode::EQU: case Opcode::NEQ: case Opcode::LES: case Opcode::LEQ: case Opcode::GRT: case Opcode::GEQ:
+    case Opcode::LIM: case Opcode::MEQ:
+    case Opcode::ADD: case Opcode::SUB: case Opcode::MUL: case Opcode::DIV: case Opcode::NEG: case Opcode::CLR:
+    case Opcode::DDV: case Opcode::SQR: case Opcode::SCP: case Opcode::SCL: case Opcode::ABS:
+    case Opcode::LN: case Opcode::LOG: case Opcode::XPY: case Opcode::SIN: case Opcode::COS: case Opcode::TAN:
+    case Opcode::ASN: case Opcode::ACS: case Opcode::ATN: case Opcode::DEG: case Opcode::RAD:
+    case Opcode::AND: case Opcode::OR: case Opcode::XOR: case Opcode::NOT:
+    case Opcode::MOV: case Opcode::MVM: case Opcode::COP: case Opcode::CPW: case Opcode::FLL:
+    case Opcode::TOD: case Opcode::FRD: case Opcode::DCD: case Opcode::ENC: case Opcode::SWP:
+    case Opcode::BSL: case Opcode::BSR: case Opcode::SQO: case Opcode::SQC: case Opcode::SQL:
+    case Opcode::LFL: case Opcode::LFU: case Opcode::FFL: case Opcode::FFU:
+    case Opcode::JMP: case Opcode::LBL: case Opcode::JSR: case Opcode::SBR: case Opcode::RET:
+    case Opcode::END: case Opcode::TND: case Opcode::MCR:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// An operand a repeated scan would read the same: not resolved at run time (indirect or indexed),
+// not a function file or M file, and not one of the runtime's own status words (nor a file
+// operand in S, which could span them).
+bool reads_only_program_words(const Operand& op) {
+  if (!op.is_address()) return op.kind != Operand::Kind::Expression;
+  const Address& a = op.address;
+  if (a.is_indirect() || a.indexed || is_function_file(a.type) || is_mfile(a.type)) return false;
+  if (a.type != FileType::Status) return true;
+  return std::find(kRuntimeStatusWords.begin(), kRuntimeStatusWords.end(), a.element) == kRuntimeStatusWords.end();
+}
+
+bool elements_repeatable(const std::vector<RungElement>& elements) {
+  for (const RungElement& e : elements) {
+    if (e.kind == RungElement::Kind::Branch) {
+      for (const auto& leg : e.legs)
+        if (!elements_repeatable(leg)) return false;
+      continue;
+    }
+    if (!acts_on_the_table_alone(e.instruction.opcode)) return false;
+    for (const Operand& op : e.instruction.operands)
+      if (!reads_only_program_words(op)) return false;
+  }
+  return true;
+}
+
+bool program_scans_repeatable(const Program& program) {
+  for (const ProgramFile& f : program.files)
+    for (const Rung& r : f.rungs)
+      if (!elements_repeatable(r.elements)) return false;
+  return true;
+}
+
 }  // namespace
 
 std::string RuntimeResult::render_errors() const {
@@ -79,6 +147,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   const std::vector<PeerController> peers = std::move(options.peers);
   r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
   Runtime& rt = *r.runtime;
+  rt.program_repeatable_ = program_scans_repeatable(program);
   rt.process_host_ = std::make_unique<ProcessHost>(rt);
   if (make_channel) {
     rt.ascii_channel_ = make_channel();
@@ -522,6 +591,7 @@ Nanoseconds Runtime::housekeeping(Nanoseconds scan_time, bool executed) {
 void Runtime::scan_once(bool single_scan_step) {
   const VirtualTime start = clock_.now();
   Nanoseconds used = input_scan();
+  input_scan_ns_ = used;
   const bool execute = mode_ == Mode::Run || (mode_ == Mode::Test && single_scan_step);
   if (execute) {
     ProgramScanResult r = program_scan(start, used);
@@ -573,7 +643,7 @@ void Runtime::scan_once(bool single_scan_step) {
   // End-of-scan communication servicing (RM 12-41); the leader of a network also runs its peers up
   // to this time (vm/message_network.h).
   if (network_) [[unlikely]] network_->scanned(station_, start + used);
-  events_.run_until(start + used);
+  events_at_last_scan_end_ = events_.run_until(start + used);
   if (scan_observer_) [[unlikely]] scan_observer_(*this);
 }
 
@@ -587,14 +657,96 @@ int Runtime::scan(int n) {
   return done;
 }
 
-int Runtime::run_for(Nanoseconds duration) {
+std::int64_t Runtime::run_for(Nanoseconds duration) {
   const VirtualTime end = clock_.now() + std::max<Nanoseconds>(duration, 0);
-  int n = 0;
+  std::int64_t n = 0;
   while (clock_.now() < end) {
+    if (probe_due()) {
+      n += probe_and_repeat(end);
+      continue;
+    }
     scan_once(false);
     ++n;
   }
   return n;
+}
+
+bool Runtime::probe_due() {
+  if (!program_repeatable_ || !skip_repeated_ || mode_ != Mode::Run || fault_ || first_pass_ || scan_observer_ ||
+      network_ || coverage_)
+    return false;
+  if (probe_wait_ > 0) {
+    --probe_wait_;
+    return false;
+  }
+  for (const ScannedModule& sm : scanned_)
+    if (!sm.module->passive()) return false;
+  return interp_->nothing_pending_between_scans();
+}
+
+std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
+  before_probe_.assign(data_.words(), data_.words() + data_.size());
+  const VirtualTime start = clock_.now();
+  const std::uint64_t instructions = stats_.instructions;
+  scan_once(false);
+  const VirtualTime t = clock_.now();  // the end of the probe, the start of the first repeat
+  const Nanoseconds d = t - start;
+  const std::uint16_t* w = data_.words();
+  const DataTableLayout& L = *program_->layout;
+  // The probe changed nothing but the runtime's own status words, no event ran at its end (one
+  // may have changed a field input or a module), nothing is pending and no timer is timing: the
+  // next scan would do exactly what it did.
+  bool repeats = mode_ == Mode::Run && !fault_ && events_at_last_scan_end_ == 0 &&
+                 interp_->nothing_pending_between_scans();
+  const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
+  for (int s : kRuntimeStatusWords) before_probe_[L.status_word(s)] = w[L.status_word(s)];
+  repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);
+  for (const FileLayout& f : L.files) {
+    if (!repeats) break;
+    if (!f.present || f.type != FileType::Timer) continue;
+    for (std::uint32_t e = f.base; e < f.end(); e += f.words_per_element)
+      if (w[e] & bits::kTT) repeats = false;
+  }
+  if (!repeats) {
+    probe_wait_ = probe_backoff_;
+    probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
+    return 1;
+  }
+  probe_backoff_ = 1;
+  // How many scans would repeat it: those that start before `end`, end before the next event, and
+  // (with a real-time clock) start their program scan in the same second, so the clock words stay.
+  std::int64_t k = t < end ? (end - t + d - 1) / d : 0;
+  if (auto next = events_.next_time()) k = std::min<std::int64_t>(k, (*next - t - 1) / d);
+  const FileLayout& rtc = L.function_file(FunctionFile::RTC);
+  if (rtc.present) {
+    const VirtualTime next_second = (rtc_second_ + 1) * kNsPerS;
+    k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (next_second - t - input_scan_ns_ + d - 1) / d));
+  }
+  if (k <= 0) return 1;
+  // Take them: each would have advanced S:4 at its program scan, toggled S:33/9 (when the probe
+  // did), and gone through housekeeping with the probe's scan time.
+  const std::int64_t tick =
+      (t + (k - 1) * d + input_scan_ns_) / program_->processor.free_running_clock_tick_ns();
+  data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
+  s4_tick_ = tick;
+  const std::uint16_t s33 = data_.status(status::kCommBits);
+  if (k % 2 == 1) data_.set_status(status::kCommBits, static_cast<std::uint16_t>(s33 ^ ((s33 ^ s33_before) & 0x0200u)));
+  const std::uint64_t per_scan = stats_.instructions - instructions;
+  const Nanoseconds scan_time = stats_.last;  // what the probe's housekeeping was given
+  for (std::int64_t i = 0; i < k; ++i) {
+    const std::uint16_t avg = data_.status(status::kAvgScan);
+    housekeeping(scan_time, true);
+    if (data_.status(status::kAvgScan) == avg) {  // the rest leave every status word as it is
+      const auto rest = static_cast<std::uint64_t>(k - i - 1);
+      stats_.scans += rest;
+      stats_.total += static_cast<Nanoseconds>(rest) * scan_time;
+      break;
+    }
+  }
+  stats_.instructions += per_scan * static_cast<std::uint64_t>(k);
+  stats_.repeated += static_cast<std::uint64_t>(k);
+  events_.run_until(t + k * d);
+  return 1 + k;
 }
 
 bool Runtime::run_until(const std::function<bool(const Runtime&)>& pred, Nanoseconds limit) {

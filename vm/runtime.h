@@ -101,6 +101,7 @@ struct ScanStats {
   Nanoseconds max = 0;
   Nanoseconds total = 0;
   std::uint64_t instructions = 0;  // instructions executed, all scans
+  std::uint64_t repeated = 0;      // of `scans`, those taken as repeats of the scan before, not executed
   Nanoseconds avg() const { return scans ? total / static_cast<Nanoseconds>(scans) : 0; }
   std::int64_t last_us() const { return last / kNsPerUs; }
   std::int64_t max_us() const { return max / kNsPerUs; }
@@ -149,8 +150,12 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // Runs n scan cycles (in Test mode: n single scans). Stops early when a scan faults. Returns
   // the number of scans run.
   int scan(int n = 1);
-  // Runs whole scans until at least `duration` of virtual time has passed. Returns scans run.
-  int run_for(Nanoseconds duration);
+  // Runs whole scans until at least `duration` of virtual time has passed. Returns scans run (a scan
+  // taken as a repeat of the one before counts as run: docs/semantics.md "Repeated scans").
+  std::int64_t run_for(Nanoseconds duration);
+  // run_for may take scans that would repeat the last one without executing them (the default);
+  // off, every scan executes. Results are the same either way (tests compare the two).
+  void skip_repeated_scans(bool on) { skip_repeated_ = on; }
   // Runs whole scans until `pred` holds (checked before the first scan and after each) or
   // `limit` of virtual time has passed. Returns whether `pred` held.
   bool run_until(const std::function<bool(const Runtime&)>& pred, Nanoseconds limit);
@@ -241,6 +246,12 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // Advances the RTC function file (when the processor has one) to virtual time `now`.
   void advance_rtc(VirtualTime now);
   Nanoseconds housekeeping(Nanoseconds scan_time, bool executed);
+  // Repeated scans (docs/semantics.md "Repeated scans"): whether the next scan may be a probe, and
+  // the probe: one scan executed with the data table saved before it; when it changed no word but
+  // the runtime's own, the scans that would repeat it before `end` (and before anything else is
+  // due) are taken without executing them. Returns the scans run and taken.
+  bool probe_due();
+  std::int64_t probe_and_repeat(VirtualTime end);
   void enter_fault(const FaultInfo& f);
   void enter_suspend();
   void apply_input_forces(std::uint32_t first, std::uint32_t count);
@@ -309,6 +320,17 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::optional<FaultInfo> fault_;
   ScanStats stats_;
   std::int64_t s4_tick_ = 0;  // tick count when S:4 was last advanced
+  // Repeated scans: the program allows them (every instruction and operand, set by create), tools
+  // allow them, scans left before the next probe and the wait after a probe that found a change
+  // (doubling to 64, so a busy program pays for a probe at most every 64 scans), the table saved
+  // before the probe, and the time from a scan's start to its program scan (for S:4).
+  bool program_repeatable_ = false;
+  bool skip_repeated_ = true;
+  std::uint32_t probe_wait_ = 0;
+  std::uint32_t probe_backoff_ = 1;
+  std::vector<std::uint16_t> before_probe_;
+  Nanoseconds input_scan_ns_ = 0;
+  std::size_t events_at_last_scan_end_ = 0;  // events the last scan cycle ran at its end
   std::int64_t rtc_second_ = 0;  // whole seconds of virtual time when the RTC was last advanced
   // A module fault raised while modules are being told of a mode change waits here until every
   // module has seen the change.

@@ -128,6 +128,7 @@ class CountingInputs : public DiscreteIoModule {
   void input_scan(std::span<std::uint16_t> image) override {
     if (!image.empty()) image[0] = ++reads_;
   }
+  bool passive() const override { return false; }  // every input scan differs
   std::vector<std::vector<std::uint16_t>> outputs;
   void output_scan(std::span<const std::uint16_t> image) override {
     outputs.emplace_back(image.begin(), image.end());

@@ -175,7 +175,7 @@ int Controller::scan(int n) {
   return runtime_->scan(n);
 }
 
-int Controller::run_for(Nanoseconds duration) {
+std::int64_t Controller::run_for(Nanoseconds duration) {
   ControllerCall c;
   c.kind = ControllerCall::Kind::RunFor;
   c.integer = duration;

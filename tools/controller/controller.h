@@ -132,7 +132,9 @@ class Controller {
   // Runs n scan cycles; returns how many ran (fewer when the processor faulted).
   int scan(int n = 1);
   // Runs whole scans until at least `duration` of virtual time has passed; returns scans run.
-  int run_for(Nanoseconds duration);
+  // Scans that would repeat the one before may be taken without executing them, with the same
+  // results (docs/semantics.md "Repeated scans"; runtime().skip_repeated_scans(false) turns it off).
+  std::int64_t run_for(Nanoseconds duration);
   // Runs whole scans until `condition` holds (checked before the first scan and after each) or
   // `limit` has passed; returns whether it held.
   bool run_until(const std::function<bool(const Controller&)>& condition, Nanoseconds limit);

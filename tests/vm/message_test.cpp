@@ -535,11 +535,12 @@ TEST(MessageCheck, RefusesBadOperandsWithAPosition) {
   EXPECT_EQ(check_errors("SOR MSG WRITE 485CIF N9:0 7 N10:0 5 2 10 EOR", k502), "");
   EXPECT_NE(check_errors(kReadFive, k502).find("on the SLC 5/02 MSG takes 8 operands"), std::string::npos);
   EXPECT_NE(check_errors("SOR MSG WRITE 485CIF N9:0 7 N10:0 5 2 10 EOR").find("is the SLC 5/02 form"), std::string::npos);
-  // The MicroLogix MSG is refused by name; its MG file exists (tests/micrologix/message_file_test.cpp).
+  // The SLC form on a MicroLogix, and the box alone without the setup, name the MicroLogix form
+  // (tests/micrologix/msg_test.cpp has the MicroLogix MSG itself).
   EXPECT_NE(check_errors(kReadFive, "START Bul.1766\n").find("MG message file element"), std::string::npos);
   const std::string ml = check_errors("SOR XIC B3:0/0 MSG MG11:0 EOR", "START Bul.1766\n");
-  EXPECT_NE(ml.find("MSG is not available on the MicroLogix 1400"), std::string::npos) << ml;
-  EXPECT_NE(ml.find("does not send MicroLogix messages yet"), std::string::npos) << ml;
+  EXPECT_NE(ml.find("MSG with this operand list is the SLC 500 form"), std::string::npos) << ml;
+  EXPECT_NE(ml.find("MSG MG11:0 READ|WRITE device LOCAL channel data size node target timeout"), std::string::npos) << ml;
   EXPECT_EQ(check_errors("SOR XIC B3:0/0 MOV MG11:0.ERR N7:0 EOR", "START Bul.1766\n"), "");
   EXPECT_NE(check_errors("SOR XIC B3:0/0 MOV MG11:0.ERR N7:0 EOR").find("MG (message) files exist on the MicroLogix"),
             std::string::npos);

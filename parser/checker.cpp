@@ -998,17 +998,25 @@ class Checker {
                            (ethernet ? "12-34)" : "12-31)"));
     if (block.is_address()) {
       const int first = block.address.element, last = block.address.element + blen - 1;
-      for (const auto& [file, other_first, other_last, pos] : message_blocks_)
-        if (file == block.address.file && first <= other_last && other_first <= last) {
-          error(block.pos, "MSG control block " + block.spelling + " overlaps the one of the MSG at line " +
-                               std::to_string(pos.line) + "; every MSG needs its own control block (1747-RM001G "
-                               "p. 12-30)");
-          break;
-        }
-      message_blocks_.push_back({block.address.file, first, last, block.pos});
+      if (const int line = claim_message_state(block.address.file, first, last, block.pos))
+        error(block.pos, "MSG control block " + block.spelling + " overlaps the one of the MSG at line " +
+                             std::to_string(line) + "; every MSG needs its own control block (1747-RM001G p. 12-30)");
       if (ethernet) check_ethernet_block_data(block, dev == "PLC5");
     }
     check_message_data(command, dev, data, size, target, ethernet);
+  }
+
+  // Records that the MSG at `pos` keeps its state in elements first..last of `file` (an SLC control
+  // block, a MicroLogix MG element); returns the line of an earlier MSG whose state overlaps them, or 0.
+  int claim_message_state(int file, int first, int last, SourcePos pos) {
+    int line = 0;
+    for (const auto& [f, other_first, other_last, other_pos] : message_blocks_)
+      if (f == file && first <= other_last && other_first <= last) {
+        line = other_pos.line;
+        break;
+      }
+    message_blocks_.push_back({file, first, last, pos});
+    return line;
   }
 
   // The data of a MSG, either form: `size` elements of the local file, inside the file and one message;
@@ -1098,14 +1106,10 @@ class Checker {
     }
     if (element.is_address()) {
       const int e = element.address.element;
-      for (const auto& [file, first, last, pos] : message_blocks_)
-        if (file == element.address.file && first <= e && e <= last) {
-          error(element.pos, "MSG element " + element.spelling + " is also the one of the MSG at line " +
-                                 std::to_string(pos.line) + "; each MSG instruction must use a unique element in "
-                                 "a MSG file (1762-RM001C p. 21-4)");
-          break;
-        }
-      message_blocks_.push_back({element.address.file, e, e, element.pos});
+      if (const int line = claim_message_state(element.address.file, e, e, element.pos))
+        error(element.pos, "MSG element " + element.spelling + " is also the one of the MSG at line " +
+                               std::to_string(line) + "; each MSG instruction must use a unique element in a MSG "
+                               "file (1762-RM001C p. 21-4)");
     }
     const Operand& data = ops[5];
     if (data.is_address() && data.address.type == FileType::Long)

@@ -50,6 +50,8 @@ enum class OperandKind : std::uint8_t {
   MessageData,     // this controller's data table address: a direct word-level element address
   RemoteAddress,   // the target's data table address (500CPU, PLC5) or CIF word offset (485CIF),
                    // never looked up in this program: it names the other controller's data table
+  MessageElement,  // the MicroLogix MSG's MG file element (MG11:0): its 25 words are the instruction's
+                   // parameters and status (1762-RM001C p. 21-4)
 };
 
 // Whether an operand kind is written as a destination word (never a constant).
@@ -113,10 +115,11 @@ enum class Requirement : std::uint8_t {
   // STI, EII and HSC function files softslc does not simulate yet; the SLC has none of them.
   MicroLogixUserInterrupt,
   // MSG and SVC (RM 12-5): the SLC 5/02's form (7-word control block, one channel) and the
-  // SLC 5/03-5/05 form (14 words, channel 0 or 1). The MicroLogix MSG takes an MG message file
-  // element instead (1763/1766-RM001), which softslc does not have: refused there by name.
+  // SLC 5/03-5/05 form (14 words, channel 0 or 1). The MicroLogix 1100-1500 MSG takes an MG message
+  // file element instead (1763/1766-RM001, 1762-RM001C p. 21-3): MicroLogixMessage.
   SlcMessage502,
   SlcMessage,
+  MicroLogixMessage,
   SlcCommService,  // SVC without an operand: SLC 5/02-5/05
   // SVC with a channel select (a bit per channel): the SLC 5/03-5/05 and the MicroLogix 1100, 1200,
   // 1400 and 1500 (1762-RM001C p. 21-26, 1763-RM001B p. 344, 1766-RM001A p. 396).

@@ -34,14 +34,17 @@ constexpr MessageLink message_link(ProcessorFamily family, int channel) {
 }
 
 // The link a processor's network channel is on: DH-485 for the fixed controllers, the 5/01, 5/02 and
-// 5/03 (they all answer messages on it), DH+ for the 5/04, Ethernet for the 5/05; None for the
-// MicroLogix, whose messaging softslc does not simulate.
+// 5/03 (they all answer messages on it), DH+ for the 5/04, Ethernet for the 5/05. A MicroLogix is on
+// DH-485 through its channel 0, the serial port, configured for DH-485 (1762-RM001C p. 21-2 lists DH-485
+// among the protocols its MSG uses; decision: softslc has no channel configuration, docs/semantics.md
+// "The MicroLogix MSG"); the 1000 answers messages there and sends none in softslc.
 constexpr MessageLink network_link(ProcessorFamily family) {
   switch (family) {
     case ProcessorFamily::Fixed:
     case ProcessorFamily::Slc501:
     case ProcessorFamily::Slc502:
-    case ProcessorFamily::Slc503: return MessageLink::Dh485;
+    case ProcessorFamily::Slc503:
+    case ProcessorFamily::MicroLogix: return MessageLink::Dh485;
     case ProcessorFamily::Slc504: return MessageLink::DhPlus;
     case ProcessorFamily::Slc505: return MessageLink::Ethernet;
     default: return MessageLink::None;

@@ -104,6 +104,10 @@ bool ProcessorModel::supports(Requirement r) const {
     // 5/01 answer messages but do not send them). The 5/02 has its own MSG form.
     case Requirement::SlcMessage502: return family == ProcessorFamily::Slc502;
     case Requirement::SlcMessage: return is_modular_503_or_later(family);
+    // The MicroLogix MSG on an MG element: the controllers with MG files (1762-RM001C p. 21-4, 1763-RM001B
+    // p. 347, 1766-RM001A p. 399). The MicroLogix 1000's MSG keeps an integer control block (1761-6.3
+    // ch. 13), a form softslc does not have.
+    case Requirement::MicroLogixMessage: return has_message_files();
     case Requirement::SlcCommService: return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
     case Requirement::ChannelSelectService: return is_modular_503_or_later(family) || is_micrologix_1100_class();
     case Requirement::MicroLogixPto: return is_micrologix_1100_class() && micrologix != MicroLogixModel::ML1400;
@@ -193,11 +197,14 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
       if (is_micrologix() && r == Requirement::SlcCommService)
         return "takes a channel select on the " + have + " (`SVC 1` services channel 0; 1762-RM001C p. 21-26, "
                "1763-RM001B p. 344, 1766-RM001A p. 396)";
+      if (is_micrologix() && has_message_files())
+        return "with this operand list is the SLC 500 form; the " + display_name + " MSG works on an MG message "
+               "file element (1762-RM001C p. 21-3): MSG MG11:0 READ|WRITE device LOCAL channel data size node "
+               "target timeout (docs/semantics.md \"The MicroLogix MSG\"); this program's processor is " + have;
       if (is_micrologix())
-        return "is not available on the " + have + " in softslc: the MicroLogix MSG works on an MG message "
-               "file element and the channel configuration (1763-RM001, 1766-RM001, 1762-RM001 \"Communications "
-               "Instructions\"); softslc has the MG and RI files but does not send MicroLogix messages yet; the SLC "
-               "5/02-5/05 MSG with an N-file control block is supported (1747-RM001G ch. 12)";
+        return "is not available on the " + have + " in softslc: the MicroLogix 1000 MSG keeps an integer control "
+               "block (1761-6.3 ch. 13), a form softslc does not simulate; the MicroLogix 1100-1500 MSG on an MG "
+               "element and the SLC 5/02-5/05 MSG are supported";
       if (r == Requirement::SlcMessage502 && is_modular_503_or_later(family))
         return "with 8 operands is the SLC 5/02 form (7-word control block, RM 12-5); the " + display_name +
                " MSG takes 11: READ|WRITE device LOCAL|REMOTE block 14 channel data size node target timeout; "
@@ -207,6 +214,13 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
                "device block 7 data size node target, RM 12-5) and SVC none; this program's processor is " + have;
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001G p. 12-5)";
+    case Requirement::MicroLogixMessage:
+      if (family == ProcessorFamily::MicroLogix)
+        return "is not available on the " + have + " in softslc: the MicroLogix 1000 MSG keeps an integer control "
+               "block (1761-6.3 ch. 13), a form softslc does not simulate; MSG on an MG element needs " +
+               std::string(requirement_processors(r)) + " (1762-RM001C p. 21-4)";
+      return "with an MG element is the MicroLogix 1100-1500 form (1762-RM001C p. 21-3); the " + display_name +
+             " MSG takes an integer control block (1747-RM001G p. 12-5); this program's processor is " + have;
     case Requirement::ProgramChecksum:
       return "is not available on the " + have + "; it needs " + std::string(requirement_processors(r)) +
              " (1747-RM001G p. 7-23, 1766-RM001A p. 239" +
@@ -246,6 +260,7 @@ std::string_view requirement_processors(Requirement r) {
       return "none yet (MicroLogix 1100-1500 once their EII/HSC function files are simulated)";
     case Requirement::SlcMessage502: return "SLC 5/02 (the 5/03-5/05 form has 11 operands)";
     case Requirement::SlcMessage: return "SLC 5/03, 5/04, 5/05";
+    case Requirement::MicroLogixMessage: return "MicroLogix 1100, 1200, 1400, 1500";
     case Requirement::SlcCommService: return "SLC 5/02, 5/03, 5/04, 5/05";
     case Requirement::ChannelSelectService: return "SLC 5/03, 5/04, 5/05, MicroLogix 1100, 1200, 1400, 1500";
     case Requirement::MicroLogixPto: return "MicroLogix 1100, 1200, 1500";

@@ -598,7 +598,10 @@ class Checker {
                                " holds the program's MEMDEF variables; name them instead (docs/automax.md)");
     if (op.is_address() && is_function_file(op.address.type) && os.access != OperandAccess::Read)
       check_function_file_write(op, os, where);
-    if (op.is_address() && is_message_file(op.address.type) && os.access != OperandAccess::Read)
+    // The MicroLogix MSG's own MG element is the instruction's state, which the processor writes; the
+    // program's writes into an MG element are held to the access column.
+    if (op.is_address() && is_message_file(op.address.type) && os.access != OperandAccess::Read &&
+        os.kind != OperandKind::MessageElement)
       check_message_file_write(op, os, where);
     if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
       const Symbol* sym = symbols_.at(op.spelling);
@@ -741,6 +744,11 @@ class Checker {
         break;
       }
       case OperandKind::RemoteAddress: return;  // the target's data table, not this program's
+      case OperandKind::MessageElement:
+        if (!op.is_address() || op.address.type != FileType::Message || op.address.word >= 0 || op.address.has_bit() ||
+            op.address.is_indirect() || op.address.indexed)
+          return expect("an MG file element such as MG11:0 (the MicroLogix MSG file, 1762-RM001C p. 21-4)");
+        break;
     }
     if (op.is_address()) check_address(op.address, op.pos, os.kind, os.mfile);
   }
@@ -848,6 +856,8 @@ class Checker {
     if ((in.opcode == Opcode::MSG || in.opcode == Opcode::MSG_502) && in.operands.size() == s.operand_count &&
         proc.supports(s.requires_))
       check_message(in);
+    if (in.opcode == Opcode::MSG_ML && in.operands.size() == s.operand_count && proc.supports(s.requires_))
+      check_micrologix_message(in);
   }
 
   // FBC, DDT (1747-RM001G p. 7-18 .. 7-22): the result file records bit numbers, so it is
@@ -988,17 +998,32 @@ class Checker {
                            (ethernet ? "12-34)" : "12-31)"));
     if (block.is_address()) {
       const int first = block.address.element, last = block.address.element + blen - 1;
-      for (const auto& [file, other_first, other_last, pos] : message_blocks_)
-        if (file == block.address.file && first <= other_last && other_first <= last) {
-          error(block.pos, "MSG control block " + block.spelling + " overlaps the one of the MSG at line " +
-                               std::to_string(pos.line) + "; every MSG needs its own control block (1747-RM001G "
-                               "p. 12-30)");
-          break;
-        }
-      message_blocks_.push_back({block.address.file, first, last, block.pos});
+      if (const int line = claim_message_state(block.address.file, first, last, block.pos))
+        error(block.pos, "MSG control block " + block.spelling + " overlaps the one of the MSG at line " +
+                             std::to_string(line) + "; every MSG needs its own control block (1747-RM001G p. 12-30)");
       if (ethernet) check_ethernet_block_data(block, dev == "PLC5");
     }
-    // The data: `size` elements of the local file, inside the file and one message.
+    check_message_data(command, dev, data, size, target, ethernet);
+  }
+
+  // Records that the MSG at `pos` keeps its state in elements first..last of `file` (an SLC control
+  // block, a MicroLogix MG element); returns the line of an earlier MSG whose state overlaps them, or 0.
+  int claim_message_state(int file, int first, int last, SourcePos pos) {
+    int line = 0;
+    for (const auto& [f, other_first, other_last, other_pos] : message_blocks_)
+      if (f == file && first <= other_last && other_first <= last) {
+        line = other_pos.line;
+        break;
+      }
+    message_blocks_.push_back({file, first, last, pos});
+    return line;
+  }
+
+  // The data of a MSG, either form: `size` elements of the local file, inside the file and one message;
+  // the target, a data table address of the other controller (500CPU, PLC5) of the local file's type, or
+  // a word offset into its common interface file (485CIF).
+  void check_message_data(const Operand& command, const std::string& dev, const Operand& data, const Operand& size,
+                          const Operand& target, bool ethernet) {
     if (data.is_address() && size.kind == Operand::Kind::Integer) {
       const int wpe = words_per_element(data.address.type);
       if (data.address.element + size.integer > 256)
@@ -1016,8 +1041,6 @@ class Checker {
                             " element(s) is " + std::to_string(size.integer * wpe) + " words; one message carries at "
                             "most " + std::to_string(kMessageMaxWords) + " (docs/semantics.md \"MSG\")");
     }
-    // The target: a data table address of the other controller (500CPU, PLC5) of the local file's type,
-    // or a word offset into its common interface file (485CIF).
     if (dev == "485CIF") {
       if (target.kind != Operand::Kind::Integer || target.integer < 0 || target.integer > 255)
         error(target.pos, "MSG 485CIF target: expected a word offset 0-255 into the target's common interface file "
@@ -1040,6 +1063,59 @@ class Checker {
     if (size.kind == Operand::Kind::Integer && t.element + size.integer > 256)
       error(size.pos, "MSG of " + size.spelling + " element(s) to " + target.spelling +
                           " runs past the end of any file (element 255)");
+  }
+
+  // The MicroLogix 1100-1500 MSG (docs/semantics.md "The MicroLogix MSG"): the MG element, one per MSG
+  // (1762-RM001C p. 21-4: "Each MSG instruction must use a unique Element in a MSG File"); channel 0, the
+  // controller's serial port, on the simulated DH-485 link; the node, data and target as the SLC form's.
+  void check_micrologix_message(const Instruction& in) {
+    const auto& ops = in.operands;
+    const Operand& element = ops[0];
+    const Operand& device = ops[2];
+    const Operand& channel = ops[4];
+    const Operand& node = ops[7];
+    const auto& proc = program_.processor;
+    if (ops[3].kind == Operand::Kind::Symbol && ops[3].spelling == "REMOTE")
+      return error(ops[3].pos, "MSG REMOTE (a message through a bridge to another link, 1762-RM001C p. 21-13) is not "
+                               "simulated by softslc; the simulated network is one link: use LOCAL");
+    if (channel.kind == Operand::Kind::Integer && channel.integer == 1) {
+      const bool ethernet = proc.micrologix == MicroLogixModel::ML1100 || proc.micrologix == MicroLogixModel::ML1400;
+      const bool lrp = proc.micrologix == MicroLogixModel::ML1500LRP;
+      if (ethernet)
+        return error(channel.pos, "MSG on channel 1 (the " + proc.display_name + "'s Ethernet port, with an RI routing "
+                                  "element, 1766-RM001A p. 435) is not simulated by softslc yet; channel 0 is the "
+                                  "controller's DH-485 port on the simulated network (docs/semantics.md \"The "
+                                  "MicroLogix MSG\")");
+      if (lrp)
+        return error(channel.pos, "MSG on channel 1 of the 1764-LRP (its second serial port) is not simulated by "
+                                  "softslc: the simulated network is on channel 0 (docs/semantics.md \"The "
+                                  "MicroLogix MSG\")");
+      return error(channel.pos, "the " + proc.display_name + " has one channel: its MSG channel is always 0 "
+                                "(1762-RM001C p. 21-4, sub-element 8)");
+    }
+    const std::string dev = device.kind == Operand::Kind::Symbol ? device.spelling : "";
+    if (dev == "PLC5")
+      return error(device.pos, "MSG PLC5 on DH-485: a PLC-5 is on DH+ or Ethernet; the " + proc.display_name +
+                                   "'s channel 0 on the simulated DH-485 link sends 500CPU and 485CIF messages "
+                                   "(docs/semantics.md \"MSG\")");
+    if (node.kind == Operand::Kind::Integer) {
+      const auto [lo, hi] = message_node_range(MessageLink::Dh485);
+      if (node.integer < lo || node.integer > hi)
+        error(node.pos, "MSG target node " + node.spelling + " is out of range " + std::to_string(lo) + "-" +
+                            std::to_string(hi) + " for DH-485 (1747-RM001G p. 13-4: responders 1-31)");
+    }
+    if (element.is_address()) {
+      const int e = element.address.element;
+      if (const int line = claim_message_state(element.address.file, e, e, element.pos))
+        error(element.pos, "MSG element " + element.spelling + " is also the one of the MSG at line " +
+                               std::to_string(line) + "; each MSG instruction must use a unique element in a MSG "
+                               "file (1762-RM001C p. 21-4)");
+    }
+    const Operand& data = ops[5];
+    if (data.is_address() && data.address.type == FileType::Long)
+      return error(data.pos, "MSG of L (long word) elements is not simulated by softslc: the file type code a "
+                             "MicroLogix sends for L is not in its sources (docs/semantics.md \"The MicroLogix MSG\")");
+    check_message_data(ops[1], dev, data, ops[6], ops[8], false);
   }
 
   // RHC, TDF (1747-RM001G p. 7-17): "an integer address (Nx:x) or Float address (Fx:x)", and TDF's

@@ -252,6 +252,7 @@ class Compiler {
       // MSG: the control block (its length operand) and `size` elements of the local data.
       case Opcode::MSG: return i == 3 ? len(4) : i == 6 ? std::max<std::uint32_t>(len(7), 1) : 1;
       case Opcode::MSG_502: return i == 2 ? len(3) : i == 4 ? std::max<std::uint32_t>(len(5), 1) : 1;
+      case Opcode::MSG_ML: return i == 5 ? std::max<std::uint32_t>(len(6), 1) : 1;
       default: return 1;
     }
   }
@@ -626,6 +627,30 @@ class Compiler {
     init_literal(ops[block], 5, cif ? (t.kind == Operand::Kind::Integer ? t.integer : 0)
                                     : (t.is_address() ? t.address.element : 0));
     if (!slc502) init_literal(ops[block], 8, literal(in, 10));
+  }
+
+  // The MicroLogix MSG: the setup screen's values go into the MG element where the manuals place them
+  // (1762-RM001C p. 21-4, 1766-RM001A pp. 399-401): 8 CHN, 9 NOD, 10 MTO, 12 the target file type (the
+  // PCCC typed-read code of the local file's type, as the SLC block's word 4), 13 TFN, 14 ELE (485CIF: the
+  // offset into the common interface file, N9), 17 bit 0 R = 1 (local). The 1100 and 1400 keep the byte
+  // count in word 11 (1766-RM001A p. 399; reserved on the 1200/1500). The read/write command, the local
+  // address and the element count stay with the instruction: the manuals keep them in the internal words
+  // 3 and 4, whose encoding they do not give (docs/semantics.md "The MicroLogix MSG").
+  void init_micrologix_message(const Instruction& in, const std::vector<std::uint32_t>& ops) {
+    if (in.operands.size() < 10 || !in.operands[5].is_address()) return;
+    const Operand& t = in.operands[8];
+    const bool cif = in.operands[2].kind == Operand::Kind::Symbol && in.operands[2].spelling == "485CIF";
+    const FileType local = in.operands[5].address.type;
+    init_literal(ops[0], mg::kChannel, literal(in, 4));
+    init_literal(ops[0], mg::kNode, literal(in, 7));
+    init_literal(ops[0], mg::kTimeout, literal(in, 9));
+    if (proc_.micrologix == MicroLogixModel::ML1100 || proc_.micrologix == MicroLogixModel::ML1400)
+      init_literal(ops[0], mg::kByteCount, 2 * literal(in, 6) * words_per_element(local));
+    init_literal(ops[0], mg::kTargetFileType, message_file_type_code(local));
+    init_literal(ops[0], mg::kTargetFile, cif ? kCommonInterfaceFile : (t.is_address() ? t.address.file : 0));
+    init_literal(ops[0], mg::kTargetElement, cif ? (t.kind == Operand::Kind::Integer ? t.integer : 0)
+                                                 : (t.is_address() ? t.address.element : 0));
+    init_literal(ops[0], mg::kStatus, 1u << mg::kRangeBit);
   }
 
   void init_literal(std::uint32_t op_word, std::uint32_t sub, std::int64_t value) {
@@ -1006,6 +1031,7 @@ class Compiler {
           break;
         case OperandKind::MessageBlock:
         case OperandKind::MessageData:
+        case OperandKind::MessageElement:
           if (op.is_address() && !is_mfile(op.address.type) && !needs_dyn(op.address, false)) {
             bool f = false;
             w = value_operand(op, false, true, f, pos);
@@ -1113,6 +1139,7 @@ class Compiler {
         break;
       case Opcode::MSG:
       case Opcode::MSG_502: init_message_block(in, ops); break;
+      case Opcode::MSG_ML: init_micrologix_message(in, ops); break;
       default: break;
     }
 

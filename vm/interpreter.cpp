@@ -1503,6 +1503,32 @@ void Interpreter::message(Op op, const std::uint32_t* o, bool rung, Nanoseconds 
   }
 }
 
+// The MicroLogix MSG (1762-RM001C pp. 21-3, 21-15; docs/semantics.md "The MicroLogix MSG"): the same rung
+// logic on the MG element, whose control bits EN and TO are in word 16 and whose status bits DN and ER
+// are in word 17. The setup (node, target, timeout) is read from the element when the message starts.
+void Interpreter::micrologix_message(const std::uint32_t* o, bool rung, Nanoseconds now_in_scan) {
+  const std::uint32_t element = bc::payload_of(o[0]);
+  const std::uint16_t control = w_[element + mg::kControl];
+  const bool enabled = (control & msg::kEN) != 0;
+  const bool done = (w_[element + mg::kStatus] & (msg::kDN | msg::kER)) != 0;
+  if (rung && !enabled) {
+    MessageInstruction m;
+    m.micrologix = true;
+    m.write = bc::imm_of(o[1]) == 1;
+    m.device = bc::imm_of(o[2]);
+    m.channel = bc::imm_of(o[4]);
+    m.block = element;
+    m.data = bc::payload_of(o[5]);
+    m.elements = bc::imm_of(o[6]);
+    m.at = scan_start_ + now_in_scan;
+    chassis_.message_start(m);
+  } else if ((control & msg::kTO) && enabled && !done) {
+    chassis_.message_abort(element);
+  } else if (!rung && enabled && done) {
+    w_[element + mg::kControl] = static_cast<std::uint16_t>(control & ~msg::kEN);
+  }
+}
+
 void Interpreter::fill_file(const std::uint32_t* o, std::uint32_t h) {
   const auto len = static_cast<std::uint32_t>(std::max(bc::imm_of(o[2]), 1));
   Span dst;
@@ -2349,6 +2375,7 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
       // ---- Communication (docs/semantics.md "MSG") ----
       case Op::MSG:
       case Op::MSG_502: message(op, o, rung, elapsed); break;
+      case Op::MSG_ML: micrologix_message(o, rung, elapsed); break;
       case Op::SVC:
         if (rung) chassis_.service_communications(0x3, scan_start_ + elapsed);
         break;

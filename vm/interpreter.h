@@ -313,6 +313,7 @@ class Interpreter {
   SOFTSLC_HANDLER void swap_bytes(const std::uint32_t* o);
   SOFTSLC_HANDLER void free_running_clock(Op op, const std::uint32_t* o, Nanoseconds now_in_scan);
   SOFTSLC_HANDLER void message(Op op, const std::uint32_t* o, bool rung, Nanoseconds now_in_scan);
+  SOFTSLC_HANDLER void micrologix_message(const std::uint32_t* o, bool rung, Nanoseconds now_in_scan);
   SOFTSLC_HANDLER void fill_file(const std::uint32_t* o, std::uint32_t h);
   SOFTSLC_HANDLER void bit_shift(Op op, const std::uint32_t* o, bool rung);
   SOFTSLC_HANDLER void sequencer(Op op, const std::uint32_t* o, bool rung);

@@ -17,8 +17,12 @@ constexpr std::uint16_t kTypeCodes[][2] = {
     {static_cast<std::uint16_t>(FileType::Ascii), 0x8E},
 };
 
-// The network channel of a station's processor: channel 0 on the 5/02 (its only one), 1 on the others.
-int network_channel(const Runtime& rt) { return rt.compiled().processor.family == ProcessorFamily::Slc502 ? 0 : 1; }
+// The network channel of a station's processor: channel 0 on the 5/02 (its only one) and on a MicroLogix
+// (its serial port, on DH-485: docs/semantics.md "The MicroLogix MSG"), 1 on the others.
+int network_channel(const Runtime& rt) {
+  const ProcessorFamily family = rt.compiled().processor.family;
+  return family == ProcessorFamily::Slc502 || family == ProcessorFamily::MicroLogix ? 0 : 1;
+}
 
 std::int16_t as_signed(std::uint16_t w) { return static_cast<std::int16_t>(w); }
 
@@ -90,6 +94,22 @@ void MessageNetwork::set_word(std::size_t station, std::uint32_t index, std::uin
   if (index < d.size()) d.set_word(index, value);
 }
 
+std::uint16_t MessageNetwork::status(std::size_t station, const MessageInstruction& in) const {
+  if (!in.micrologix) return word(station, in.block);
+  return static_cast<std::uint16_t>((word(station, in.block + mg::kControl) & msg::kMgControlBits) |
+                                    (word(station, in.block + mg::kStatus) & msg::kMgStatusBits) |
+                                    (word(station, in.block + mg::kError) & msg::kErrorCode));
+}
+
+void MessageNetwork::set_status(std::size_t station, const MessageInstruction& in, std::uint16_t w0) {
+  if (!in.micrologix) return set_word(station, in.block, w0);
+  const std::uint32_t control = in.block + mg::kControl, st = in.block + mg::kStatus;
+  set_word(station, control,
+           static_cast<std::uint16_t>((word(station, control) & ~msg::kMgControlBits) | (w0 & msg::kMgControlBits)));
+  set_word(station, st, static_cast<std::uint16_t>((word(station, st) & ~msg::kMgStatusBits) | (w0 & msg::kMgStatusBits)));
+  set_word(station, in.block + mg::kError, static_cast<std::uint16_t>(w0 & msg::kErrorCode));
+}
+
 std::optional<std::size_t> MessageNetwork::station_at(int node) const {
   for (std::size_t i = 0; i < stations_.size(); ++i)
     if (stations_[i].node == node) return i;
@@ -134,21 +154,33 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
       std::erase_if(*list, [&](const Message& m) { return m.in.block == in.block; });
 
   // The false-to-true transition resets DN, ER, ST, NR, TO and the error code (RM 12-28, 12-29).
-  std::uint16_t w0 = word(station, in.block);
+  std::uint16_t w0 = status(station, in);
   w0 = static_cast<std::uint16_t>(w0 & ~(msg::kEN | msg::kST | msg::kDN | msg::kER | msg::kEW | msg::kNR | msg::kTO |
                                          msg::kErrorCode));
-  if (!in.slc502) set_word(station, in.block + 7, static_cast<std::uint16_t>(word(station, in.block + 7) & ~msg::kWQ));
+  if (!in.slc502 && !in.micrologix)
+    set_word(station, in.block + 7, static_cast<std::uint16_t>(word(station, in.block + 7) & ~msg::kWQ));
 
   Message m;
   m.serial = next_serial_++;
   m.in = in;
-  m.target_node = word(station, in.block + 1) & 0xFF;
-  m.elements = as_signed(word(station, in.block + 2));
-  m.target_file = as_signed(word(station, in.block + 3));
-  m.type_code = word(station, in.block + 4);
-  m.target_element = as_signed(word(station, in.block + 5));
   m.started = in.at;
-  if (!in.slc502) {
+  if (in.micrologix) {
+    // The MG element's setup (1762-RM001C p. 21-4): NOD, the target file type (word 12), TFN, ELE, MTO in
+    // whole seconds, 0 = no timeout (p. 21-12).
+    m.target_node = word(station, in.block + mg::kNode) & 0xFF;
+    m.elements = in.elements;
+    m.target_file = as_signed(word(station, in.block + mg::kTargetFile));
+    m.type_code = word(station, in.block + mg::kTargetFileType);
+    m.target_element = as_signed(word(station, in.block + mg::kTargetElement));
+    m.timeout = static_cast<Nanoseconds>(word(station, in.block + mg::kTimeout) & 0xFF) * kNsPerS;
+  } else {
+    m.target_node = word(station, in.block + 1) & 0xFF;
+    m.elements = as_signed(word(station, in.block + 2));
+    m.target_file = as_signed(word(station, in.block + 3));
+    m.type_code = word(station, in.block + 4);
+    m.target_element = as_signed(word(station, in.block + 5));
+  }
+  if (!in.slc502 && !in.micrologix) {
     // "a value of 1 second gets bumped to 2 seconds upon instruction execution" (RM 12-53, of the
     // standard MSG's timeout).
     int seconds = word(station, in.block + 8) & 0xFF;
@@ -177,17 +209,18 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
       error = msg::kNodeTooHigh;
   }
   if (error) {
-    set_word(station, in.block, static_cast<std::uint16_t>(w0 | msg::kEN | msg::kER | error));
+    set_status(station, in, static_cast<std::uint16_t>(w0 | msg::kEN | msg::kER | error));
     return;
   }
 
   Channel& ch = stations_[station].channels[static_cast<std::size_t>(in.channel & 1)];
   const std::size_t buffers = in.slc502 ? 1 : msg::kBuffersPerChannel;
-  set_word(station, in.block, static_cast<std::uint16_t>(w0 | msg::kEN));
+  set_status(station, in, static_cast<std::uint16_t>(w0 | msg::kEN));
   if (ch.buffers.size() < buffers) {
     ch.buffers.push_back(std::move(m));
     enter_buffer(station, ch.buffers.back());
-  } else if (ch.queue.size() < static_cast<std::size_t>(msg::kQueuePositions)) {
+  } else if (ch.queue.size() < static_cast<std::size_t>(msg::kQueuePositions) || in.micrologix) {
+    // The MicroLogix queue "can accommodate all MSG instructions in a ladder program" (1762-RM001C p. 21-2).
     // RM 12-7: queued messages "will only have control block status bit EN set"; the 5/02's waiting
     // messages have EN and EW (RM 12-5).
     if (in.slc502) set_word(station, in.block, static_cast<std::uint16_t>(word(station, in.block) | msg::kEW));
@@ -195,7 +228,7 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
   } else {
     // RM 12-7: more than 14 on one channel: "only control block status bit WQ is set"; the rung must
     // be scanned true again until there is room. The 5/02 has no WQ (its block has no word 7).
-    set_word(station, in.block, w0);
+    set_status(station, in, w0);
     if (!in.slc502)
       set_word(station, in.block + 7, static_cast<std::uint16_t>(word(station, in.block + 7) | msg::kWQ));
   }
@@ -229,7 +262,7 @@ std::uint8_t MessageNetwork::check_ethernet_block(std::size_t station, const Mes
 void MessageNetwork::enter_buffer(std::size_t station, Message& m) {
   // EW: "the message is in the buffer ... and waiting to be sent"; a write's source data is buffered
   // now (RM 12-29, table 12.10).
-  set_word(station, m.in.block, static_cast<std::uint16_t>(word(station, m.in.block) | msg::kEN | msg::kEW));
+  set_status(station, m.in, static_cast<std::uint16_t>(status(station, m.in) | msg::kEN | msg::kEW));
   if (m.in.write) {
     m.data.resize(static_cast<std::size_t>(m.words));
     for (int i = 0; i < m.words; ++i) m.data[static_cast<std::size_t>(i)] = word(station, m.in.data + static_cast<std::uint32_t>(i));
@@ -250,14 +283,14 @@ void MessageNetwork::abort(std::size_t station, std::uint32_t block) {
 }
 
 void MessageNetwork::finish(std::size_t station, Message& m, std::uint8_t error, std::uint16_t extra_bits) {
-  std::uint16_t w0 = word(station, m.in.block);
+  std::uint16_t w0 = status(station, m.in);
   w0 = static_cast<std::uint16_t>(w0 & ~(msg::kST | msg::kEW | msg::kErrorCode));
   if (error) w0 = static_cast<std::uint16_t>(w0 | msg::kER | error | extra_bits);
   else w0 = static_cast<std::uint16_t>(w0 | msg::kDN);
-  set_word(station, m.in.block, w0);
+  set_status(station, m.in, w0);
   // CO: "continually resend" (RM 12-61 of the same bit): a message that completed stays in its buffer
   // and goes out again at this servicing point, its timer restarted (SLC 5/03-5/05).
-  if (!error && !m.in.slc502 && (w0 & msg::kCO)) {
+  if (!error && !m.in.slc502 && !m.in.micrologix && (w0 & msg::kCO)) {
     m.sent = false;
     m.acked.reset();
     m.data.clear();
@@ -347,8 +380,7 @@ void MessageNetwork::receive(std::size_t station, VirtualTime at, Frame& f) {
   if (!m) return;  // the message was aborted or timed out meanwhile: a late frame changes nothing
   switch (f.kind) {
     case FrameKind::Ack:
-      set_word(station, m->in.block,
-               static_cast<std::uint16_t>((word(station, m->in.block) | msg::kST) & ~msg::kEW));
+      set_status(station, m->in, static_cast<std::uint16_t>((status(station, m->in) | msg::kST) & ~msg::kEW));
       m->acked = at;
       break;
     case FrameKind::NoAck: finish(station, *m, f.error); break;
@@ -380,7 +412,9 @@ void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t 
     for (Message& m : *list) {
       if (m.in.slc502) continue;
       const Nanoseconds elapsed = at - m.started;
-      set_word(station, m.in.block + 10, static_cast<std::uint16_t>(std::min<Nanoseconds>(elapsed / kNsPerS, 32767)));
+      // The MicroLogix keeps the seconds in MG word 19, "time since message started" (1762-RM001C p. 21-4).
+      set_word(station, m.in.block + (m.in.micrologix ? mg::kElapsed : 10),
+               static_cast<std::uint16_t>(std::min<Nanoseconds>(elapsed / kNsPerS, 32767)));
       if (m.timeout > 0 && elapsed >= m.timeout) expired.push_back(m.serial);
       else if (link_ == MessageLink::Ethernet && m.acked && at - *m.acked >= msg::kReplyTimeoutNs)
         late.push_back(m.serial);

@@ -78,6 +78,13 @@ inline constexpr std::uint8_t kBadIpAddress = 0xD2;      // "Invalid internet ad
 inline constexpr std::uint8_t kConnectionTimeout = 0xD5;  // "Connection not completed before user-specified timeout" [U]
 inline constexpr std::uint8_t kReplyTimeout = 0xD9;      // "Reply not received before user-specified timeout."
 
+// The MicroLogix MG element keeps the control word's bits in two words: EN and TO in word 16 (the control
+// bits, [U] positions: docs/semantics.md "The MG and RI files"), ST, DN, ER and EW in word 17 at the same
+// positions as the SLC's word 0 (1762-RM001C p. 21-6), and the error code in word 18 (ERR). It has no CO,
+// NR or WQ.
+inline constexpr std::uint16_t kMgControlBits = kEN | kTO;
+inline constexpr std::uint16_t kMgStatusBits = kST | kDN | kER | kEW;
+
 inline constexpr int kBuffersPerChannel = 4;  // RM 12-5: "up to four message instructions per channel"
 inline constexpr int kQueuePositions = 10;    // RM 12-41: "Each channel has its own 10-position MSG queue"
 
@@ -120,6 +127,11 @@ Nanoseconds message_frame_time(MessageLink link, int data_bytes);
 // its TO bit aborts one (docs/semantics.md "MSG").
 struct MessageInstruction {
   bool slc502 = false;       // the 7-word form: one buffer, no WQ, no timer
+  // The MicroLogix 1100-1500 form: `block` is the MG element (control bits in word 16, status in 17, the
+  // error code in 18, the setup in 8-14); its element count is the instruction's (docs/semantics.md "The
+  // MicroLogix MSG").
+  bool micrologix = false;
+  int elements = 0;
   bool write = false;
   // 0 500CPU, 1 485CIF, 2 PLC5 (keyword_code of MessageDevice). The targets on a simulated network are
   // SLCs, which answer a PLC5 typed command as a 500CPU one; 485CIF's target is in the control block
@@ -217,6 +229,10 @@ class MessageNetwork {
   Message* find(std::size_t station, std::uint64_t serial, int* channel = nullptr, bool* queued = nullptr);
   void remove(std::size_t station, std::uint64_t serial);
   std::uint16_t word(std::size_t station, std::uint32_t index) const;
+  // The MSG's control word in the SLC layout (word 0 of its block), for either form: on a MicroLogix it is
+  // put together from the MG element's words 16-18 and written back into them.
+  std::uint16_t status(std::size_t station, const MessageInstruction& in) const;
+  void set_status(std::size_t station, const MessageInstruction& in, std::uint16_t w0);
   void set_word(std::size_t station, std::uint32_t index, std::uint16_t value);
   std::optional<std::size_t> station_at(int node) const;
   std::optional<std::size_t> station_at_ip(std::uint32_t ip) const;

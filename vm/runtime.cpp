@@ -185,7 +185,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
 std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
   const MessageLink link = network_link(program_->processor.family);
   if (link == MessageLink::None)
-    return "a MSG network needs SLC 5/02-5/05 processors (DH-485, DH+ or Ethernet); " +
+    return "a MSG network needs SLC 500 or MicroLogix processors (DH-485, DH+ or Ethernet); " +
            program_->processor.display_name + " has none that softslc simulates for MSG";
   const bool ethernet = link == MessageLink::Ethernet;
   // Not a structured binding: clang 14 cannot capture one in the lambda below.

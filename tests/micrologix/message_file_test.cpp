@@ -1,6 +1,6 @@
 // The MicroLogix MG (message) and RI (routing information) data files (issue 16): declared,
-// addressed, checked, loaded from DATA blocks and printed by `fmt`. The MicroLogix MSG itself is
-// not simulated yet (refused by name, tests/vm/message_test.cpp).
+// addressed, checked, loaded from DATA blocks and printed by `fmt`. The MicroLogix MSG that works on
+// them is tests/micrologix/msg_test.cpp.
 //
 // Manual facts used (docs/micrologix-msg-sources.md):
 // - the MG element has sub-elements 0-24: 5 RBL, 6 LBN, 7 RBN, 8 CHN, 9 NOD, 10 MTO, 13 TFN, 14 ELE,

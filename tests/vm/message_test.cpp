@@ -12,15 +12,14 @@
 #include "vm/message_network.h"
 #include "vm/profile_scan_time_model.h"
 #include "vm/timing_profile.h"
+#include "message_line.h"
 #include "vm_test_util.h"
 
 namespace softslc::test {
 namespace {
 
 std::shared_ptr<const Program> load(std::string_view body, std::string_view header = kHeader) {
-  LoadResult lr = load_program(program_text(body, header), "peer.slc");
-  if (!lr.ok()) throw std::runtime_error(lr.render_diagnostics());
-  return std::make_shared<const Program>(std::move(*lr.program));
+  return load_peer_program(program_text(body, header));
 }
 
 std::shared_ptr<const ScanTimeModel> slc503_model() {
@@ -29,31 +28,9 @@ std::shared_ptr<const ScanTimeModel> slc503_model() {
 }
 
 // A leader running `a_body` (node 1) and a peer "B" running `b_body` (node 2), both SLC 5/03s on DH-485.
-struct Line {
-  std::unique_ptr<Runtime> a;
-  Runtime* b = nullptr;
-
-  Line(std::string_view a_body, std::string_view b_body, RuntimeOptions a_opts = {}, RuntimeOptions b_opts = {}) {
-    PeerController peer;
-    peer.name = "B";
-    peer.node = 2;
-    peer.program = load(b_body);
-    peer.options = std::make_shared<const RuntimeOptions>(std::move(b_opts));
-    a_opts.node = 1;
-    a_opts.peers.push_back(std::move(peer));
-    std::string errors;
-    a = try_build(program_text(a_body), errors, std::move(a_opts));
-    if (!a) throw std::runtime_error("network did not build:\n" + errors);
-    b = a->peer("B");
-    if (!b) throw std::runtime_error("no peer B");
-  }
-  std::int64_t ai(std::string_view addr) const { return a->value(addr).as_int(); }
-  std::int64_t bi(std::string_view addr) const { return b->value(addr).as_int(); }
-  bool abit(std::string_view addr) const { return a->value(addr).as_bool(); }
-  void run() { ASSERT_TRUE(a->set_mode(Mode::Run)); }
-  bool until(std::string_view bit, Nanoseconds limit = kNsPerS) {
-    return a->run_until([&](const Runtime& r) { return r.value(bit).as_bool(); }, limit);
-  }
+struct Line : MessageLine {
+  Line(std::string_view a_body, std::string_view b_body, RuntimeOptions a_opts = {}, RuntimeOptions b_opts = {})
+      : MessageLine(program_text(a_body), program_text(b_body), std::move(a_opts), std::move(b_opts)) {}
 };
 
 // B's N7:0-9 exist (a rung that never runs names N7:9); A's N10 likewise.
@@ -213,11 +190,7 @@ std::string check_errors_of(std::string_view body, std::string_view header) {
 
 // A target whose scans take 3 s (its housekeeping): it answers only at its end of scan. (The watchdog
 // faults it after its first scan; a faulted processor still answers messages.)
-RuntimeOptions slow_target() {
-  RuntimeOptions o;
-  o.time_model = std::make_shared<SlowModel>(slc503_model(), 3 * kNsPerS);
-  return o;
-}
+RuntimeOptions slow_target() { return test::slow_target("1747-L532"); }
 
 TEST(Message, TheMessageTimerErrorsWith37hAndTo) {
   // RM 12-14: "Specifies the length of the message timer in seconds"; RM 12-42 table 12.17 "37H
@@ -535,11 +508,12 @@ TEST(MessageCheck, RefusesBadOperandsWithAPosition) {
   EXPECT_EQ(check_errors("SOR MSG WRITE 485CIF N9:0 7 N10:0 5 2 10 EOR", k502), "");
   EXPECT_NE(check_errors(kReadFive, k502).find("on the SLC 5/02 MSG takes 8 operands"), std::string::npos);
   EXPECT_NE(check_errors("SOR MSG WRITE 485CIF N9:0 7 N10:0 5 2 10 EOR").find("is the SLC 5/02 form"), std::string::npos);
-  // The MicroLogix MSG is refused by name; its MG file exists (tests/micrologix/message_file_test.cpp).
+  // The SLC form on a MicroLogix, and the box alone without the setup, name the MicroLogix form
+  // (tests/micrologix/msg_test.cpp has the MicroLogix MSG itself).
   EXPECT_NE(check_errors(kReadFive, "START Bul.1766\n").find("MG message file element"), std::string::npos);
   const std::string ml = check_errors("SOR XIC B3:0/0 MSG MG11:0 EOR", "START Bul.1766\n");
-  EXPECT_NE(ml.find("MSG is not available on the MicroLogix 1400"), std::string::npos) << ml;
-  EXPECT_NE(ml.find("does not send MicroLogix messages yet"), std::string::npos) << ml;
+  EXPECT_NE(ml.find("MSG with this operand list is the SLC 500 form"), std::string::npos) << ml;
+  EXPECT_NE(ml.find("MSG MG11:0 READ|WRITE device LOCAL channel data size node target timeout"), std::string::npos) << ml;
   EXPECT_EQ(check_errors("SOR XIC B3:0/0 MOV MG11:0.ERR N7:0 EOR", "START Bul.1766\n"), "");
   EXPECT_NE(check_errors("SOR XIC B3:0/0 MOV MG11:0.ERR N7:0 EOR").find("MG (message) files exist on the MicroLogix"),
             std::string::npos);

@@ -518,11 +518,7 @@ std::uint16_t Runtime::forced_output(std::uint32_t i) const {
 }
 
 ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elapsed) {
-  // S:4 counts the processor's free-running clock ticks of virtual time (10 ms, or 100 us on the
-  // MicroLogix 1100-1500); it is brought up to date once per scan.
-  const std::int64_t tick = (scan_start + elapsed) / program_->processor.free_running_clock_tick_ns();
-  data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
-  s4_tick_ = tick;
+  advance_free_running_clock(scan_start + elapsed);
   advance_rtc(scan_start + elapsed);
   // The MicroLogix high-speed counters: loaded on entry to an executing mode, then counted up to
   // the start of each scan (vm/ml_hsc.h).
@@ -535,6 +531,15 @@ ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elap
                                                                          : (s1 & ~status::kFirstPass)));
   const Nanoseconds watchdog = static_cast<Nanoseconds>(data_.status(status::kWatchdog) >> 8) * kTick;
   return interp_->program_scan(scan_start, elapsed, first_pass_, watchdog);
+}
+
+// S:4 counts the processor's free-running clock ticks of virtual time (10 ms, or 100 us on the
+// MicroLogix 1100-1500); it is brought up to date once per program scan, and a repeated scan's
+// program scan would have done the same.
+void Runtime::advance_free_running_clock(VirtualTime at) {
+  const std::int64_t tick = at / program_->processor.free_running_clock_tick_ns();
+  data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
+  s4_tick_ = tick;
 }
 
 void Runtime::advance_rtc(VirtualTime now) {
@@ -725,10 +730,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   if (k <= 0) return 1;
   // Take them: each would have advanced S:4 at its program scan, toggled S:33/9 (when the probe
   // did), and gone through housekeeping with the probe's scan time.
-  const std::int64_t tick =
-      (t + (k - 1) * d + input_scan_ns_) / program_->processor.free_running_clock_tick_ns();
-  data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
-  s4_tick_ = tick;
+  // The last repeat's program scan starts after its input scan.
+  advance_free_running_clock(t + (k - 1) * d + input_scan_ns_);
   const std::uint16_t s33 = data_.status(status::kCommBits);
   if (k % 2 == 1) data_.set_status(status::kCommBits, static_cast<std::uint16_t>(s33 ^ ((s33 ^ s33_before) & 0x0200u)));
   const std::uint64_t per_scan = stats_.instructions - instructions;

@@ -684,9 +684,13 @@ bool Runtime::probe_due() {
     --probe_wait_;
     return false;
   }
+  return modules_passive() && interp_->nothing_pending_between_scans();
+}
+
+bool Runtime::modules_passive() const {
   for (const ScannedModule& sm : scanned_)
     if (!sm.module->passive()) return false;
-  return interp_->nothing_pending_between_scans();
+  return true;
 }
 
 std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
@@ -699,10 +703,12 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint16_t* w = data_.words();
   const DataTableLayout& L = *program_->layout;
   // The probe changed nothing but the runtime's own status words, no event ran at its end (one
-  // may have changed a field input or a module), nothing is pending and no timer is timing: the
-  // next scan would do exactly what it did.
+  // may have changed a field input or a module), nothing is pending, no timer is timing and every
+  // module is still passive (the probe's output scan may have handed one an output image a tool
+  // changed, and a drive told to start is no longer settled): the next scan would do exactly what
+  // it did.
   bool repeats = mode_ == Mode::Run && !fault_ && events_at_last_scan_end_ == 0 &&
-                 interp_->nothing_pending_between_scans();
+                 interp_->nothing_pending_between_scans() && modules_passive();
   const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
   for (int s : kRuntimeStatusWords) before_probe_[L.status_word(s)] = w[L.status_word(s)];
   repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);

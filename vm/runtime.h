@@ -255,6 +255,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // due) are taken without executing them. Returns the scans run and taken.
   bool probe_due();
   std::int64_t probe_and_repeat(VirtualTime end);
+  // Every scanned module says it is passive (Module::passive).
+  bool modules_passive() const;
   void enter_fault(const FaultInfo& f);
   void enter_suspend();
   void apply_input_forces(std::uint32_t first, std::uint32_t count);

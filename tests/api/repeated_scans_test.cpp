@@ -134,5 +134,87 @@ TEST(RepeatedScans, AnInputArrivingAfterItsDelayStopsTheRepeats) {
   EXPECT_GT(skipping.runtime().stats().repeated, 0u);
 }
 
+// ---- Passive modules (Module::passive; docs/semantics.md "Repeated scans") --------------------------
+
+fs::path example(const std::string& relative) { return fs::path(SOFTSLC_SOURCE_DIR) / "examples" / "ladder" / relative; }
+
+// The 1203-SM1's drives are not events: they are brought up to date at each image scan, and a
+// drive ramping to its reference shows a new feedback word at every scan. Chapter 3's basic-mode
+// example (drive 1 started by I:2/0, stopped by I:2/1 released; reference N7:0): while the drive
+// accelerates or decelerates the module is not passive, so no scan may be skipped; once at speed,
+// and once stopped, the scans repeat. A passive() that ignored the ramp fails the comparison
+// (tried: the feedback word differs in the first slice after the start).
+TEST(RepeatedScans, AnSm1DriveRampingIsNeverSkippedOver) {
+  const fs::path program = example("1203-sm1/ch3_basic_drives.slc");
+  const fs::path bench = example("1203-sm1/drives.bench");
+  Controller skipping = Controller::load(program, bench);
+  Controller executing = Controller::load(program, bench);
+  for (Controller* c : {&skipping, &executing}) {
+    c->set("N7:0", 16000);                      // REF1: about half speed
+    c->inject("PUSH_BUTTONS", "input", {"42"});  // the three stop buttons released (normally closed)
+  }
+  run_side_by_side(skipping, executing, 10, milliseconds(100), "SM1 stopped");
+  const std::uint64_t stopped = skipping.runtime().stats().repeated;
+  EXPECT_GT(stopped, 0u) << "an idle 1203-SM1 must let scans repeat";
+  for (Controller* c : {&skipping, &executing}) c->inject("PUSH_BUTTONS", "input", {"43"});  // START1 pressed
+  run_side_by_side(skipping, executing, 2, milliseconds(10), "SM1 start pressed");
+  for (Controller* c : {&skipping, &executing}) c->inject("PUSH_BUTTONS", "input", {"42"});
+  run_side_by_side(skipping, executing, 100, milliseconds(100), "SM1 drive 1 accelerating");
+  EXPECT_NE(skipping.get_int("I:1.3"), 0) << "drive 1's feedback";
+  const std::uint64_t running = skipping.runtime().stats().repeated;
+  EXPECT_GT(running, stopped) << "at speed the drive is settled and the scans repeat again";
+  for (Controller* c : {&skipping, &executing}) c->inject("PUSH_BUTTONS", "input", {"40"});  // STOP1 pressed
+  run_side_by_side(skipping, executing, 100, milliseconds(100), "SM1 drive 1 stopping");
+  EXPECT_EQ(skipping.get_int("I:1.3"), 0);
+}
+
+// The 1747-SN: a remote input reaches the input image through the adapter module's input delay,
+// the adapter's backplane scan and the scanner's visit, all events. Appendix A's discrete
+// throughput example, its remote input toggled at times that fall between visits. Its link visits
+// a logical device every millisecond or two, more often than the program scans, so an event runs
+// at the end of nearly every scan and the scans do not repeat; what this holds is that a passive
+// scanner does not change that, and that the results agree.
+TEST(RepeatedScans, AnSnRemoteInputArrivesByEventsWithTheSameResults) {
+  const fs::path program = example("1747-sn/throughput_discrete.slc");
+  const fs::path bench = example("1747-sn/throughput_discrete.bench");
+  Controller skipping = Controller::load(program, bench);
+  Controller executing = Controller::load(program, bench);
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "SN idle");
+  for (int i = 0; i < 9; ++i) {
+    for (Controller* c : {&skipping, &executing}) c->inject("IN", "input", {i % 2 ? "0" : "1"});
+    run_side_by_side(skipping, executing, 7, milliseconds(3 + i), "SN remote input");
+    EXPECT_EQ(skipping.observe("OUT", "outputs"), executing.observe("OUT", "outputs")) << i;
+  }
+  EXPECT_EQ(skipping.observe("OUT", "outputs"), std::vector<std::int64_t>{1});
+}
+
+// The 1747-SDN: a photoeye's data bit, mapped to the discrete input image (I:2.1/0), changes on the
+// network's events (the device produces, the scanner's strobe carries it); the module keeps the
+// network's next event armed on the runtime's queue, so the repeats stop before it.
+TEST(RepeatedScans, AnSdnDeviceInputArrivesByEventsBetweenRepeats) {
+  const std::string text =
+      "START 1747-L542\nSLOT 2 1747-SDN SCAN_IN 32 SCAN_OUT 32\nLADDER 2\n"
+      "SOR OTE O:2.0/0 EOR\n"
+      "SOR XIC I:2.1/0 OSR B3:0/0 ADD N7:0 1 N7:0 EOR\n"
+      "SOR XIC I:2.1/0 OTE B3:0/1 EOR\n";
+  const std::string bench =
+      "devicenet DNET slot=2 node=0 baud=125K interscan_delay_ms=10 {\n"
+      "  node EYE address=9 model=series-9000-photoeye {\n"
+      "    strobe rx=1\n"
+      "    input from=strobe byte=0 bit=0 bits=1 to=I:1/0\n"
+      "  }\n"
+      "}\n";
+  Controller skipping = Controller::from_text(text, bench);
+  Controller executing = Controller::from_text(text, bench);
+  run_side_by_side(skipping, executing, 40, milliseconds(100), "SDN connecting");
+  const std::uint64_t idle = skipping.runtime().stats().repeated;
+  for (int i = 0; i < 6; ++i) {
+    for (Controller* c : {&skipping, &executing}) c->inject("EYE", "input", {"data", i % 2 ? "0" : "1"});
+    run_side_by_side(skipping, executing, 10, milliseconds(10 + 3 * i), "SDN photoeye");
+  }
+  EXPECT_EQ(skipping.get_int("N7:0"), 3);
+  EXPECT_GT(idle, 0u) << "an idle 1747-SDN must let scans repeat";
+}
+
 }  // namespace
 }  // namespace softslc

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "parser/checker.h"
+#include "parser/expression.h"
 #include "parser/loader.h"
 #include "vm/discrete_io.h"
 #include "vm/real_time_clock.h"
@@ -41,10 +42,15 @@ constexpr std::array<int, 6> kRuntimeStatusWords = {status::kWatchdog, status::k
 
 // The instructions whose effect is a function of the data table, the rung condition and the first
 // pass alone, so that a scan that changed nothing is followed by the same scan. The timers are
-// among them because a probe also requires that no timer is timing (TT). Everything else — I/O,
-// modules, messages, interrupts, ASCII, PID, the clocks, function files, CPT (whose expression
-// names addresses this list does not see) and any instruction added later — rules repeats out
-// until it is listed here.
+// among them because a probe also requires that no timer is timing (TT). CPT is, as the math
+// instructions it combines (its expression's addresses are checked like operands, below); RPC
+// writes the checksum the compiler computed, a constant of the program. DLG's queue is outside the
+// data table, but DLG appends a record only on a scan that finds its rung true and its queue's EN
+// bit (a DLS word, in the table) clear, and it then sets EN: a probe that logged a record changed
+// the table and is no probe that repeats (vm/ml_data_log.cpp DataLogs::scan). Everything else —
+// I/O, modules, messages, interrupts, ASCII, PID, the clocks, function files, the MicroLogix HSC
+// (HSL, RAC) and pulse outputs (PTO, PTOX) — and any instruction added later rules repeats out
+// until it is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
 bool acts_on_the_table_alone(Opcode op) {
   switch (op) {
     case Opcode::XIC: case Opcode::XIO: case Opcode::OTE: case Opcode::OTL: case Opcode::OTU:
@@ -63,18 +69,40 @@ bool acts_on_the_table_alone(Opcode op) {
     case Opcode::LFL: case Opcode::LFU: case Opcode::FFL: case Opcode::FFU:
     case Opcode::JMP: case Opcode::LBL: case Opcode::JSR: case Opcode::SBR: case Opcode::RET:
     case Opcode::END: case Opcode::TND: case Opcode::MCR:
+    case Opcode::CPT: case Opcode::RPC: case Opcode::DLG:
       return true;
     default:
       return false;
   }
 }
 
+bool reads_only_program_words(const Address& a);
+
+// A CPT expression's operands are its pushed atoms, constants or addresses as the compiler reads
+// them (vm/compiler.cpp expression_operand); an expression that does not parse is never repeated.
+bool expression_reads_only_program_words(const std::string& text) {
+  ExpressionError err;
+  const auto items = parse_expression(text, err);
+  if (!items) return false;
+  for (const ExprItem& it : *items) {
+    if (it.code != ExprCode::Push) continue;
+    NumberValue v;
+    if (parse_number_text(it.text, v)) continue;
+    const auto a = parse_address(it.text);
+    if (!a || !reads_only_program_words(*a)) return false;
+  }
+  return true;
+}
+
 // An operand a repeated scan would read the same: not resolved at run time (indirect or indexed),
 // not a function file or M file, and not one of the runtime's own status words (nor a file
 // operand in S, which could span them).
 bool reads_only_program_words(const Operand& op) {
-  if (!op.is_address()) return op.kind != Operand::Kind::Expression;
-  const Address& a = op.address;
+  if (op.kind == Operand::Kind::Expression) return expression_reads_only_program_words(op.spelling);
+  return !op.is_address() || reads_only_program_words(op.address);
+}
+
+bool reads_only_program_words(const Address& a) {
   if (a.is_indirect() || a.indexed || is_function_file(a.type) || is_mfile(a.type)) return false;
   if (a.type != FileType::Status) return true;
   return std::find(kRuntimeStatusWords.begin(), kRuntimeStatusWords.end(), a.element) == kRuntimeStatusWords.end();

@@ -216,5 +216,62 @@ TEST(RepeatedScans, AnSdnDeviceInputArrivesByEventsBetweenRepeats) {
   EXPECT_GT(idle, 0u) << "an idle 1747-SDN must let scans repeat";
 }
 
+// RPC reads the checksum the compiler computed, a constant of the program (1766-RM001A p. 239),
+// so its program repeats; CPT combines math on direct addresses like ADD and MUL. An input change
+// still reaches them.
+TEST(RepeatedScans, RpcAndCptProgramsRepeatAndStillFollowTheirInputs) {
+  const std::string text =
+      "START 1747-L532\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nLADDER 2\n"
+      "SOR CPT N7:1 (N7:0 + I:1.0) * 2 EOR\n"
+      "SOR XIC I:1/1 CPT F8:0 N7:1 | 4 EOR\n";
+  Controller skipping = Controller::from_text(text);
+  Controller executing = Controller::from_text(text);
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "CPT idle");
+  EXPECT_GT(skipping.runtime().stats().repeated, 0u);
+  for (Controller* c : {&skipping, &executing}) c->set("I:1/1", 1);
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "CPT input");
+  // (N7:0 + I:1.0) * 2 with I:1.0 = 2, then / 4.
+  EXPECT_EQ(skipping.get_int("N7:1"), 4);
+  EXPECT_DOUBLE_EQ(skipping.get_float("F8:0"), 1.0);
+
+  Controller checksum = Controller::load(example("micrologix/ml1400_checksum.slc"));
+  Controller reference = Controller::load(example("micrologix/ml1400_checksum.slc"));
+  run_side_by_side(checksum, reference, 10, milliseconds(100), "RPC");
+  EXPECT_GT(checksum.runtime().stats().repeated, checksum.runtime().stats().scans / 2);
+}
+
+// DLG appends a record on a false-to-true rung and sets its queue's EN bit, a DLS word in the data
+// table (1763-RM001C p. 442; AG-UM008C p. 3-65): the probe of a scan that logs sees the change, so
+// records are logged at the same scans with and without repeats, and the idle scans between them
+// repeat.
+TEST(RepeatedScans, DlgLogsTheSameRecordsWithRepeats) {
+  const std::string text =
+      "START Bul.1763\nLADDER 2\n"
+      "SOR XIC I:0/0 DLG 0 EOR\n"
+      "SOR XIC I:0/0 ONS B3:0/0 ADD N7:0 1 N7:0 EOR\n"
+      "DATALOG 0 RECORDS 8 TIME DELIMITER COMMA N7:0\n";
+  Controller skipping = Controller::from_text(text);
+  Controller executing = Controller::from_text(text);
+  run_side_by_side(skipping, executing, 3, milliseconds(100), "DLG idle");
+  for (int i = 0; i < 10; ++i) {
+    for (Controller* c : {&skipping, &executing}) c->set("I:0/0", i % 2 ? 0 : 1);
+    run_side_by_side(skipping, executing, 3, milliseconds(37), "DLG sample");
+  }
+  EXPECT_EQ(skipping.data_log_records(0), executing.data_log_records(0));
+  EXPECT_EQ(skipping.data_log_records(0).size(), 5u);
+  EXPECT_GT(skipping.runtime().stats().repeated, 0u);
+}
+
+// A CPT whose expression reads the free-running clock, or an indexed word, is never repeated: the
+// expression's addresses are checked like any operand's.
+TEST(RepeatedScans, ACptReadingTheClockIsNeverRepeated) {
+  for (const char* rung : {"SOR CPT N7:0 S:4 * 2 EOR\n", "SOR CPT N7:0 #N7:1 + 1 EOR\n"}) {
+    const std::string text = std::string("START 1747-L532\nLADDER 2\n") + rung;
+    Controller skipping = Controller::from_text(text);
+    Controller executing = Controller::from_text(text);
+    EXPECT_EQ(run_side_by_side(skipping, executing, 30, milliseconds(100), rung), 0u);
+  }
+}
+
 }  // namespace
 }  // namespace softslc

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -166,6 +168,32 @@ TEST(RepeatedScans, AnSm1DriveRampingIsNeverSkippedOver) {
   for (Controller* c : {&skipping, &executing}) c->inject("PUSH_BUTTONS", "input", {"40"});  // STOP1 pressed
   run_side_by_side(skipping, executing, 100, milliseconds(100), "SM1 drive 1 stopping");
   EXPECT_EQ(skipping.get_int("I:1.3"), 0);
+}
+
+// A tool may change an output word the program does not write between two run_for calls; the
+// probe's output scan then hands it to the module, and a drive told to start is no longer settled.
+// The runtime asks the modules again after the probe, so the ramp is executed scan by scan
+// (without that second question this fails: the feedback word differs within the first slice).
+TEST(RepeatedScans, AModuleStartedByTheProbesOutputScanIsNotRepeated) {
+  const std::string text =
+      "START 1747-L532\nSLOT 1 1203-SM1 SCAN_IN 8 SCAN_OUT 8 ID_CODE 3516\nSLOT 2 1746-IB16 SCAN_IN 1 SCAN_OUT 0\n"
+      "LADDER 2\nSOR OTE O:1.0/0 EOR\n";
+  std::string bench;
+  {
+    std::ifstream in(example("1203-sm1/drives.bench"));
+    bench.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  Controller skipping = Controller::from_text(text, bench);
+  Controller executing = Controller::from_text(text, bench);
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "SM1 enabled, stopped");
+  const std::uint64_t stopped = skipping.runtime().stats().repeated;
+  EXPECT_GT(stopped, 0u);
+  for (Controller* c : {&skipping, &executing}) {
+    c->set("O:1.3", 16000);  // reference, channel 1 (basic mode word 3)
+    c->set("O:1.2", 2);      // logic command: start (bit 1), stop (bit 0) clear
+  }
+  run_side_by_side(skipping, executing, 50, milliseconds(100), "SM1 started by a tool");
+  EXPECT_NE(skipping.get_int("I:1.3"), 0) << "drive 1's feedback";
 }
 
 // The 1747-SN: a remote input reaches the input image through the adapter module's input delay,

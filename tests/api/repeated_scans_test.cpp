@@ -268,10 +268,10 @@ TEST(RepeatedScans, RpcAndCptProgramsRepeatAndStillFollowTheirInputs) {
   EXPECT_GT(checksum.runtime().stats().repeated, checksum.runtime().stats().scans / 2);
 }
 
-// DLG appends a record on a false-to-true rung and sets its queue's EN bit, a DLS word in the data
-// table (1763-RM001C p. 442; AG-UM008C p. 3-65): the probe of a scan that logs sees the change, so
-// records are logged at the same scans with and without repeats, and the idle scans between them
-// repeat.
+// DLG "only captures data on a false-to-true rung transition" (AG-UM008C p. 3-64) and its rung true
+// sets the queue's EN bit, a DLS word in the data table (p. 3-65; 1763-RM001C p. 440): the probe of
+// a scan that logs sees the change, so records are logged at the same scans with and without
+// repeats (five rising edges, five records), and the idle scans between them repeat.
 TEST(RepeatedScans, DlgLogsTheSameRecordsWithRepeats) {
   const std::string text =
       "START Bul.1763\nLADDER 2\n"

@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "parser/checker.h"
+#include "parser/expression.h"
 #include "parser/loader.h"
 #include "vm/discrete_io.h"
 #include "vm/real_time_clock.h"
@@ -41,10 +42,15 @@ constexpr std::array<int, 6> kRuntimeStatusWords = {status::kWatchdog, status::k
 
 // The instructions whose effect is a function of the data table, the rung condition and the first
 // pass alone, so that a scan that changed nothing is followed by the same scan. The timers are
-// among them because a probe also requires that no timer is timing (TT). Everything else — I/O,
-// modules, messages, interrupts, ASCII, PID, the clocks, function files, CPT (whose expression
-// names addresses this list does not see) and any instruction added later — rules repeats out
-// until it is listed here.
+// among them because a probe also requires that no timer is timing (TT). CPT is, as the math
+// instructions it combines (its expression's addresses are checked like operands, below); RPC
+// writes the checksum the compiler computed, a constant of the program. DLG's queue is outside the
+// data table, but DLG appends a record only on a scan that finds its rung true and its queue's EN
+// bit (a DLS word, in the table) clear, and it then sets EN: a probe that logged a record changed
+// the table and is no probe that repeats (vm/ml_data_log.cpp DataLogs::scan). Everything else —
+// I/O, modules, messages, interrupts, ASCII, PID, the clocks, function files, the MicroLogix HSC
+// (HSL, RAC) and pulse outputs (PTO, PTOX) — and any instruction added later rules repeats out
+// until it is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
 bool acts_on_the_table_alone(Opcode op) {
   switch (op) {
     case Opcode::XIC: case Opcode::XIO: case Opcode::OTE: case Opcode::OTL: case Opcode::OTU:
@@ -63,18 +69,40 @@ bool acts_on_the_table_alone(Opcode op) {
     case Opcode::LFL: case Opcode::LFU: case Opcode::FFL: case Opcode::FFU:
     case Opcode::JMP: case Opcode::LBL: case Opcode::JSR: case Opcode::SBR: case Opcode::RET:
     case Opcode::END: case Opcode::TND: case Opcode::MCR:
+    case Opcode::CPT: case Opcode::RPC: case Opcode::DLG:
       return true;
     default:
       return false;
   }
 }
 
+bool reads_only_program_words(const Address& a);
+
+// A CPT expression's operands are its pushed atoms, constants or addresses as the compiler reads
+// them (vm/compiler.cpp expression_operand); an expression that does not parse is never repeated.
+bool expression_reads_only_program_words(const std::string& text) {
+  ExpressionError err;
+  const auto items = parse_expression(text, err);
+  if (!items) return false;
+  for (const ExprItem& it : *items) {
+    if (it.code != ExprCode::Push) continue;
+    NumberValue v;
+    if (parse_number_text(it.text, v)) continue;
+    const auto a = parse_address(it.text);
+    if (!a || !reads_only_program_words(*a)) return false;
+  }
+  return true;
+}
+
 // An operand a repeated scan would read the same: not resolved at run time (indirect or indexed),
 // not a function file or M file, and not one of the runtime's own status words (nor a file
 // operand in S, which could span them).
 bool reads_only_program_words(const Operand& op) {
-  if (!op.is_address()) return op.kind != Operand::Kind::Expression;
-  const Address& a = op.address;
+  if (op.kind == Operand::Kind::Expression) return expression_reads_only_program_words(op.spelling);
+  return !op.is_address() || reads_only_program_words(op.address);
+}
+
+bool reads_only_program_words(const Address& a) {
   if (a.is_indirect() || a.indexed || is_function_file(a.type) || is_mfile(a.type)) return false;
   if (a.type != FileType::Status) return true;
   return std::find(kRuntimeStatusWords.begin(), kRuntimeStatusWords.end(), a.element) == kRuntimeStatusWords.end();
@@ -518,11 +546,7 @@ std::uint16_t Runtime::forced_output(std::uint32_t i) const {
 }
 
 ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elapsed) {
-  // S:4 counts the processor's free-running clock ticks of virtual time (10 ms, or 100 us on the
-  // MicroLogix 1100-1500); it is brought up to date once per scan.
-  const std::int64_t tick = (scan_start + elapsed) / program_->processor.free_running_clock_tick_ns();
-  data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
-  s4_tick_ = tick;
+  advance_free_running_clock(scan_start + elapsed);
   advance_rtc(scan_start + elapsed);
   // The MicroLogix high-speed counters: loaded on entry to an executing mode, then counted up to
   // the start of each scan (vm/ml_hsc.h).
@@ -535,6 +559,15 @@ ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elap
                                                                          : (s1 & ~status::kFirstPass)));
   const Nanoseconds watchdog = static_cast<Nanoseconds>(data_.status(status::kWatchdog) >> 8) * kTick;
   return interp_->program_scan(scan_start, elapsed, first_pass_, watchdog);
+}
+
+// S:4 counts the processor's free-running clock ticks of virtual time (10 ms, or 100 us on the
+// MicroLogix 1100-1500); it is brought up to date once per program scan, and a repeated scan's
+// program scan would have done the same.
+void Runtime::advance_free_running_clock(VirtualTime at) {
+  const std::int64_t tick = at / program_->processor.free_running_clock_tick_ns();
+  data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
+  s4_tick_ = tick;
 }
 
 void Runtime::advance_rtc(VirtualTime now) {
@@ -679,9 +712,13 @@ bool Runtime::probe_due() {
     --probe_wait_;
     return false;
   }
+  return modules_passive() && interp_->nothing_pending_between_scans();
+}
+
+bool Runtime::modules_passive() const {
   for (const ScannedModule& sm : scanned_)
     if (!sm.module->passive()) return false;
-  return interp_->nothing_pending_between_scans();
+  return true;
 }
 
 std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
@@ -694,10 +731,12 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint16_t* w = data_.words();
   const DataTableLayout& L = *program_->layout;
   // The probe changed nothing but the runtime's own status words, no event ran at its end (one
-  // may have changed a field input or a module), nothing is pending and no timer is timing: the
-  // next scan would do exactly what it did.
+  // may have changed a field input or a module), nothing is pending, no timer is timing and every
+  // module is still passive (the probe's output scan may have handed one an output image a tool
+  // changed, and a drive told to start is no longer settled): the next scan would do exactly what
+  // it did.
   bool repeats = mode_ == Mode::Run && !fault_ && events_at_last_scan_end_ == 0 &&
-                 interp_->nothing_pending_between_scans();
+                 interp_->nothing_pending_between_scans() && modules_passive();
   const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
   for (int s : kRuntimeStatusWords) before_probe_[L.status_word(s)] = w[L.status_word(s)];
   repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);
@@ -725,10 +764,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   if (k <= 0) return 1;
   // Take them: each would have advanced S:4 at its program scan, toggled S:33/9 (when the probe
   // did), and gone through housekeeping with the probe's scan time.
-  const std::int64_t tick =
-      (t + (k - 1) * d + input_scan_ns_) / program_->processor.free_running_clock_tick_ns();
-  data_.set_status(status::kClock, static_cast<std::uint16_t>(data_.status(status::kClock) + (tick - s4_tick_)));
-  s4_tick_ = tick;
+  // The last repeat's program scan starts after its input scan.
+  advance_free_running_clock(t + (k - 1) * d + input_scan_ns_);
   const std::uint16_t s33 = data_.status(status::kCommBits);
   if (k % 2 == 1) data_.set_status(status::kCommBits, static_cast<std::uint16_t>(s33 ^ ((s33 ^ s33_before) & 0x0200u)));
   const std::uint64_t per_scan = stats_.instructions - instructions;

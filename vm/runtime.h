@@ -245,6 +245,9 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   Nanoseconds output_scan();
   // Advances the RTC function file (when the processor has one) to virtual time `now`.
   void advance_rtc(VirtualTime now);
+  // Brings S:4, the free-running clock, up to the processor's clock ticks at virtual time `at`
+  // (the start of a program scan, executed or repeated).
+  void advance_free_running_clock(VirtualTime at);
   Nanoseconds housekeeping(Nanoseconds scan_time, bool executed);
   // Repeated scans (docs/semantics.md "Repeated scans"): whether the next scan may be a probe, and
   // the probe: one scan executed with the data table saved before it; when it changed no word but
@@ -252,6 +255,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // due) are taken without executing them. Returns the scans run and taken.
   bool probe_due();
   std::int64_t probe_and_repeat(VirtualTime end);
+  // Every scanned module says it is passive (Module::passive).
+  bool modules_passive() const;
   void enter_fault(const FaultInfo& f);
   void enter_suspend();
   void apply_input_forces(std::uint32_t first, std::uint32_t count);

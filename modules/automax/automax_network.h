@@ -14,6 +14,12 @@
 // that answers joins). Each poll costs the drop's DROP_TIME of section 4.5 and the inactive
 // poll 2.7 ms (modules/throughput/automax_throughput.h), so the update period is the one
 // `softslc throughput` computes. The counters of drop 0 registers 14-19 count the messages.
+//
+// Passive (Module::passive, docs/semantics.md "Repeated scans"): always. The master has no image
+// words (its input and output scans do nothing); everything it does in time — polls, retries, the
+// rail reads, a drop's power-up diagnostics, which `answers` compares with the time of its poll —
+// happens in its update-cycle events on the runtime's queue, and the program reaches it only
+// through M0, which keeps a program from repeating its scans anyway.
 #pragma once
 
 #include <array>
@@ -100,6 +106,7 @@ class AutomaxMaster : public Module {
   MAccess read_m(MFile f, int word, std::uint16_t& value) override;
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
+  bool passive() const override { return true; }
 
   std::vector<std::string> device_names() const override;
   DeviceStatus inject(const DeviceFault& fault) override;

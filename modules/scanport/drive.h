@@ -350,6 +350,9 @@ class Drive {
   std::uint16_t feedback() const;
   // Running in the sense of error 7: the run latch is set or the motor still turns.
   bool running() const { return run_latch_ || speed_q_ != 0; }
+  // The speed has reached its target: until a command, the reference or a fault changes, every
+  // plant update leaves the drive as it is (advance_to skips them).
+  bool settled() const { return speed_q_ == target_q(); }
   bool faulted() const { return faulted_; }
   // Latch a fault (e.g. the SCANport connection was lost while enabled): the drive stops and
   // the last_fault parameter, if any, takes `code`.

@@ -74,6 +74,12 @@ void SdnScanner::wake(VirtualTime t) {
   sync(t);
 }
 
+// See the header. The armed host event must stand for the network's next event (rearm keeps it so).
+bool SdnScanner::passive() const {
+  if (request_block_written_ || dem_->owner() || scanner_->transactions_in_use() != 0) return false;
+  return network_->next_event_time().has_value() == wake_at_.has_value();
+}
+
 // ---- The backplane -------------------------------------------------------------------------------------------
 
 void SdnScanner::input_scan(std::span<std::uint16_t> image) {

@@ -18,6 +18,17 @@
 //
 // Bench devices are reached by name: the network's name takes bus-level changes, each node's name
 // device-level ones (docs/1747-sdn.md, "The module").
+//
+// Passive (Module::passive, docs/semantics.md "Repeated scans"): the network changes only in its
+// own timeline's events, and the module always has the host event armed at the next of them
+// (rearm after every access), so whatever the network does later is an event on the runtime's
+// queue; between events the input scan copies the same image. The output scan hands the scanner the
+// command register and output words: the scanner stores the words, acts on the reboot bit's rising
+// edge only, and otherwise reconciles the port with levels it already holds, so the same image
+// again changes nothing. The module is passive unless a DEM is in flight, a request block written
+// this scan waits for its event, or an explicit-message transaction is open (their progress is
+// events too, but the M1 response area changes with it; a program with a DEM or an M-file operand
+// never repeats, so being conservative costs nothing).
 #pragma once
 
 #include <memory>
@@ -45,6 +56,7 @@ class SdnScanner final : public Module {
   MAccess read_m(MFile f, int word, std::uint16_t& value) override;
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
+  bool passive() const override;
   void execute(ModuleInstructionContext& ctx) override;
   std::vector<std::string> device_names() const override;
   DeviceStatus inject(const DeviceFault& fault) override;

@@ -76,6 +76,16 @@ const scanport::Drive* Sm1Module::drive(int channel) const {
   return ch.drive ? &*ch.drive : nullptr;
 }
 
+// See the header: nothing may move with the clock alone between events.
+bool Sm1Module::passive() const {
+  if (m0_loaded_ && (!host() || host()->now() < m0_ready_at_)) return false;
+  for (const Channel& ch : channels_) {
+    if (ch.message == MessageState::Busy) return false;
+    if (ch.drive && !ch.drive->settled()) return false;
+  }
+  return true;
+}
+
 bool Sm1Module::m0_status() const { return m0_loaded_ && host() && host()->now() >= m0_ready_at_; }
 
 void Sm1Module::advance_drives() {

@@ -10,6 +10,15 @@
 //   - M0 (eight request buffers) and M1 (DIP switches, G file echo, three response buffers);
 //   - messages on the SCANport link as events on the runtime's queue.
 // The drives run in the runtime's virtual time: every hook first brings them up to now.
+//
+// Passive (Module::passive, docs/semantics.md "Repeated scans"): the drives are not events; they
+// are brought up to date at each image scan. So the module is passive only while nothing it shows
+// would move with time alone: every drive settled (its speed at its target, so the plant updates
+// change nothing), no message Busy (its completion is an event, but the drive acted on it at its
+// start), and M0 STA not waiting for the end of the module's M0 read time (kM0ReadTime; that is
+// the clock, not an event). Given the same output image again, the output scan then changes
+// nothing: the logic command's functions act on rising edges only, and the reference, datalinks
+// and DE are levels the drive already holds.
 #pragma once
 
 #include <array>
@@ -43,6 +52,7 @@ class Sm1Module final : public Module {
   MAccess read_m(MFile f, int word, std::uint16_t& value) override;
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
+  bool passive() const override;
   std::vector<std::string> device_names() const override;
   DeviceStatus inject(const DeviceFault& fault) override;
   std::optional<std::vector<std::int64_t>> observe(std::string_view device, std::string_view what) const override;

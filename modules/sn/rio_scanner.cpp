@@ -313,6 +313,14 @@ void RioScanner::on_mode_change(Mode from, Mode to) {
   effective_mode_ = to;
 }
 
+// See the header: the image scans are copies, the rest is events; not while a new mode waits for
+// its first scan or a block transfer is under way.
+bool RioScanner::passive() const {
+  if (pending_mode_ || !notes_.empty() || !ready_.empty()) return false;
+  return std::none_of(bt_.begin(), bt_.end(),
+                      [](const Buffer& b) { return b.state == BtState::Waiting || b.state == BtState::Active; });
+}
+
 void RioScanner::execute(ModuleInstructionContext& ctx) {
   if (ctx.opcode() == Opcode::BTR || ctx.opcode() == Opcode::BTW) {
     rio::execute_block_transfer(ctx);

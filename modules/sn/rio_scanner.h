@@ -39,6 +39,16 @@
 //
 // Determinism: all state changes happen in module callbacks and events ordered by (time,
 // sequence); nothing depends on the host.
+//
+// Passive (Module::passive, docs/semantics.md "Repeated scans"): the input scan copies the input
+// image the link's visits last left, and the output scan stores the output image the visits will
+// send; neither looks at the clock. Everything the link, the adapters' chassis, the input and
+// output delays, the watchdogs and the block-transfer service do later is an event on the runtime's
+// queue. So the scanner is passive unless a new Run/Test mode is waiting for the end of its first
+// scan (the output scan would then change the M0 settings in effect) or a block transfer is in
+// progress (a note or finished transfer waiting for a service tick, or a buffer Waiting or Active):
+// the transfer's progress is events too, but M1 changes with it, and being conservative costs
+// nothing because a program with BTR, BTW or an M-file operand never repeats.
 #pragma once
 
 #include <array>
@@ -70,6 +80,7 @@ class RioScanner final : public Module {
   MAccess read_m(MFile f, int word, std::uint16_t& value) override;
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
+  bool passive() const override;
   void execute(ModuleInstructionContext& ctx) override;
   bool set_field_input(int word, std::uint16_t value, std::uint16_t mask) override;
   std::optional<std::uint16_t> field_input(int word) const override;

@@ -159,14 +159,14 @@ class Compiler {
   }
 
   void note_address(const Address& a, std::uint32_t extent, SourcePos pos) {
-    if (a.indirect_file) note_ref(*a.indirect_file, pos);
-    if (a.indirect_element) note_ref(*a.indirect_element, pos);
-    if (a.indirect_word) note_ref(*a.indirect_word, pos);
-    if (a.indirect_bit) note_ref(*a.indirect_bit, pos);
+    if (a.indirect_file()) note_ref(*a.indirect_file(), pos);
+    if (a.indirect_element()) note_ref(*a.indirect_element(), pos);
+    if (a.indirect_word()) note_ref(*a.indirect_word(), pos);
+    if (a.indirect_bit()) note_ref(*a.indirect_bit(), pos);
     if (is_io(a.type) || is_mfile(a.type) || a.type == FileType::Status || is_function_file(a.type)) return;
-    if (a.indirect_file) return;  // which file is only known at run time
+    if (a.indirect_file()) return;  // which file is only known at run time
     std::uint32_t elements = 1;
-    if (!a.indirect_element && !(a.bit_offset_form && a.indirect_bit)) {
+    if (!a.indirect_element() && !(a.bit_offset_form && a.indirect_bit())) {
       if (a.element < 0) {
         error(pos, "negative element in " + to_string(a));
         return;
@@ -663,10 +663,10 @@ class Compiler {
     d.element = a.element;
     d.word = a.word;
     d.bit = a.bit;
-    if (a.indirect_file) d.ptr_file = ref_word(*a.indirect_file, pos);
-    if (a.indirect_element) d.ptr_element = ref_word(*a.indirect_element, pos);
-    if (a.indirect_word) d.ptr_word = ref_word(*a.indirect_word, pos);
-    if (a.indirect_bit) d.ptr_bit = ref_word(*a.indirect_bit, pos);
+    if (a.indirect_file()) d.ptr_file = ref_word(*a.indirect_file(), pos);
+    if (a.indirect_element()) d.ptr_element = ref_word(*a.indirect_element(), pos);
+    if (a.indirect_word()) d.ptr_word = ref_word(*a.indirect_word(), pos);
+    if (a.indirect_bit()) d.ptr_bit = ref_word(*a.indirect_bit(), pos);
     if (is_mfile(a.type)) {
       d.mfile = true;
       d.access_row = current_row_;
@@ -683,7 +683,7 @@ class Compiler {
                        std::to_string(size) + " words)");
     } else if (is_function_file(a.type)) {
       error(pos, "function file addresses cannot be indexed or indirect: " + to_string(a));
-    } else if (!a.indirect_file) {
+    } else if (!a.indirect_file()) {
       // The file itself must exist even when the element is computed at run time.
       if (!is_io(a.type) && a.type != FileType::Status) {
         const auto& f = layout_.files[a.file];
@@ -823,7 +823,7 @@ class Compiler {
                           (kind == OperandKind::Counter && a.type == FileType::Counter) ||
                           (kind == OperandKind::Control && a.type == FileType::Control) ||
                           (kind == OperandKind::Resettable && is_structured(a.type)));
-    if (!ok_type || a.has_bit() || a.word > 0 || a.indirect_word) {
+    if (!ok_type || a.has_bit() || a.word > 0 || a.indirect_word()) {
       error(pos, "'" + op.spelling + "' is not a " +
                      (kind == OperandKind::Timer     ? "timer (T) element"
                       : kind == OperandKind::Counter ? "counter (C) element"

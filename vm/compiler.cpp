@@ -93,7 +93,9 @@ class Compiler {
       out_.initial_words = std::move(init_);
       out_.slots = prog_.slots;
       out_.forces = prog_.forces;
-      out_.program_checksum = program_checksum(prog_);
+      // Only RPC reads the checksum, and computing it formats the whole ladder (8% of loading a
+      // 1M-rung program, docs/performance.md "Load time"): a program without RPC keeps 0.
+      if (reads_checksum_) out_.program_checksum = program_checksum(prog_);
       r.program = std::move(out_);
     }
     return r;
@@ -263,6 +265,7 @@ class Compiler {
         continue;
       }
       const auto& in = e.instruction;
+      if (in.opcode == Opcode::RPC) reads_checksum_ = true;
       const InstructionSpec& sp = spec(in.opcode);
       for (std::size_t i = 0; i < in.operands.size(); ++i) {
         const auto& op = in.operands[i];
@@ -1283,6 +1286,7 @@ class Compiler {
   std::vector<Fixup> calls_;
   int cur_file_ = -1;
   int cur_rung_ = -1;
+  bool reads_checksum_ = false;  // the program has an RPC, so out_.program_checksum is computed
   MFileAccess current_row_ = MFileAccess::OtherM;  // access-time row of the operand being compiled
 };
 

@@ -588,26 +588,28 @@ class Checker {
   void check_operand(const Instruction& in, Operand& op, const OperandSpec& os) {
     if (!keyword_words(os.kind).empty()) return check_keyword(in, op, os);
     resolve(op);
-    const std::string where = mnemonic_of(in) + " " + std::string(os.label);
+    // "TON timer": built only for a diagnostic, since a program has millions of clean operands
+    // (building it for each was 4% of loading a 1M-rung program, docs/performance.md "Load time").
+    const auto where = [&] { return mnemonic_of(in) + " " + std::string(os.label); };
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
-      error(op.pos, "unknown symbol '" + op.spelling + "' (" + where + ")");
+      error(op.pos, "unknown symbol '" + op.spelling + "' (" + where() + ")");
       return;
     }
     if (op.kind == Operand::Kind::Address && uses_memdef_file(op.address))
-      return error(op.pos, where + ": " + std::string(file_letter(op.address.type)) + std::to_string(op.address.file) +
+      return error(op.pos, where() + ": " + std::string(file_letter(op.address.type)) + std::to_string(op.address.file) +
                                " holds the program's MEMDEF variables; name them instead (docs/automax.md)");
     if (op.is_address() && is_function_file(op.address.type) && os.access != OperandAccess::Read)
-      check_function_file_write(op, os, where);
+      check_function_file_write(op, os, where());
     if (op.is_address() && is_message_file(op.address.type) && os.access != OperandAccess::Read)
-      check_message_file_write(op, os, where);
+      check_message_file_write(op, os, where());
     if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
       const Symbol* sym = symbols_.at(op.spelling);
       if (sym->automax && sym->automax->kind == AutomaxDef::Kind::IoDef)
-        return error(op.pos, where + ": " + op.spelling + " is an IODEF point of drop 0, and drop 0 registers are read "
+        return error(op.pos, where() + ": " + op.spelling + " is an IODEF point of drop 0, and drop 0 registers are read "
                                                         "only (AutoMax Remote I/O manual, section 4.2)");
     }
     auto expect = [&](std::string_view what) {
-      error(op.pos, where + ": expected " + std::string(what) + ", found '" + op.spelling + "'");
+      error(op.pos, where() + ": expected " + std::string(what) + ", found '" + op.spelling + "'");
     };
     switch (os.kind) {
       case OperandKind::Bit:
@@ -617,15 +619,15 @@ class Checker {
       case OperandKind::Source:
       case OperandKind::WordSource:
         if (os.kind == OperandKind::WordSource && op.kind == Operand::Kind::Float)
-          return error(op.pos, where + ": " + mnemonic_of(in) + " works on integer words; a floating-point constant is not allowed");
+          return error(op.pos, where() + ": " + mnemonic_of(in) + " works on integer words; a floating-point constant is not allowed");
         if (os.kind == OperandKind::WordSource && op.is_address() && op.address.type == FileType::Float)
-          return error(op.pos, where + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
+          return error(op.pos, where() + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
         if (op.kind == Operand::Kind::Float && !program_.processor.has_float_files())
           return error(op.pos, "floating-point constants need SLC 5/03 OS301 or later");
         if (op.is_number()) {
           if (op.kind == Operand::Kind::Integer && (op.integer < -32768 || op.integer > 65535) &&
               program_.processor.family != ProcessorFamily::MicroLogix)
-            return error(op.pos, where + ": constant " + op.spelling + " does not fit a 16-bit word");
+            return error(op.pos, where() + ": constant " + op.spelling + " does not fit a 16-bit word");
           return;
         }
         if (op.address.has_bit()) return expect("a word address or a constant");
@@ -636,7 +638,7 @@ class Checker {
       case OperandKind::WordDest:
         if (!op.is_address()) return expect("a destination word address");
         if (os.kind == OperandKind::WordDest && op.address.type == FileType::Float)
-          return error(op.pos, where + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
+          return error(op.pos, where() + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
         if (op.address.has_bit()) return expect("a word address, not a bit");
         if (is_structured(op.address.type) && op.address.word < 0)
           return expect("a word of the element (.PRE, .ACC, .LEN or .POS)");
@@ -645,7 +647,7 @@ class Checker {
         if (!op.is_address()) return expect("a file address such as #N7:0");
         if (op.address.has_bit()) return expect("a file address, not a bit");
         if (!op.address.indexed)
-          warning(op.pos, where + ": file operand written without '#'; RSLogix 500 writes #" + op.spelling);
+          warning(op.pos, where() + ": file operand written without '#'; RSLogix 500 writes #" + op.spelling);
         break;
       case OperandKind::Timer:
       case OperandKind::Counter:
@@ -664,7 +666,7 @@ class Checker {
           // The 0.001 s time base exists on the MicroLogix 1100-1500 only (1763-RM001, 1766-RM001,
           // 1762-RM001 "Timer Instructions": time base 0.001, 0.01 or 1.0 s).
           if (!program_.processor.has_millisecond_timebase())
-            return error(op.pos, where + ": the 0.001 s time base exists on the MicroLogix 1100, 1200, 1400 and 1500 "
+            return error(op.pos, where() + ": the 0.001 s time base exists on the MicroLogix 1100, 1200, 1400 and 1500 "
                                          "only; " + program_.processor.display_name + " has 1.0 and 0.01");
           break;
         }
@@ -678,7 +680,7 @@ class Checker {
       case OperandKind::ProgramFile:
         if (op.kind != Operand::Kind::Integer) return expect("an integer constant");
         if (op.integer < os.min || op.integer > os.max)
-          return error(op.pos, where + " " + op.spelling + " is out of range " + std::to_string(os.min) + "-" +
+          return error(op.pos, where() + " " + op.spelling + " is out of range " + std::to_string(os.min) + "-" +
                                    std::to_string(os.max));
         break;
       case OperandKind::SlotWord: {
@@ -714,7 +716,7 @@ class Checker {
                               "1747-RM001G p. 9-3)"
                             : "an integer file element such as N10:0");
         if (!op.address.indirect_element() && op.address.element + len > 256)
-          return error(op.pos, where + ": the " + std::to_string(len) + "-word control block starting at " +
+          return error(op.pos, where() + ": the " + std::to_string(len) + "-word control block starting at " +
                                    op.spelling + " runs past the end of the file (element 255)");
         break;
       }

@@ -505,20 +505,20 @@ std::string to_string(const Address& a) {
     return s;
   }
   s += file_letter(a.type);
-  if (a.indirect_file) {
-    s += '[' + to_string(*a.indirect_file) + ']';
+  if (a.indirect_file()) {
+    s += '[' + to_string(*a.indirect_file()) + ']';
   } else if (fixed_file_number(a.type) < 0 && !is_mfile(a.type)) {
     s += std::to_string(a.file);
   }
-  if (a.bit_offset_form && a.indirect_bit && !a.indirect_element) {
+  if (a.bit_offset_form && a.indirect_bit() && !a.indirect_element()) {
     // B3/[N7:0]: a bit offset into the file computed at run time.
-    s += "/[" + to_string(*a.indirect_bit) + ']';
+    s += "/[" + to_string(*a.indirect_bit()) + ']';
     return s;
   }
   s += ':';
-  s += a.indirect_element ? '[' + to_string(*a.indirect_element) + ']' : std::to_string(a.element);
-  if (a.indirect_word) {
-    s += ".[" + to_string(*a.indirect_word) + ']';
+  s += a.indirect_element() ? '[' + to_string(*a.indirect_element()) + ']' : std::to_string(a.element);
+  if (a.indirect_word()) {
+    s += ".[" + to_string(*a.indirect_word()) + ']';
   } else if (is_structured(a.type)) {
     // T4:0 is the whole element; T4:0.0 its control word; T4:0/DN a bit of that word.
     if (a.word > 0 || (a.word == 0 && !a.has_bit())) {
@@ -538,12 +538,12 @@ std::string to_string(const Address& a) {
   } else if (a.word >= 0) {
     s += '.' + std::to_string(a.word);
   }
-  if (a.indirect_bit) {
-    s += "/[" + to_string(*a.indirect_bit) + ']';
+  if (a.indirect_bit()) {
+    s += "/[" + to_string(*a.indirect_bit()) + ']';
   } else if (a.bit >= 0) {
     // A bit name (T4:0/DN) names a bit of the control word: not for a word chosen at run time
     // (C0:1.[N1:5]/10 is bit 10 of whichever word N1:5 selects).
-    const bool control_word = a.word <= 0 && !a.indirect_word;
+    const bool control_word = a.word <= 0 && !a.indirect_word();
     auto name = is_structured(a.type) && control_word ? structured_bit_name(a.type, a.bit) : std::string_view{};
     s += '/';
     s += name.empty() ? std::to_string(a.bit) : std::string(name);

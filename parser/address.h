@@ -21,6 +21,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -284,28 +285,82 @@ struct IndirectRef {
   bool operator==(const IndirectRef&) const = default;
 };
 
+// The four indirect references an Address may have ([N10:1] in the file, element, word or bit
+// position). Held out of line by Address: almost no operand has one, and in place they were 40 of
+// the Address's 60 bytes (docs/performance.md "Load time").
+struct IndirectRefs {
+  std::optional<IndirectRef> file;
+  std::optional<IndirectRef> element;
+  std::optional<IndirectRef> word;
+  std::optional<IndirectRef> bit;
+
+  bool operator==(const IndirectRefs&) const = default;
+};
+
+// An address's indirect references with value semantics: empty (no allocation) for a direct
+// address, a copied IndirectRefs otherwise. Two holders compare by what they hold.
+class IndirectHolder {
+ public:
+  IndirectHolder() = default;
+  IndirectHolder(const IndirectHolder& o) : refs_(o.refs_ ? std::make_unique<IndirectRefs>(*o.refs_) : nullptr) {}
+  IndirectHolder(IndirectHolder&&) noexcept = default;
+  IndirectHolder& operator=(const IndirectHolder& o) {
+    if (this != &o) refs_ = o.refs_ ? std::make_unique<IndirectRefs>(*o.refs_) : nullptr;
+    return *this;
+  }
+  IndirectHolder& operator=(IndirectHolder&&) noexcept = default;
+  ~IndirectHolder() = default;
+
+  const IndirectRefs* get() const { return refs_.get(); }
+  IndirectRefs& make() {
+    if (!refs_) refs_ = std::make_unique<IndirectRefs>();
+    return *refs_;
+  }
+  bool operator==(const IndirectHolder& o) const {
+    static const IndirectRefs kNone{};
+    return (refs_ ? *refs_ : kNone) == (o.refs_ ? *o.refs_ : kNone);
+  }
+
+ private:
+  std::unique_ptr<IndirectRefs> refs_;
+};
+
+// 24 bytes: the two flags are one-bit fields beside the type, and the indirect references are
+// behind one pointer that is null for a direct address.
 struct Address {
   FileType type = FileType::Integer;
+  bool indexed : 1 = false;          // written with a leading '#'
+  bool bit_offset_form : 1 = false;  // written B3/n (element computed from n)
   std::uint16_t file = 0;   // data file number; 0/1 for M0/M1 (the slot is the element)
   std::int32_t element = 0;
   std::int32_t word = -1;   // word within the slot (I/O/M) or sub-element (T/C/R); -1 = none
   std::int32_t bit = -1;    // 0..15, -1 = none
-  bool indexed = false;     // written with a leading '#'
-  bool bit_offset_form = false;  // written B3/n (element computed from n)
-  std::optional<IndirectRef> indirect_file;
-  std::optional<IndirectRef> indirect_element;
-  std::optional<IndirectRef> indirect_word;
-  std::optional<IndirectRef> indirect_bit;
+  IndirectHolder indirect;  // the indirect references; read through the accessors below
 
-  bool has_bit() const { return bit >= 0 || indirect_bit.has_value(); }
-  bool is_indirect() const {
-    return indirect_file || indirect_element || indirect_word || indirect_bit;
-  }
+  // Each indirect reference, or nullopt (the accessors read the out-of-line block when present).
+  const std::optional<IndirectRef>& indirect_file() const { return refs().file; }
+  const std::optional<IndirectRef>& indirect_element() const { return refs().element; }
+  const std::optional<IndirectRef>& indirect_word() const { return refs().word; }
+  const std::optional<IndirectRef>& indirect_bit() const { return refs().bit; }
+  void set_indirect_file(const IndirectRef& r) { indirect.make().file = r; }
+  void set_indirect_element(const IndirectRef& r) { indirect.make().element = r; }
+  void set_indirect_word(const IndirectRef& r) { indirect.make().word = r; }
+  void set_indirect_bit(const IndirectRef& r) { indirect.make().bit = r; }
+
+  bool has_bit() const { return bit >= 0 || indirect_bit().has_value(); }
+  // The holder is only made by a setter, so a non-null block always holds a reference.
+  bool is_indirect() const { return indirect.get() != nullptr; }
   // The word offset of this address inside its element (0 when the address names a whole
   // single-word element or the control word of a T/C/R element).
   int word_in_element() const { return word < 0 ? 0 : word; }
 
   bool operator==(const Address&) const = default;
+
+ private:
+  const IndirectRefs& refs() const {
+    static const IndirectRefs kNone{};
+    return indirect.get() ? *indirect.get() : kNone;
+  }
 };
 
 // The canonical spelling: "B3:3/14", "T4:0/DN", "T4:0.ACC", "I:1.0/3", "M0:1.100/13",

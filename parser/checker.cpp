@@ -264,7 +264,7 @@ class Checker {
   // ---- File numbers and types ---------------------------------------------------------------------------
 
   void note_file_use(const Address& a, SourcePos pos) {
-    if (is_mfile(a.type) || is_function_file(a.type) || a.indirect_file) return;
+    if (is_mfile(a.type) || is_function_file(a.type) || a.indirect_file()) return;
     auto [it, inserted] = file_types_.emplace(a.file, FileUse{a.type, pos});
     if (!inserted && it->second.type != a.type)
       error(pos, "file " + std::to_string(a.file) + " is used as " + std::string(file_letter(a.type)) +
@@ -449,7 +449,7 @@ class Checker {
     if (os.kind == OperandKind::File)
       return error(op.pos, where + ": an MG element is written one sub-element at a time (MOV, OTL, ...); a file "
                                    "instruction would also write its read-only words (1762-RM001C p. 21-4)");
-    if (a.indirect_word) return;
+    if (a.indirect_word()) return;
     if (a.word < 0 || !message_sub_element_writable(a.word, a.bit))
       error(op.pos, where + ": " + to_string(a) + " is read only to the user program (1762-RM001C pp. 21-4, 21-6; "
                                                   "1766-RM001A pp. 399-400: CHN, NOD, MTO, TFN, ELE and the control "
@@ -487,7 +487,7 @@ class Checker {
     if (a.is_indirect() && !proc.has_indirect_addressing())
       error(pos, "indirect addressing needs SLC 5/03 OS302, 5/04 OS401, 5/05, MicroLogix 1100 or 1400; this "
                  "program's processor is " + proc.display_name);
-    for (const auto* r : {&a.indirect_file, &a.indirect_element, &a.indirect_word, &a.indirect_bit})
+    for (const auto* r : {&a.indirect_file(), &a.indirect_element(), &a.indirect_word(), &a.indirect_bit()})
       if (*r) check_indirect_ref(**r, pos);
     switch (a.type) {
       case FileType::Float:
@@ -505,14 +505,14 @@ class Checker {
           error(pos, "MG (message) files exist on the MicroLogix 1100, 1200, 1400 and 1500 only (1762-RM001C p. 21-4, "
                      "1766-RM001A p. 399); the SLC MSG keeps its control block in an N file (1747-RM001G p. 12-31); "
                      "this program's processor is " + proc.display_name);
-        if (!a.indirect_word && a.word >= mg::kWords) error(pos, "an MG element has sub-elements 0-24 (1762-RM001C p. 21-4)");
+        if (!a.indirect_word() && a.word >= mg::kWords) error(pos, "an MG element has sub-elements 0-24 (1762-RM001C p. 21-4)");
         break;
       case FileType::Routing:
         if (!proc.has_routing_files())
           error(pos, "RI (routing information) files exist on the MicroLogix 1100 and 1400 only, for channel 1 "
                      "Ethernet messages (1763-RM001B p. 384, 1766-RM001A p. 435); this program's processor is " +
                      proc.display_name);
-        if (!a.indirect_word && a.word >= ri::kWords) error(pos, "an RI element has words 0-19 (1766-RM001A p. 435)");
+        if (!a.indirect_word() && a.word >= ri::kWords) error(pos, "an RI element has words 0-19 (1766-RM001A p. 435)");
         break;
       case FileType::String:
       case FileType::Ascii:
@@ -522,14 +522,14 @@ class Checker {
         break;
       default: break;
     }
-    if (!is_io(a.type) && !is_mfile(a.type) && a.type != FileType::Status && !a.indirect_file) {
+    if (!is_io(a.type) && !is_mfile(a.type) && a.type != FileType::Status && !a.indirect_file()) {
       if (a.file < 3) error(pos, "files 0-2 are O, I and S; data files are numbered 3-255");
     }
-    if (!a.indirect_element && !is_io(a.type) && !is_mfile(a.type) && a.type != FileType::Status && a.element > 255)
+    if (!a.indirect_element() && !is_io(a.type) && !is_mfile(a.type) && a.type != FileType::Status && a.element > 255)
       error(pos, "element " + std::to_string(a.element) + " is beyond the largest file size (elements 0-255)");
-    if (is_structured(a.type) && !a.indirect_word && a.word > 2)
+    if (is_structured(a.type) && !a.indirect_word() && a.word > 2)
       error(pos, "a " + std::string(file_letter(a.type)) + " element has words 0-2 only");
-    if (a.type == FileType::Status && !a.indirect_element && a.element >= status_file_words(proc))
+    if (a.type == FileType::Status && !a.indirect_element() && a.element >= status_file_words(proc))
       error(pos, "S:" + std::to_string(a.element) + " is beyond the status file of " + proc.display_name + " (S:0-S:" +
                      std::to_string(status_file_words(proc) - 1) + ")");
     if (is_io(a.type)) check_io_address(a, pos);
@@ -537,7 +537,7 @@ class Checker {
   }
 
   void check_io_address(const Address& a, SourcePos pos) {
-    if (a.indirect_element) return;
+    if (a.indirect_element()) return;
     if (a.element > 30) {
       error(pos, "slot " + std::to_string(a.element) + " is beyond the chassis (slots 0-30)");
       return;
@@ -549,7 +549,7 @@ class Checker {
       return;
     }
     int words = a.type == FileType::Input ? slot->scan_in : slot->scan_out;
-    if (!a.indirect_word && a.word_in_element() >= words)
+    if (!a.indirect_word() && a.word_in_element() >= words)
       error(pos, std::string(a.type == FileType::Input ? "input" : "output") + " word " +
                      std::to_string(a.word_in_element()) + " is beyond slot " + std::to_string(a.element) + "'s " +
                      std::to_string(words) + "-word " + (a.type == FileType::Input ? "input" : "output") +
@@ -562,7 +562,7 @@ class Checker {
                  "parameter of BSL, BSR, SQO, SQC, SQL, LFL, LFU, FFL, FFU)");
       return;
     }
-    if (a.indirect_element) return;
+    if (a.indirect_element()) return;
     const SlotConfig* slot = slot_of(a.element);
     if (!slot) {
       error(pos, "slot " + std::to_string(a.element) + " has no module (no SLOT " + std::to_string(a.element) +
@@ -577,7 +577,7 @@ class Checker {
     }
     int span = 1;
     (void)kind;
-    if (!a.indirect_word && a.word_in_element() + span > size)
+    if (!a.indirect_word() && a.word_in_element() + span > size)
       error(pos, std::string(file_letter(a.type)) + " word " + std::to_string(a.word_in_element()) +
                      " is beyond the " + std::to_string(size) + "-word " + std::string(file_letter(a.type)) +
                      " file of slot " + std::to_string(a.element) + " (" + slot->catalog + ")");
@@ -588,29 +588,31 @@ class Checker {
   void check_operand(const Instruction& in, Operand& op, const OperandSpec& os) {
     if (!keyword_words(os.kind).empty()) return check_keyword(in, op, os);
     resolve(op);
-    const std::string where = mnemonic_of(in) + " " + std::string(os.label);
+    // "TON timer": built only for a diagnostic, since a program has millions of clean operands
+    // (building it for each was 4% of loading a 1M-rung program, docs/performance.md "Load time").
+    const auto where = [&] { return mnemonic_of(in) + " " + std::string(os.label); };
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
-      error(op.pos, "unknown symbol '" + op.spelling + "' (" + where + ")");
+      error(op.pos, "unknown symbol '" + op.spelling + "' (" + where() + ")");
       return;
     }
     if (op.kind == Operand::Kind::Address && uses_memdef_file(op.address))
-      return error(op.pos, where + ": " + std::string(file_letter(op.address.type)) + std::to_string(op.address.file) +
+      return error(op.pos, where() + ": " + std::string(file_letter(op.address.type)) + std::to_string(op.address.file) +
                                " holds the program's MEMDEF variables; name them instead (docs/automax.md)");
     if (op.is_address() && is_function_file(op.address.type) && os.access != OperandAccess::Read)
-      check_function_file_write(op, os, where);
+      check_function_file_write(op, os, where());
     // The MicroLogix MSG's own MG element is the instruction's state, which the processor writes; the
     // program's writes into an MG element are held to the access column.
     if (op.is_address() && is_message_file(op.address.type) && os.access != OperandAccess::Read &&
         os.kind != OperandKind::MessageElement)
-      check_message_file_write(op, os, where);
+      check_message_file_write(op, os, where());
     if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
       const Symbol* sym = symbols_.at(op.spelling);
       if (sym->automax && sym->automax->kind == AutomaxDef::Kind::IoDef)
-        return error(op.pos, where + ": " + op.spelling + " is an IODEF point of drop 0, and drop 0 registers are read "
+        return error(op.pos, where() + ": " + op.spelling + " is an IODEF point of drop 0, and drop 0 registers are read "
                                                         "only (AutoMax Remote I/O manual, section 4.2)");
     }
     auto expect = [&](std::string_view what) {
-      error(op.pos, where + ": expected " + std::string(what) + ", found '" + op.spelling + "'");
+      error(op.pos, where() + ": expected " + std::string(what) + ", found '" + op.spelling + "'");
     };
     switch (os.kind) {
       case OperandKind::Bit:
@@ -620,15 +622,15 @@ class Checker {
       case OperandKind::Source:
       case OperandKind::WordSource:
         if (os.kind == OperandKind::WordSource && op.kind == Operand::Kind::Float)
-          return error(op.pos, where + ": " + mnemonic_of(in) + " works on integer words; a floating-point constant is not allowed");
+          return error(op.pos, where() + ": " + mnemonic_of(in) + " works on integer words; a floating-point constant is not allowed");
         if (os.kind == OperandKind::WordSource && op.is_address() && op.address.type == FileType::Float)
-          return error(op.pos, where + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
+          return error(op.pos, where() + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
         if (op.kind == Operand::Kind::Float && !program_.processor.has_float_files())
           return error(op.pos, "floating-point constants need SLC 5/03 OS301 or later");
         if (op.is_number()) {
           if (op.kind == Operand::Kind::Integer && (op.integer < -32768 || op.integer > 65535) &&
               program_.processor.family != ProcessorFamily::MicroLogix)
-            return error(op.pos, where + ": constant " + op.spelling + " does not fit a 16-bit word");
+            return error(op.pos, where() + ": constant " + op.spelling + " does not fit a 16-bit word");
           return;
         }
         if (op.address.has_bit()) return expect("a word address or a constant");
@@ -639,7 +641,7 @@ class Checker {
       case OperandKind::WordDest:
         if (!op.is_address()) return expect("a destination word address");
         if (os.kind == OperandKind::WordDest && op.address.type == FileType::Float)
-          return error(op.pos, where + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
+          return error(op.pos, where() + ": " + mnemonic_of(in) + " works on integer words; an F address is not allowed");
         if (op.address.has_bit()) return expect("a word address, not a bit");
         if (is_structured(op.address.type) && op.address.word < 0)
           return expect("a word of the element (.PRE, .ACC, .LEN or .POS)");
@@ -648,7 +650,7 @@ class Checker {
         if (!op.is_address()) return expect("a file address such as #N7:0");
         if (op.address.has_bit()) return expect("a file address, not a bit");
         if (!op.address.indexed)
-          warning(op.pos, where + ": file operand written without '#'; RSLogix 500 writes #" + op.spelling);
+          warning(op.pos, where() + ": file operand written without '#'; RSLogix 500 writes #" + op.spelling);
         break;
       case OperandKind::Timer:
       case OperandKind::Counter:
@@ -667,7 +669,7 @@ class Checker {
           // The 0.001 s time base exists on the MicroLogix 1100-1500 only (1763-RM001, 1766-RM001,
           // 1762-RM001 "Timer Instructions": time base 0.001, 0.01 or 1.0 s).
           if (!program_.processor.has_millisecond_timebase())
-            return error(op.pos, where + ": the 0.001 s time base exists on the MicroLogix 1100, 1200, 1400 and 1500 "
+            return error(op.pos, where() + ": the 0.001 s time base exists on the MicroLogix 1100, 1200, 1400 and 1500 "
                                          "only; " + program_.processor.display_name + " has 1.0 and 0.01");
           break;
         }
@@ -681,7 +683,7 @@ class Checker {
       case OperandKind::ProgramFile:
         if (op.kind != Operand::Kind::Integer) return expect("an integer constant");
         if (op.integer < os.min || op.integer > os.max)
-          return error(op.pos, where + " " + op.spelling + " is out of range " + std::to_string(os.min) + "-" +
+          return error(op.pos, where() + " " + op.spelling + " is out of range " + std::to_string(os.min) + "-" +
                                    std::to_string(os.max));
         break;
       case OperandKind::SlotWord: {
@@ -716,8 +718,8 @@ class Checker {
                             ? "an integer file element such as N10:0 (the PID control block is 23 words of an N file, "
                               "1747-RM001G p. 9-3)"
                             : "an integer file element such as N10:0");
-        if (!op.address.indirect_element && op.address.element + len > 256)
-          return error(op.pos, where + ": the " + std::to_string(len) + "-word control block starting at " +
+        if (!op.address.indirect_element() && op.address.element + len > 256)
+          return error(op.pos, where() + ": the " + std::to_string(len) + "-word control block starting at " +
                                    op.spelling + " runs past the end of the file (element 255)");
         break;
       }
@@ -865,7 +867,7 @@ class Checker {
   // POS, table 7.8).
   void check_bit_compare(const Instruction& in) {
     const Operand& result = in.operands[2];
-    if (result.is_address() && result.address.type != FileType::Integer && !result.address.indirect_file)
+    if (result.is_address() && result.address.type != FileType::Integer && !result.address.indirect_file())
       error(result.pos, mnemonic_of(in) + " result must be an integer (N) file: it holds the numbers of the "
                         "mismatched bits (1747-RM001G p. 7-18)");
     const Operand& cmp = in.operands[3];
@@ -1143,7 +1145,7 @@ class Checker {
       return error(src.pos, "SWP swaps words of a B, N, A or ST file (1747-RM001 p. 4-28), not " +
                                 std::string(file_letter(t)) + std::to_string(src.address.file));
     if (t != FileType::String) return;
-    if (src.address.indirect_word) return;  // known at run time only: the interpreter checks it
+    if (src.address.indirect_word()) return;  // known at run time only: the interpreter checks it
     const std::int64_t len = in.operands[1].integer;
     const int word = src.address.word;
     if (word < 1)
@@ -1166,15 +1168,15 @@ class Checker {
     if (pv.is_number())
       error(pv.pos, "PID process variable: expected an element address that stores the process input (for example "
                     "I:1.0 or N10:28), found the constant '" + pv.spelling + "' (1747-RM001G p. 9-4)");
-    if (!block.is_address() || block.address.type != FileType::Integer || block.address.indirect_element ||
-        block.address.indirect_file || block.address.indexed)
+    if (!block.is_address() || block.address.type != FileType::Integer || block.address.indirect_element() ||
+        block.address.indirect_file() || block.address.indexed)
       return;
     const Address& b = block.address;
     for (std::size_t i = 1; i < 3; ++i) {
       const Operand& op = in.operands[i];
       if (!op.is_address()) continue;
       const Address& a = op.address;
-      if (a.type != FileType::Integer || a.file != b.file || a.indirect_element || a.indirect_file) continue;
+      if (a.type != FileType::Integer || a.file != b.file || a.indirect_element() || a.indirect_file()) continue;
       if (a.element >= b.element && a.element < b.element + 23)
         error(op.pos, std::string(i == 1 ? "PID process variable " : "PID control variable ") + op.spelling +
                           " lies inside the control block " + block.spelling + " (N" + std::to_string(b.file) + ":" +

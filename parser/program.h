@@ -7,10 +7,13 @@
 // never hands out a half-built one.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "instructions/instruction_table.h"
@@ -31,8 +34,8 @@ struct SourcePos {
 //
 // A program holds about five operands per rung, so their size is most of a large program's memory
 // (docs/performance.md "Load time"): the one-byte members and the position fill the gap after the
-// 60-byte Address instead of each opening an 8-byte slot of its own, and a symbol's name is its
-// spelling rather than a second string: 120 bytes.
+// 24-byte Address instead of each opening an 8-byte slot of its own, and a symbol's name is its
+// spelling rather than a second string: 88 bytes.
 struct Operand {
   enum class Kind : std::uint8_t { Address, Integer, Float, Symbol, Expression };
   Address address;             // Kind::Address, and Kind::Symbol once resolved
@@ -52,23 +55,141 @@ struct Operand {
   bool same_as(const Operand& o) const;
 };
 
-// The opcode comes last so that a RungElement can place its kind in the bytes after it.
+// The operands of one instruction: one allocation of exactly their count, a pointer and a count
+// (12 bytes used, where a std::vector took 24 and kept a capacity the loader never used). Read like
+// a vector (size, [], range-for); only the loader fills one, with assign_moved. Copies are deep.
+// The storage comes from std::allocator, not new[], so it carries no array-size cookie: one
+// operand is a 96-byte heap chunk, not 112.
+class OperandList {
+ public:
+  OperandList() = default;
+  OperandList(const OperandList& o) { copy_from(o); }
+  OperandList(OperandList&& o) noexcept : data_(std::exchange(o.data_, nullptr)), size_(std::exchange(o.size_, 0)) {}
+  OperandList& operator=(const OperandList& o) {
+    if (this != &o) {
+      release();
+      copy_from(o);
+    }
+    return *this;
+  }
+  OperandList& operator=(OperandList&& o) noexcept {
+    if (this != &o) {
+      release();
+      data_ = std::exchange(o.data_, nullptr);
+      size_ = std::exchange(o.size_, 0);
+    }
+    return *this;
+  }
+  ~OperandList() { release(); }
+
+  // Replaces the contents with [first, last), moved.
+  void assign_moved(Operand* first, Operand* last) {
+    release();
+    const auto n = static_cast<std::size_t>(last - first);
+    if (n == 0) return;
+    data_ = std::allocator<Operand>().allocate(n);
+    std::uninitialized_move(first, last, data_);
+    size_ = static_cast<std::uint32_t>(n);
+  }
+
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  Operand& operator[](std::size_t i) { return data_[i]; }
+  const Operand& operator[](std::size_t i) const { return data_[i]; }
+  Operand& front() { return data_[0]; }
+  const Operand& front() const { return data_[0]; }
+  Operand& back() { return data_[size_ - 1]; }
+  const Operand& back() const { return data_[size_ - 1]; }
+  Operand* begin() { return data_; }
+  Operand* end() { return data_ + size_; }
+  const Operand* begin() const { return data_; }
+  const Operand* end() const { return data_ + size_; }
+  const Operand* data() const { return data_; }
+
+ private:
+  void copy_from(const OperandList& o) {
+    if (o.size_ == 0) return;
+    Operand* p = std::allocator<Operand>().allocate(o.size_);
+    try {
+      std::uninitialized_copy(o.begin(), o.end(), p);
+    } catch (...) {
+      std::allocator<Operand>().deallocate(p, o.size_);
+      throw;
+    }
+    data_ = p;
+    size_ = o.size_;
+  }
+  void release() {
+    if (!data_) return;
+    std::destroy(data_, data_ + size_);
+    std::allocator<Operand>().deallocate(data_, size_);
+    data_ = nullptr;
+    size_ = 0;
+  }
+  Operand* data_ = nullptr;
+  std::uint32_t size_ = 0;
+};
+
+// The opcode comes last so that a RungElement can place its kind in the bytes after it, and the
+// operand list is [[no_unique_address]] so the position fills the 4 bytes after its count: 24
+// bytes.
 struct Instruction {
-  std::vector<Operand> operands;
+  [[no_unique_address]] OperandList operands;
   SourcePos pos;
   Opcode opcode = Opcode::XIC;
+};
+
+// The legs of a branch, held out of line: only a branch has them, and in place the vector was 24
+// of an element's 64 bytes. Read like a vector of legs; an instruction's holder is empty (no
+// allocation). Copies are deep. A template only so that it can name RungElement before that is
+// complete.
+template <typename Element>
+class BranchLegs {
+ public:
+  using Leg = std::vector<Element>;
+  BranchLegs() = default;
+  BranchLegs(const BranchLegs& o) : legs_(o.legs_ ? std::make_unique<std::vector<Leg>>(*o.legs_) : nullptr) {}
+  BranchLegs(BranchLegs&&) noexcept = default;
+  BranchLegs& operator=(const BranchLegs& o) {
+    if (this != &o) legs_ = o.legs_ ? std::make_unique<std::vector<Leg>>(*o.legs_) : nullptr;
+    return *this;
+  }
+  BranchLegs& operator=(BranchLegs&&) noexcept = default;
+  ~BranchLegs() = default;
+
+  std::size_t size() const { return legs_ ? legs_->size() : 0; }
+  bool empty() const { return size() == 0; }
+  Leg& operator[](std::size_t i) { return (*legs_)[i]; }
+  const Leg& operator[](std::size_t i) const { return (*legs_)[i]; }
+  Leg& back() { return legs_->back(); }
+  const Leg& back() const { return legs_->back(); }
+  Leg* begin() { return legs_ ? legs_->data() : nullptr; }
+  Leg* end() { return legs_ ? legs_->data() + legs_->size() : nullptr; }
+  const Leg* begin() const { return legs_ ? legs_->data() : nullptr; }
+  const Leg* end() const { return legs_ ? legs_->data() + legs_->size() : nullptr; }
+  Leg& emplace_back() { return vec().emplace_back(); }
+  void push_back(Leg&& leg) { vec().push_back(std::move(leg)); }
+  void reserve(std::size_t n) { vec().reserve(n); }
+  void clear() { legs_.reset(); }
+
+ private:
+  std::vector<Leg>& vec() {
+    if (!legs_) legs_ = std::make_unique<std::vector<Leg>>();
+    return *legs_;
+  }
+  std::unique_ptr<std::vector<Leg>> legs_;
 };
 
 // A rung element is an instruction or a branch (BST leg NXB leg ... BND).
 //
 // A program holds about 3.6 elements per rung: the element's position is its instruction's (a
-// branch keeps the BST's there), and its kind sits in the instruction's tail padding, so an
-// element is 64 bytes instead of 80 (docs/performance.md "Load time").
+// branch keeps the BST's there), its kind sits in the instruction's tail padding, and a branch's
+// legs are out of line, so an element is 32 bytes (docs/performance.md "Load time").
 struct RungElement {
   enum class Kind : std::uint8_t { Instruction, Branch };
   [[no_unique_address]] Instruction instruction;  // Kind::Instruction; a branch uses only its pos
   Kind kind = Kind::Instruction;
-  std::vector<std::vector<RungElement>> legs;     // Kind::Branch
+  BranchLegs<RungElement> legs;                   // Kind::Branch
 
   // Where the element starts: its mnemonic, or the BST of a branch.
   const SourcePos& pos() const { return instruction.pos; }

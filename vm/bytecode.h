@@ -260,7 +260,7 @@ struct CompiledProgram {
   std::vector<SlotConfig> slots;
   std::vector<ForceBlock> forces;
   int max_branch_depth = 0;  // deepest BST nesting of any rung
-  std::uint16_t program_checksum = 0;  // what RPC reads (program_checksum() in vm/compiler.h)
+  std::uint16_t program_checksum = 0;  // what RPC reads (program_checksum() in vm/compiler.h); 0 without an RPC
   std::vector<CompiledDataLog> data_logs;  // DATALOG queues (MicroLogix 1100, 1400, 1500 LRP)
 
   const CompiledFile* file(int number) const {

@@ -93,7 +93,9 @@ class Compiler {
       out_.initial_words = std::move(init_);
       out_.slots = prog_.slots;
       out_.forces = prog_.forces;
-      out_.program_checksum = program_checksum(prog_);
+      // Only RPC reads the checksum, and computing it formats the whole ladder (8% of loading a
+      // 1M-rung program, docs/performance.md "Load time"): a program without RPC keeps 0.
+      if (reads_checksum_) out_.program_checksum = program_checksum(prog_);
       r.program = std::move(out_);
     }
     return r;
@@ -159,14 +161,14 @@ class Compiler {
   }
 
   void note_address(const Address& a, std::uint32_t extent, SourcePos pos) {
-    if (a.indirect_file) note_ref(*a.indirect_file, pos);
-    if (a.indirect_element) note_ref(*a.indirect_element, pos);
-    if (a.indirect_word) note_ref(*a.indirect_word, pos);
-    if (a.indirect_bit) note_ref(*a.indirect_bit, pos);
+    if (a.indirect_file()) note_ref(*a.indirect_file(), pos);
+    if (a.indirect_element()) note_ref(*a.indirect_element(), pos);
+    if (a.indirect_word()) note_ref(*a.indirect_word(), pos);
+    if (a.indirect_bit()) note_ref(*a.indirect_bit(), pos);
     if (is_io(a.type) || is_mfile(a.type) || a.type == FileType::Status || is_function_file(a.type)) return;
-    if (a.indirect_file) return;  // which file is only known at run time
+    if (a.indirect_file()) return;  // which file is only known at run time
     std::uint32_t elements = 1;
-    if (!a.indirect_element && !(a.bit_offset_form && a.indirect_bit)) {
+    if (!a.indirect_element() && !(a.bit_offset_form && a.indirect_bit())) {
       if (a.element < 0) {
         error(pos, "negative element in " + to_string(a));
         return;
@@ -264,6 +266,7 @@ class Compiler {
         continue;
       }
       const auto& in = e.instruction;
+      if (in.opcode == Opcode::RPC) reads_checksum_ = true;
       const InstructionSpec& sp = spec(in.opcode);
       for (std::size_t i = 0; i < in.operands.size(); ++i) {
         const auto& op = in.operands[i];
@@ -688,10 +691,10 @@ class Compiler {
     d.element = a.element;
     d.word = a.word;
     d.bit = a.bit;
-    if (a.indirect_file) d.ptr_file = ref_word(*a.indirect_file, pos);
-    if (a.indirect_element) d.ptr_element = ref_word(*a.indirect_element, pos);
-    if (a.indirect_word) d.ptr_word = ref_word(*a.indirect_word, pos);
-    if (a.indirect_bit) d.ptr_bit = ref_word(*a.indirect_bit, pos);
+    if (a.indirect_file()) d.ptr_file = ref_word(*a.indirect_file(), pos);
+    if (a.indirect_element()) d.ptr_element = ref_word(*a.indirect_element(), pos);
+    if (a.indirect_word()) d.ptr_word = ref_word(*a.indirect_word(), pos);
+    if (a.indirect_bit()) d.ptr_bit = ref_word(*a.indirect_bit(), pos);
     if (is_mfile(a.type)) {
       d.mfile = true;
       d.access_row = current_row_;
@@ -708,7 +711,7 @@ class Compiler {
                        std::to_string(size) + " words)");
     } else if (is_function_file(a.type)) {
       error(pos, "function file addresses cannot be indexed or indirect: " + to_string(a));
-    } else if (!a.indirect_file) {
+    } else if (!a.indirect_file()) {
       // The file itself must exist even when the element is computed at run time.
       if (!is_io(a.type) && a.type != FileType::Status) {
         const auto& f = layout_.files[a.file];
@@ -848,7 +851,7 @@ class Compiler {
                           (kind == OperandKind::Counter && a.type == FileType::Counter) ||
                           (kind == OperandKind::Control && a.type == FileType::Control) ||
                           (kind == OperandKind::Resettable && is_structured(a.type)));
-    if (!ok_type || a.has_bit() || a.word > 0 || a.indirect_word) {
+    if (!ok_type || a.has_bit() || a.word > 0 || a.indirect_word()) {
       error(pos, "'" + op.spelling + "' is not a " +
                      (kind == OperandKind::Timer     ? "timer (T) element"
                       : kind == OperandKind::Counter ? "counter (C) element"
@@ -1310,6 +1313,7 @@ class Compiler {
   std::vector<Fixup> calls_;
   int cur_file_ = -1;
   int cur_rung_ = -1;
+  bool reads_checksum_ = false;  // the program has an RPC, so out_.program_checksum is computed
   MFileAccess current_row_ = MFileAccess::OtherM;  // access-time row of the operand being compiled
 };
 

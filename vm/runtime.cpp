@@ -825,10 +825,10 @@ std::optional<Location> Runtime::resolve_tool_address(const Address& a, std::str
     auto loc = L.locate(p, &error);
     return loc ? static_cast<std::int32_t>(loc->word) : -2;
   };
-  d.ptr_file = ref(a.indirect_file);
-  d.ptr_element = ref(a.indirect_element);
-  d.ptr_word = ref(a.indirect_word);
-  d.ptr_bit = ref(a.indirect_bit);
+  d.ptr_file = ref(a.indirect_file());
+  d.ptr_element = ref(a.indirect_element());
+  d.ptr_word = ref(a.indirect_word());
+  d.ptr_bit = ref(a.indirect_bit());
   if (d.ptr_file == -2 || d.ptr_element == -2 || d.ptr_word == -2 || d.ptr_bit == -2) return std::nullopt;
   Location loc;
   if (!interp_->resolve_for_tool(d, loc, error)) return std::nullopt;

@@ -86,34 +86,60 @@ TEST(Address, IndexedForm) {
 
 TEST(Address, IndirectElement) {
   Address a = parse_ok("N7:[N10:1]");
-  ASSERT_TRUE(a.indirect_element.has_value());
-  EXPECT_EQ(a.indirect_element->type, FileType::Integer);
-  EXPECT_EQ(a.indirect_element->file, 10);
-  EXPECT_EQ(a.indirect_element->element, 1);
+  ASSERT_TRUE(a.indirect_element().has_value());
+  EXPECT_EQ(a.indirect_element()->type, FileType::Integer);
+  EXPECT_EQ(a.indirect_element()->file, 10);
+  EXPECT_EQ(a.indirect_element()->element, 1);
   EXPECT_EQ(to_string(a), "N7:[N10:1]");
 }
 
 TEST(Address, IndirectFile) {
   Address a = parse_ok("N[N10:0]:5");
-  ASSERT_TRUE(a.indirect_file.has_value());
-  EXPECT_EQ(a.indirect_file->file, 10);
+  ASSERT_TRUE(a.indirect_file().has_value());
+  EXPECT_EQ(a.indirect_file()->file, 10);
   EXPECT_EQ(a.element, 5);
   EXPECT_EQ(to_string(a), "N[N10:0]:5");
 }
 
 TEST(Address, IndirectBitOffset) {
   Address a = parse_ok("B3/[N7:0]");
-  ASSERT_TRUE(a.indirect_bit.has_value());
+  ASSERT_TRUE(a.indirect_bit().has_value());
   EXPECT_TRUE(a.bit_offset_form);
   EXPECT_EQ(to_string(a), "B3/[N7:0]");
 }
 
 TEST(Address, IndirectWithSubElementReference) {
   Address a = parse_ok("#F28:[T4:0.ACC]");
-  ASSERT_TRUE(a.indirect_element.has_value());
-  EXPECT_EQ(a.indirect_element->type, FileType::Timer);
-  EXPECT_EQ(a.indirect_element->word, 2);
+  ASSERT_TRUE(a.indirect_element().has_value());
+  EXPECT_EQ(a.indirect_element()->type, FileType::Timer);
+  EXPECT_EQ(a.indirect_element()->word, 2);
   EXPECT_EQ(to_string(a), "#F28:[T4:0.ACC]");
+}
+
+// The indirect references live out of line (docs/performance.md "Load time"): a direct address has
+// none, a copy holds its own, and equality compares what they say, not where they are.
+TEST(Address, IndirectReferencesCopyAndCompareByValue) {
+  EXPECT_FALSE(parse_ok("N7:3").is_indirect());
+  EXPECT_FALSE(parse_ok("#N7:3").is_indirect());
+  Address a = parse_ok("N7:[N10:1]/[N10:2]");
+  ASSERT_TRUE(a.is_indirect());
+  Address b = a;
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(to_string(b), "N7:[N10:1]/[N10:2]");
+  b.set_indirect_bit(IndirectRef{FileType::Integer, 10, 3, -1});
+  EXPECT_NE(a, b);
+  EXPECT_EQ(a.indirect_bit()->element, 2);  // the original is untouched
+  EXPECT_EQ(to_string(b), "N7:[N10:1]/[N10:3]");
+  EXPECT_NE(parse_ok("N7:[N10:1]"), parse_ok("N7:[N10:2]"));
+  EXPECT_NE(parse_ok("N7:[N10:1]"), parse_ok("N7:1"));
+  Address moved = std::move(b);
+  EXPECT_EQ(to_string(moved), "N7:[N10:1]/[N10:3]");
+}
+
+// The size the load-time work brought an Address to on LP64 (docs/performance.md "Load time"):
+// a regression here is a regression of the 1M-rung load.
+TEST(Address, IsSmallOnLp64) {
+  if constexpr (sizeof(void*) == 8) EXPECT_LE(sizeof(Address), 24u);
 }
 
 struct BadAddress {

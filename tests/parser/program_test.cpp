@@ -61,6 +61,39 @@ TEST(Program, NestedBranchesWithOutputsInLegs) {
   EXPECT_EQ(outer.legs[2][1].instruction.opcode, Opcode::OTU);
 }
 
+// A program tree copies deeply (operand lists and branch legs are held out of line, see
+// parser/program.h): a change to the copy leaves the original as loaded.
+TEST(Program, CopyOfTheTreeIsIndependent) {
+  const auto p = load_ok(kHeader + "LADDER 2\nSOR XIC I:1/0 BST MOV 5 N7:[N10:0] NXB OTE O:2/0 BND EOR\n");
+  Program q = p;
+  auto& br = q.files[0].rungs[0].elements[1];
+  ASSERT_EQ(br.kind, RungElement::Kind::Branch);
+  ASSERT_EQ(br.legs.size(), 2u);
+  auto& mov = br.legs[0][0].instruction;
+  ASSERT_EQ(mov.operands.size(), 2u);
+  EXPECT_TRUE(mov.operands[1].address.is_indirect());
+  mov.operands[0].integer = 6;
+  br.legs[1].clear();
+  std::string diff;
+  EXPECT_FALSE(same_program(p, q, &diff));
+  const auto& orig = p.files[0].rungs[0].elements[1];
+  EXPECT_EQ(orig.legs[0][0].instruction.operands[0].integer, 5);
+  EXPECT_EQ(orig.legs[1].size(), 1u);
+  EXPECT_TRUE(p.files[0].rungs[0].elements[0].legs.empty());  // an instruction has no legs
+  Program r = p;
+  EXPECT_TRUE(same_program(p, r, &diff)) << diff;
+}
+
+// The sizes the load-time work brought the tree to on LP64 (docs/performance.md "Load time"):
+// a regression here is a regression of the 1M-rung load.
+TEST(Program, TreeNodesAreSmallOnLp64) {
+  if constexpr (sizeof(void*) == 8) {
+    EXPECT_LE(sizeof(Operand), 88u);
+    EXPECT_LE(sizeof(Instruction), 24u);
+    EXPECT_LE(sizeof(RungElement), 32u);
+  }
+}
+
 TEST(Program, EmptyBranchLegIsAWire) {
   auto p = load_ok(kHeader + "LADDER 2\nSOR BST XIC I:1/0 NXB BND OTE O:2/0 EOR\n");
   const auto& br = p.files[0].rungs[0].elements[0];

@@ -139,7 +139,9 @@ TEST(Address, IndirectReferencesCopyAndCompareByValue) {
 // The size the load-time work brought an Address to on LP64 (docs/performance.md "Load time"):
 // a regression here is a regression of the 1M-rung load.
 TEST(Address, IsSmallOnLp64) {
-  if constexpr (sizeof(void*) == 8) EXPECT_LE(sizeof(Address), 24u);
+  if constexpr (sizeof(void*) == 8) {
+    EXPECT_LE(sizeof(Address), 24u);
+  }
 }
 
 struct BadAddress {

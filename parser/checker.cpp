@@ -777,8 +777,21 @@ class Checker {
                             " has one channel, channel 0: its channel select is 1 (1762-RM001C p. 21-27)");
   }
 
+  // The form an instruction is held to. The loader takes the form whose operand count was written,
+  // or the mnemonic's first row when no form has that count; then, when the processor lacks that
+  // first row but has another form of the mnemonic (MSG on a MicroLogix, OSR on an SLC ...), the
+  // processor's own form is the one whose operands the messages should list.
+  const InstructionSpec& form_to_check(const Instruction& in) const {
+    const InstructionSpec& written = spec(in.opcode);
+    const auto& proc = program_.processor;
+    if (in.operands.size() == written.operand_count || proc.supports(written.requires_)) return written;
+    for (const InstructionSpec& row : kInstructionTable)
+      if (row.mnemonic == written.mnemonic && proc.supports(row.requires_)) return row;
+    return written;
+  }
+
   void check_instruction(Instruction& in, bool first_in_rung, int file_number, int rung_index) {
-    const auto& s = spec(in.opcode);
+    const auto& s = form_to_check(in);
     auto& proc = program_.processor;
     if (!proc.supports(s.requires_)) error(in.pos, mnemonic_of(in) + " " + proc.requirement_text(s.requires_));
     if (in.operands.size() != s.operand_count) {

@@ -72,6 +72,26 @@ TEST(MicroLogixMsg, EachControllerWithAnMgFileTakesTheForm) {
   EXPECT_NE(ml_form.find("with an MG element is the MicroLogix 1100-1500 form"), std::string::npos) << ml_form;
 }
 
+int count_errors(const std::string& diagnostics) {
+  int n = 0;
+  for (std::size_t at = diagnostics.find("error:"); at != std::string::npos; at = diagnostics.find("error:", at + 1)) ++n;
+  return n;
+}
+
+// A MicroLogix MSG with an operand missing (no form of MSG takes 9) is held to the MicroLogix form:
+// the one message lists its 10 operands, not the SLC form's 11 with a second error about the SLC.
+// The same on an SLC 5/02, whose own form takes 8 (RM 12-5).
+TEST(MicroLogixMsg, AWrongOperandCountListsTheProcessorsOwnForm) {
+  const std::string ml = load_errors(ml_program("Bul.1763", "SOR XIC B3:0/0 MSG MG11:0 READ 500CPU LOCAL 0 N7:0 5 2 N10:0 EOR"));
+  EXPECT_NE(ml.find("MSG takes 10 operands (message file, read/write,"), std::string::npos) << ml;
+  EXPECT_NE(ml.find("found 9"), std::string::npos) << ml;
+  EXPECT_EQ(ml.find("SLC 500 form"), std::string::npos) << ml;
+  EXPECT_EQ(count_errors(ml), 1) << ml;
+  const std::string slc502 = load_errors(ml_program("1747-L524", "SOR XIC B3:0/0 MSG READ 500CPU N7:0 EOR"));
+  EXPECT_NE(slc502.find("MSG takes 8 operands"), std::string::npos) << slc502;
+  EXPECT_EQ(count_errors(slc502), 1) << slc502;
+}
+
 TEST(MicroLogixMsg, CheckRefusesWhatTheChannelCannotSend) {
   struct Case {
     const char* processor;

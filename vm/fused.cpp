@@ -337,6 +337,8 @@ class FusedProgram::Builder {
       r.push_back(static_cast<std::uint32_t>(-1));
       r.push_back(end_);
       r.push_back(static_cast<std::uint32_t>(-1));
+      r.push_back(kNoWordEntry);
+      r.push_back(kNoWordEntry);
     }
     if (transfer_ != Op::SOR) {
       r.push_back(transfer_at_);
@@ -463,6 +465,10 @@ class FusedProgram::Builder {
       }
       out_.costs_.push_back(t);
     }
+    if (n <= kSmallConditions && outputs <= kSmallOutputs)
+      for (unsigned j = 0; j < outputs; ++j)
+        for (std::uint32_t v = 0; v < (1u << n); ++v)
+          if (out_.on_[s.on_at + (j << n) + v] != 0) s.on_bits |= 1u << (j * 8 + v);
     out_.shapes_.push_back(s);
   }
 
@@ -603,6 +609,22 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
     laid.push_back(kEndOfSegment);
   }
   wrecords_ = std::move(laid);
+  // Each fused JSR's two word entries (kCallWords), now that the records are laid out.
+  const auto word_entry = [&](std::uint32_t run) {
+    if (static_cast<std::int32_t>(run) < 0) return kNoWordEntry;
+    const Segment& sg = segments_[runs_[run].first];
+    return sg.shape == kWordSegment ? sg.rec : kNoWordEntry;
+  };
+  for (const Segment& sg : segments_) {
+    if (sg.shape != kWordSegment) continue;
+    for (std::uint32_t at = sg.rec; at != sg.rec_end; at += shapes_[wrecords_[at] >> kShapeShift].stride) {
+      const Shape& sh = shapes_[wrecords_[at] >> kShapeShift];
+      if (!sh.call) continue;
+      std::uint32_t* c = wrecords_.data() + at + sh.stride - 2 - kCallWords;
+      c[4] = word_entry(c[1]);
+      c[5] = word_entry(c[3]);
+    }
+  }
   for (Shape& sh : shapes_) {
     sh.cost = costs_.data() + sh.cost_at;
     sh.on = on_.data() + sh.on_at;
@@ -633,6 +655,16 @@ inline unsigned gather(const std::uint16_t* w, const std::uint16_t* rec) {
   return [&]<unsigned... K>(std::integer_sequence<unsigned, K...>) {
     return (0u | ... | (((static_cast<unsigned>(w[word_index<Wide>(rec + K * k)]) >> bits[K]) & 1u) << K));
   }(std::make_integer_sequence<unsigned, N>{});
+}
+
+// Output j's rung-in for the condition bits v of a word rung with n conditions: from the shape's
+// on_bits in a fixed-count kernel (Small), else from its table.
+template <bool Small>
+inline bool output_on(std::uint32_t on_bits, const std::uint16_t* on, unsigned j, unsigned n, unsigned v) {
+  if constexpr (Small)
+    return ((on_bits >> (j * 8 + v)) & 1u) != 0;
+  else
+    return on[(j << n) + v] != 0;
 }
 
 // A coil's action on its word: `on` is its rung-in as 0 or 0xFFFF, `mask` its bit.
@@ -685,8 +717,11 @@ std::uint32_t FusedProgram::run_segment(const FusedProgram& p, const Segment& se
 // general path must run it, kRungTransfer when its JSR or RET is taken.
 template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
 [[gnu::always_inline]] inline unsigned FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
-                                    std::uint16_t* w, Nanoseconds& t, const FusedScan& scan) {
+                                    std::uint16_t* w, Nanoseconds& t, const FusedScan& scan,
+                                    word_ops::TickClock& ticks) {
   constexpr bool fixed = NC != kAnyCount;
+  static_assert(!fixed || (NC + NM <= kSmallConditions && NK + 2 <= kSmallOutputs),
+                "a fixed-count kernel's rung-ins are in Shape::on_bits");
   const Nanoseconds* const cost = sh.cost;
   const std::uint16_t* const on = sh.on;
   const unsigned nc = fixed ? NC : sh.contacts;
@@ -710,13 +745,15 @@ template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
       return kRungGeneral;
   }
   t += cost[v];
+  const std::uint32_t on_bits = sh.on_bits;
   for (unsigned j = 0; j < coils; ++j, ++o)
     apply_coil(static_cast<unsigned>(rules[j]) - static_cast<unsigned>(FusedRule::Energize) + 1,
-               w[bc::word_of_bit(*o)], static_cast<std::uint16_t>(1u << bc::bit_of(*o)), on[(j << n) + v]);
+               w[bc::word_of_bit(*o)], static_cast<std::uint16_t>(1u << bc::bit_of(*o)),
+               static_cast<std::uint16_t>(0u - static_cast<unsigned>(output_on<fixed>(on_bits, on, j, n, v))));
   // The action's rung-in; it is the rung's last instruction, so the scan time it sees is t.
-  [[maybe_unused]] const bool rung = on[(coils << n) + v] != 0;
+  [[maybe_unused]] const bool rung = output_on<fixed>(on_bits, on, coils, n, v);
   if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
-    word_ops::timer(A, w + act[0], rung, scan.first_pass, word_ops::timer_tick(scan.scan_start + t, sh.action_flags),
+    word_ops::timer(A, w + act[0], rung, scan.first_pass, ticks.at(scan.scan_start + t, sh.action_flags),
                     (sh.action_flags & bc::kFlagA) != 0);
   } else if constexpr (A == Op::CTU || A == Op::CTD) {
     word_ops::counter(A, w + act[0], rung, scan.first_pass);
@@ -753,7 +790,7 @@ template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
   }
   if constexpr (Transfer) {
     constexpr unsigned kAction = A == Op::SOR ? 0 : 1;
-    if (on[((coils + kAction) << n) + v] != 0) return kRungTransfer;
+    if (output_on<fixed>(on_bits, on, coils + kAction, n, v)) return kRungTransfer;
   }
   return kRungDone;
 }
@@ -777,6 +814,12 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
                                          FusedCalls& calls) const {
   const Run* r = &runs_[static_cast<std::size_t>(run)];
   Nanoseconds t = elapsed;
+  word_ops::TickClock ticks;
+  // The call state in locals, written back at the end (a store and a reload through `calls` on
+  // every call and return were on the path to the next rung).
+  unsigned depth = calls.depth;
+  const unsigned room = calls.room;
+  std::uint32_t file = calls.file;
   std::uint64_t n = 0;
   Exit out;
   for (std::uint32_t s = r->first;;) {
@@ -831,7 +874,7 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
 #define SOFTSLC_WORD_RUNG(A, T, V, NC, NM, NK)                                                           \
   word_##A##_##T##_##V:                                                                                  \
     sh = shapes + (*rec >> kShapeShift);                                                                  \
-    rung = word_rung<kActions[A], NC, NM, NK, (T) != 0>(*this, *sh, rec + 1, w, t, scan);                 \
+    rung = word_rung<kActions[A], NC, NM, NK, (T) != 0>(*this, *sh, rec + 1, w, t, scan, ticks);          \
     if (rung != kRungDone) [[unlikely]]                                                                   \
       goto word_stopped;                                                                                  \
     rec += (T) == 0 && (NC) != kAnyCount ? fixed_word_stride(kActions[A], NC, NM, NK) : sh->stride;      \
@@ -882,26 +925,29 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
         std::int32_t next_run;
         // For a JSR not read: the subroutine's first SOR is looked up only if the run stops there.
         std::uint32_t at = 0;
+        std::uint32_t entry;  // the next run's first word-rung record, or kNoWordEntry
         if (sh->call) {
           const std::uint32_t* const call = rec + sh->stride - 2 - kCallWords;
           next_run = static_cast<std::int32_t>(call[1]);
           // Fault 0030h, or a subroutine that does not start fused: the JSR handler's work.
-          if (next_run < 0 || calls.depth == calls.room) {
+          if (next_run < 0 || depth == room) {
             out = exit;
             break;
           }
-          calls.call[calls.depth++] = {call[2], calls.file, exit.rung, static_cast<std::int32_t>(call[3])};
-          calls.file = call[0];
+          calls.call[depth++] = {call[2], file, exit.rung, static_cast<std::int32_t>(call[3]), call[5]};
+          file = call[0];
+          entry = call[4];
         } else {
           // A RET with no call of this run outstanding: run_routine returns (or ends the scan).
-          if (calls.depth == 0) {
+          if (depth == 0) {
             out = exit;
             break;
           }
-          const FusedCall& c = calls.call[--calls.depth];
-          calls.file = c.file;
+          const FusedCall& c = calls.call[--depth];
+          file = c.file;
           next_run = c.ret_run;
           at = c.ret;
+          entry = c.ret_words;
         }
         // The SOR the general path would dispatch next: the watchdog or an interrupt is checked
         // there, and a rung that is not fused runs there.
@@ -916,8 +962,8 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
         }
         s = r->first;
         sg = &segments_[s];
-        if (sg->shape != kWordSegment) continue;
-        first = rec = wrecords_.data() + sg->rec;
+        if (entry == kNoWordEntry) continue;
+        first = rec = wrecords_.data() + entry;
         goto* kRungKernels[*rec & kKernelMask];
       }
     word_segment_end:
@@ -946,6 +992,8 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
   }
   elapsed = t;
   count += n;
+  calls.depth = depth;
+  calls.file = file;
   return out;
 }
 

@@ -131,6 +131,10 @@ enum class FusedRule : std::uint8_t {
 
 // What a fused kernel needs of the scan beyond the data table: timers read the tick count at
 // scan_start + their scan time; counters and timers behave differently on the first pass.
+namespace word_ops {
+class TickClock;
+}
+
 struct FusedScan {
   VirtualTime scan_start = 0;
   bool first_pass = false;
@@ -145,6 +149,7 @@ struct FusedCall {
   std::uint32_t file = 0;     // the calling file
   std::uint32_t rung = 0;     // the JSR's rung number
   std::int32_t ret_run = -1;  // the run starting at ret, or -1
+  std::uint32_t ret_words = 0;  // (FusedProgram's own) that run's first word-rung record, or none
 };
 // The call state a run shares with the interpreter's run_routine.
 struct FusedCalls {
@@ -201,6 +206,9 @@ class FusedProgram {
   std::size_t fused_rungs() const { return fused_rungs_; }
   std::size_t shapes() const { return shapes_.size(); }
   std::size_t segments() const { return segments_.size(); }
+  // The word rungs whose rung-ins fit Shape::on_bits.
+  static constexpr unsigned kSmallConditions = 3;
+  static constexpr unsigned kSmallOutputs = 4;
   // Fused rungs with a compare or an action (word rungs).
   std::size_t word_rungs() const { return word_rungs_; }
   // Contact networks built as word rungs, beside a word rung of their run (run in the word-rung loop).
@@ -232,6 +240,11 @@ class FusedProgram {
     std::uint32_t cost_at = 0;       // first of 2^contacts entries in costs_
     std::uint32_t on_at = 0;         // first of coils * 2^contacts entries in on_
     std::uint32_t rules_at = 0;      // first of coils entries in rules_, then (word rungs) compares Op bytes
+    // Word rungs of at most kSmallConditions conditions and kSmallOutputs outputs (every
+    // fixed-count kernel's): bit output * 8 + v is that output's rung-in, the on_ table as bits
+    // here, so the kernel finds a rung-in with a shift of a word the shape holds instead of a
+    // load through `on` (a load the rung's branches waited for).
+    std::uint32_t on_bits = 0;
     // The same three tables as pointers, set once every shape is built, so a word rung loads one
     // pointer per table instead of the vector's start and the offset.
     const Nanoseconds* cost = nullptr;
@@ -264,13 +277,17 @@ class FusedProgram {
                                    Nanoseconds limit, const FusedScan& scan);
   // A fused JSR's record ends in its call words, then the transfer's code offset and rung number:
   // the subroutine's file, the run at its first rung (or -1), the return offset (the next rung's
-  // SOR, or EOF) and the run that starts there (or -1).
-  static constexpr unsigned kCallWords = 4;
+  // SOR, or EOF), the run that starts there (or -1), and for each of the two runs the index in
+  // wrecords_ of its first record when it starts with word rungs, else kNoWordEntry (so a taken
+  // call or return jumps to the next record's kernel without first loading the run and its
+  // segment: those loads were on the path to the jump).
+  static constexpr unsigned kCallWords = 6;
+  static constexpr std::uint32_t kNoWordEntry = 0xFFFFFFFFu;
   // word_rung's results.
   enum WordRungResult : unsigned { kRungDone = 0, kRungGeneral = 1, kRungTransfer = 2 };
   template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
   static unsigned word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
-                        Nanoseconds& t, const FusedScan& scan);
+                        Nanoseconds& t, const FusedScan& scan, word_ops::TickClock& ticks);
   // The largest Shape::kernel of a word rung (the word-rung loop's last rung kernel), and the
   // kernel number of the one-word record that ends every word segment (the loop's exit).
   static constexpr unsigned kLastWordKernel = 197;

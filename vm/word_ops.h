@@ -105,6 +105,32 @@ inline std::uint8_t timer_tick(VirtualTime at, std::uint32_t flags) {
   return static_cast<std::uint8_t>((flags & bc::kFlagB) ? at / kNsPerMs : at / kTick);
 }
 
+// timer_tick for a run of rungs whose time only grows (vm/fused.cpp): each unit's count is kept
+// with the interval of times it holds for, and divided again only when the time leaves it, so a
+// timer rung pays two compares where timer_tick's multiply by the unit's inverse sat on its path.
+class TickClock {
+ public:
+  std::uint8_t at(VirtualTime now, std::uint32_t flags) { return (flags & bc::kFlagB) ? ms_.at(now) : tick_.at(now); }
+
+ private:
+  template <VirtualTime Unit>
+  struct Count {
+    VirtualTime from = 1, to = 0;  // the count holds for times in [from, to); empty at first
+    std::uint8_t low = 0;
+    std::uint8_t at(VirtualTime now) {
+      if (now >= to || now < from) [[unlikely]] {
+        const VirtualTime q = now / Unit;
+        from = q * Unit;
+        to = from + Unit;
+        low = static_cast<std::uint8_t>(q);
+      }
+      return low;
+    }
+  };
+  Count<kTick> tick_;
+  Count<kNsPerMs> ms_;
+};
+
 // The timer's steps, as functions of the control word and ACC held in locals (lambdas capturing
 // them by reference made GCC build closure objects on the stack in the fused word-rung loop, a
 // cost on every call of it; docs/performance.md).

@@ -323,12 +323,18 @@ class FusedProgram::Builder {
     return true;
   }
 
+  // A contact's or coil's bit operand in a word-rung record: its word index above its bit number
+  // (FusedProgram::wrecords_), so a kernel takes the index with one shift and the bit as it is.
+  static std::uint32_t word_bit(std::uint32_t bit_operand) {
+    return (bc::word_of_bit(bit_operand) << 8) | bc::bit_of(bit_operand);
+  }
+
   void append_word_record(std::uint32_t shape) {
     auto& r = out_.wrecords_;
     r.push_back((shape << kShapeShift) | out_.shapes_[shape].kernel);
-    r.insert(r.end(), contacts_.begin(), contacts_.end());
+    for (std::uint32_t c : contacts_) r.push_back(word_bit(c));
     for (std::uint32_t o : compares_) r.push_back(encode(o));
-    r.insert(r.end(), coils_.begin(), coils_.end());
+    for (std::uint32_t c : coils_) r.push_back(word_bit(c));
     r.insert(r.end(), action_operands_.begin(), action_operands_.end());
     if (transfer_ == Op::JSR) {
       // The call words (FusedProgram::kCallWords); the runs are filled in once every file's runs
@@ -465,6 +471,9 @@ class FusedProgram::Builder {
       }
       out_.costs_.push_back(t);
     }
+    static_assert(std::size(Shape{}.small_cost) == 1u << kSmallConditions);
+    if (n <= kSmallConditions)
+      std::copy(out_.costs_.begin() + s.cost_at, out_.costs_.end(), s.small_cost);
     if (n <= kSmallConditions && outputs <= kSmallOutputs)
       for (unsigned j = 0; j < outputs; ++j)
         for (std::uint32_t v = 0; v < (1u << n); ++v)
@@ -733,7 +742,7 @@ template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
   const std::uint32_t* o = rec;
   unsigned v = 0;
   for (unsigned i = 0; i < nc; ++i, ++o)
-    v |= ((static_cast<unsigned>(w[bc::word_of_bit(*o)]) >> bc::bit_of(*o)) & 1u) << i;
+    v |= ((static_cast<unsigned>(w[*o >> 8]) >> (*o & 31)) & 1u) << i;  // word_bit: the bit is below 16
   for (unsigned j = 0; j < nm; ++j, o += 2)
     v |= static_cast<unsigned>(
              word_ops::compare_by_mask(rules[coils + j], read_operand(w, o[0]), read_operand(w, o[1])))
@@ -744,11 +753,14 @@ template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
     if (word_ops::timer_negative(w + act[0])) [[unlikely]]
       return kRungGeneral;
   }
-  t += cost[v];
+  if constexpr (fixed)
+    t += sh.small_cost[v];
+  else
+    t += cost[v];
   const std::uint32_t on_bits = sh.on_bits;
   for (unsigned j = 0; j < coils; ++j, ++o)
     apply_coil(static_cast<unsigned>(rules[j]) - static_cast<unsigned>(FusedRule::Energize) + 1,
-               w[bc::word_of_bit(*o)], static_cast<std::uint16_t>(1u << bc::bit_of(*o)),
+               w[*o >> 8], static_cast<std::uint16_t>(1u << (*o & 31)),
                static_cast<std::uint16_t>(0u - static_cast<unsigned>(output_on<fixed>(on_bits, on, j, n, v))));
   // The action's rung-in; it is the rung's last instruction, so the scan time it sees is t.
   [[maybe_unused]] const bool rung = output_on<fixed>(on_bits, on, coils, n, v);
@@ -815,6 +827,9 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
   const Run* r = &runs_[static_cast<std::size_t>(run)];
   Nanoseconds t = elapsed;
   word_ops::TickClock ticks;
+  // A copy the compiler knows no store reaches (through `scan` it reloaded first_pass through the
+  // reference on every counter rung).
+  const FusedScan this_scan = scan;
   // The call state in locals, written back at the end (a store and a reload through `calls` on
   // every call and return were on the path to the next rung).
   unsigned depth = calls.depth;
@@ -874,7 +889,7 @@ FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nan
 #define SOFTSLC_WORD_RUNG(A, T, V, NC, NM, NK)                                                           \
   word_##A##_##T##_##V:                                                                                  \
     sh = shapes + (*rec >> kShapeShift);                                                                  \
-    rung = word_rung<kActions[A], NC, NM, NK, (T) != 0>(*this, *sh, rec + 1, w, t, scan, ticks);          \
+    rung = word_rung<kActions[A], NC, NM, NK, (T) != 0>(*this, *sh, rec + 1, w, t, this_scan, ticks);     \
     if (rung != kRungDone) [[unlikely]]                                                                   \
       goto word_stopped;                                                                                  \
     rec += (T) == 0 && (NC) != kAnyCount ? fixed_word_stride(kActions[A], NC, NM, NK) : sh->stride;      \

@@ -222,9 +222,9 @@ class FusedProgram {
  private:
   // One shape: a distinct op sequence, with its tables. Rungs of one shape have records of one
   // size and layout, so a kernel specialised for the contact count and coil kind walks them.
-  // 64 bytes, so a word rung finds its shape from the index in its record with one shift (the
+  // 128 bytes, so a word rung finds its shape from the index in its record with one shift (the
   // mixed 1k scan: 86,242 -> 83,590 instructions with the lazy SOR lookup in execute()).
-  struct alignas(64) Shape {
+  struct alignas(128) Shape {
     std::uint8_t contacts = 0;
     std::uint8_t compares = 0;        // word rungs: compares, after the contacts in v
     std::uint8_t coils = 0;
@@ -245,6 +245,9 @@ class FusedProgram {
     // here, so the kernel finds a rung-in with a shift of a word the shape holds instead of a
     // load through `on` (a load the rung's branches waited for).
     std::uint32_t on_bits = 0;
+    // ... and their charges, costs_'s entries for the shape (word rungs of at most
+    // kSmallConditions conditions): read at a fixed place in the shape, not through `cost`.
+    Nanoseconds small_cost[1u << 3] = {};
     // The same three tables as pointers, set once every shape is built, so a word rung loads one
     // pointer per table instead of the vector's start and the offset.
     const Nanoseconds* cost = nullptr;
@@ -313,8 +316,8 @@ class FusedProgram {
   // The bench rung (four contacts, one coil) is 16 bytes.
   std::vector<std::uint16_t> records_;
   // Word-rung records, 32-bit units: the rung's kernel number and its shape's index (kShapeShift),
-  // each contact's and coil's bit operand word (vm/bytecode.h,
-  // mode BIT), two read operands per compare, then the action's table operands other than
+  // each contact's and coil's word index and bit number (index << 8 | bit, not the bytecode's
+  // BIT operand, so the kernel decodes it in one shift), two read operands per compare, then the action's table operands other than
   // literals and time bases (COP: its two file operands' word indices and its length as an
   // immediate), in instruction-box order, then for a JSR its call words (kCallWords), then for a
   // transfer its code offset and rung number.

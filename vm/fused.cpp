@@ -471,7 +471,6 @@ class FusedProgram::Builder {
       }
       out_.costs_.push_back(t);
     }
-    static_assert(std::size(Shape{}.small_cost) == 1u << kSmallConditions);
     if (n <= kSmallConditions)
       std::copy(out_.costs_.begin() + s.cost_at, out_.costs_.end(), s.small_cost);
     if (n <= kSmallConditions && outputs <= kSmallOutputs)

@@ -129,12 +129,12 @@ enum class FusedRule : std::uint8_t {
   Transfer,      // JSR or RET, the rung's last instruction: a true rung-in hands control to run_routine
 };
 
-// What a fused kernel needs of the scan beyond the data table: timers read the tick count at
-// scan_start + their scan time; counters and timers behave differently on the first pass.
 namespace word_ops {
 class TickClock;
 }
 
+// What a fused kernel needs of the scan beyond the data table: timers read the tick count at
+// scan_start + their scan time; counters and timers behave differently on the first pass.
 struct FusedScan {
   VirtualTime scan_start = 0;
   bool first_pass = false;
@@ -149,7 +149,7 @@ struct FusedCall {
   std::uint32_t file = 0;     // the calling file
   std::uint32_t rung = 0;     // the JSR's rung number
   std::int32_t ret_run = -1;  // the run starting at ret, or -1
-  std::uint32_t ret_words = 0;  // (FusedProgram's own) that run's first word-rung record, or none
+  std::uint32_t ret_words = 0;  // FusedProgram's: that run's first word-rung record, or kNoWordEntry
 };
 // The call state a run shares with the interpreter's run_routine.
 struct FusedCalls {
@@ -247,7 +247,7 @@ class FusedProgram {
     std::uint32_t on_bits = 0;
     // ... and their charges, costs_'s entries for the shape (word rungs of at most
     // kSmallConditions conditions): read at a fixed place in the shape, not through `cost`.
-    Nanoseconds small_cost[1u << 3] = {};
+    Nanoseconds small_cost[1u << kSmallConditions] = {};
     // The same three tables as pointers, set once every shape is built, so a word rung loads one
     // pointer per table instead of the vector's start and the offset.
     const Nanoseconds* cost = nullptr;

@@ -139,7 +139,8 @@ struct OperandBuilder {
     op.kind = Operand::Kind::Address;
     op.address = a;
     op.pos = pos;
-    op.spelling = to_string(a);
+    // No spelling: an address's is to_string(address), built where a message needs it
+    // (Operand::text()).
   }
 };
 

@@ -734,7 +734,7 @@ class Compiler {
     }
     if (!op.is_address()) {
       if (dest || file_start) {
-        error(pos, "'" + op.spelling + "' is a constant; this operand must be an address");
+        error(pos, "'" + op.text() + "' is a constant; this operand must be an address");
         return 0;
       }
       if (op.kind == Operand::Kind::Float) {
@@ -826,7 +826,7 @@ class Compiler {
       return 0;
     }
     if (!op.is_address() || !op.address.has_bit()) {
-      error(pos, "'" + op.spelling + "' is not a bit address");
+      error(pos, "'" + op.text() + "' is not a bit address");
       return 0;
     }
     const Address& a = op.address;
@@ -852,7 +852,7 @@ class Compiler {
                           (kind == OperandKind::Control && a.type == FileType::Control) ||
                           (kind == OperandKind::Resettable && is_structured(a.type)));
     if (!ok_type || a.has_bit() || a.word > 0 || a.indirect_word()) {
-      error(pos, "'" + op.spelling + "' is not a " +
+      error(pos, "'" + op.text() + "' is not a " +
                      (kind == OperandKind::Timer     ? "timer (T) element"
                       : kind == OperandKind::Counter ? "counter (C) element"
                       : kind == OperandKind::Control ? "control (R) element"
@@ -872,7 +872,7 @@ class Compiler {
 
   std::uint32_t slot_word_operand(const Instruction& in, const Operand& op, SourcePos pos) {
     if (!op.is_address() || !is_io(op.address.type) || op.address.is_indirect() || op.address.indexed) {
-      error(pos, "'" + op.spelling + "' must name a slot word such as I:1.0 or O:2.0");
+      error(pos, "'" + op.text() + "' must name a slot word such as I:1.0 or O:2.0");
       return 0;
     }
     const Address& a = op.address;
@@ -981,7 +981,7 @@ class Compiler {
             w = bc::imm(0);
             flags |= bc::kFlagB;
           } else {
-            error(pos, "time base must be 1.0 or 0.01 seconds (RM 2-8), not '" + op.spelling + "'");
+            error(pos, "time base must be 1.0 or 0.01 seconds (RM 2-8), not '" + op.text() + "'");
           }
           break;
         }
@@ -1030,7 +1030,7 @@ class Compiler {
           if (auto code = op.kind == Operand::Kind::Symbol ? keyword_code(os.kind, op.spelling) : std::nullopt)
             w = bc::imm(*code);
           else
-            error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + ": '" + op.spelling + "' is not one of its words");
+            error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + ": '" + op.text() + "' is not one of its words");
           break;
         case OperandKind::MessageBlock:
         case OperandKind::MessageData:

@@ -110,6 +110,23 @@ std::string strip_quotes(std::string_view s) {
 }
 
 std::optional<FileType> file_type_from_letters(std::string_view s) {
+  // A one-letter type without comparing strings: it is the type of nearly every address.
+  if (s.size() == 1) {
+    switch (s[0]) {
+      case 'O': return FileType::Output;
+      case 'I': return FileType::Input;
+      case 'S': return FileType::Status;
+      case 'B': return FileType::Bit;
+      case 'T': return FileType::Timer;
+      case 'C': return FileType::Counter;
+      case 'R': return FileType::Control;
+      case 'N': return FileType::Integer;
+      case 'F': return FileType::Float;
+      case 'L': return FileType::Long;
+      case 'A': return FileType::Ascii;
+      default: break;
+    }
+  }
   static constexpr std::pair<std::string_view, FileType> kTypes[] = {
       {"O", FileType::Output}, {"I", FileType::Input},    {"S", FileType::Status},   {"B", FileType::Bit},
       {"T", FileType::Timer},  {"C", FileType::Counter},  {"R", FileType::Control},  {"N", FileType::Integer},

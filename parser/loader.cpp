@@ -75,13 +75,13 @@ namespace {
 
 using namespace grammar;
 
-SourcePos pos_of(const pegtl::position& p) {
-  return {static_cast<std::uint32_t>(p.line), static_cast<std::uint32_t>(p.column)};
-}
-
+// The line and column straight from the input's iterator (the grammar tracks them eagerly):
+// in.position() builds a pegtl::position, whose std::string copy of the source name cost 3% of
+// loading a large program (docs/performance.md "Load time").
 template <typename Input>
 SourcePos pos_of(const Input& in) {
-  return pos_of(in.position());
+  const auto& it = in.iterator();
+  return {static_cast<std::uint32_t>(it.line), static_cast<std::uint32_t>(it.column)};
 }
 
 template <typename Input>
@@ -718,6 +718,26 @@ template <> struct action<project_name> {
   template <typename Input>
   static void apply(const Input& in, LoadState& s) { s.program.project = strip_quotes(in.string_view()); }
 };
+// How many lines after `from` begin with SOR before the next line that begins with LADDER: the
+// rungs of the program file being declared, counted ahead so that its rung vector is allocated
+// once. Grown by doubling, a 50,000-rung file moved every rung 16 times and left each outgrown
+// buffer behind (4% of loading a 1M-rung program, docs/performance.md "Load time"). The count only
+// sets a capacity: a line it miscounts (a comment line that begins with SOR) costs a rung's worth
+// of memory, nothing else.
+std::size_t count_rung_lines(std::string_view text, std::size_t from) {
+  std::size_t n = 0;
+  std::size_t nl = text.find('\n', from);
+  while (nl != std::string_view::npos) {
+    std::size_t b = nl + 1;
+    while (b < text.size() && (text[b] == ' ' || text[b] == '\t')) ++b;
+    const std::string_view rest = text.substr(b);
+    if (rest.starts_with("SOR")) ++n;
+    else if (rest.starts_with("LADDER")) break;
+    nl = text.find('\n', b);
+  }
+  return n;
+}
+
 template <> struct action<ladder_number> {
   template <typename Input>
   static void apply(const Input& in, LoadState& s) {
@@ -734,6 +754,7 @@ template <> struct action<ladder_number> {
     ProgramFile f;
     f.number = n;
     f.pos = p;
+    f.rungs.reserve(count_rung_lines(s.source, static_cast<std::size_t>(in.end() - s.source.data())));
     s.program.files.push_back(std::move(f));
     s.current_file = static_cast<int>(s.program.files.size() - 1);
   }
@@ -849,20 +870,30 @@ template <> struct action<stray_branch_keyword> {
 // too). The scratch vectors the actions append to grow by doubling, which would leave a quarter of
 // their capacity unused on average and free every outgrown buffer in the middle of the program
 // tree; the copy makes one allocation per vector and no free, and the instructions (with their
-// operands) are moved, not copied. Recursion is bounded by kMaxBranchNesting, which the
+// operands) are moved, not copied. A leg that is already exact (one or two elements, as most
+// are) is moved whole rather than copied. Recursion is bounded by kMaxBranchNesting, which the
 // branch_open action enforces while parsing.
+std::vector<RungElement> exact_copy(std::vector<RungElement>& scratch);
+
+void exact_legs(RungElement& c) {
+  if (c.legs.empty()) return;  // an instruction: no legs block
+  BranchLegs<RungElement> legs = std::move(c.legs);
+  c.legs.clear();
+  c.legs.reserve(legs.size());
+  for (auto& leg : legs) {
+    if (leg.capacity() == leg.size()) {
+      for (RungElement& x : leg) exact_legs(x);
+      c.legs.push_back(std::move(leg));
+    } else {
+      c.legs.push_back(exact_copy(leg));
+    }
+  }
+}
+
 std::vector<RungElement> exact_copy(std::vector<RungElement>& scratch) {
   std::vector<RungElement> out;
   out.reserve(scratch.size());
-  for (RungElement& e : scratch) {
-    // Every field is moved; only the legs are rebuilt at their exact sizes.
-    BranchLegs<RungElement> legs = std::move(e.legs);
-    RungElement& c = out.emplace_back(std::move(e));
-    c.legs.clear();
-    if (legs.empty()) continue;  // an instruction: no legs block
-    c.legs.reserve(legs.size());
-    for (auto& leg : legs) c.legs.push_back(exact_copy(leg));
-  }
+  for (RungElement& e : scratch) exact_legs(out.emplace_back(std::move(e)));
   return out;
 }
 

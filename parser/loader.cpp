@@ -15,6 +15,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include "parser/checker.h"
 #include "parser/grammar.h"
@@ -75,13 +76,59 @@ namespace {
 
 using namespace grammar;
 
-// The line and column straight from the input's iterator (the grammar tracks them eagerly):
-// in.position() builds a pegtl::position, whose std::string copy of the source name cost 3% of
-// loading a large program (docs/performance.md "Load time").
+// A statement's input. PEGTL's eager line tracking updates a line and column at every character
+// the grammar consumes and copies them into every backtracking mark (a quarter of loading a large
+// program went to the marks and the bumps, docs/performance.md "Load time"); this input tracks
+// nothing while parsing, and an action asks for a position only where it keeps one. pos_at counts
+// on from the position asked for last (actions ask in text order, so a statement is scanned about
+// once, however long its rung), or from the statement's start when asked for an earlier one.
+// The source name is held by pointer: a std::string would copy it for every statement (an
+// allocation each when the path is longer than 15 characters).
+class StatementInput : public pegtl::memory_input<pegtl::tracking_mode::lazy, pegtl::eol::lf_crlf, const char*> {
+ public:
+  // Actions see this type itself (PEGTL builds an action's input from ParseInput::action_t).
+  using action_t = pegtl::internal::action_input<StatementInput>;
+
+  StatementInput(const char* begin, const char* end, const char* source, std::size_t byte, std::size_t line)
+      : memory_input(begin, end, source, byte, line, 1), cursor_(begin), line_(line), column_(1) {}
+
+  // The line and column of `p`, a character of this statement, as eager tracking would count
+  // them (a byte is a column; '\n' starts the next line).
+  SourcePos pos_at(const char* p) const {
+    if (p < cursor_) {
+      cursor_ = m_begin.data;
+      line_ = m_begin.line;
+      column_ = m_begin.column;
+    }
+    for (; cursor_ < p; ++cursor_) {
+      if (*cursor_ == '\n') {
+        ++line_;
+        column_ = 1;
+      } else {
+        ++column_;
+      }
+    }
+    return {static_cast<std::uint32_t>(line_), static_cast<std::uint32_t>(column_)};
+  }
+
+ private:
+  mutable const char* cursor_;
+  mutable std::size_t line_;
+  mutable std::size_t column_;
+};
+
+// Where the matched text of an action starts. A statement's input computes it (above); other
+// inputs (parse_address) track positions eagerly and read them off the iterator — in.position()
+// would build a pegtl::position, whose std::string copy of the source name cost 3% of loading a
+// large program.
 template <typename Input>
 SourcePos pos_of(const Input& in) {
-  const auto& it = in.iterator();
-  return {static_cast<std::uint32_t>(it.line), static_cast<std::uint32_t>(it.column)};
+  if constexpr (std::is_same_v<std::decay_t<decltype(in.input())>, StatementInput>) {
+    return in.input().pos_at(in.begin());
+  } else {
+    const auto& it = in.iterator();
+    return {static_cast<std::uint32_t>(it.line), static_cast<std::uint32_t>(it.column)};
+  }
 }
 
 template <typename Input>
@@ -1353,8 +1400,8 @@ struct SyntaxOutcome {
 SyntaxOutcome parse_statements(LoadState& state, std::string_view text, const std::string& source_name) {
   SyntaxOutcome outcome;
   split_statements(text, [&](const Span& span) {
-    // The source name by pointer: a memory_input over a std::string copies it, one allocation per statement.
-    pegtl::memory_input in(text.data() + span.begin, text.data() + span.end, source_name.c_str(), span.begin, span.line, 1);
+    // StatementInput holds the source name by pointer and computes positions only where asked.
+    StatementInput in(text.data() + span.begin, text.data() + span.end, source_name.c_str(), span.begin, span.line);
     const std::size_t errors_before = state.diags.error_count();
     const std::size_t rungs_before = state.current_file >= 0 ? state.program.files[state.current_file].rungs.size() : 0;
     try {

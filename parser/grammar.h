@@ -242,10 +242,18 @@ struct known_mnemonic {
   }
 };
 
+// Whether a token is the three letters a, b, c: compared as characters, since a string_view
+// comparison calls memcmp and these run for every operand and element (4% of loading a large
+// program, docs/performance.md "Load time").
+constexpr bool is_word3(std::string_view t, char a, char b, char c) {
+  return t.size() == 3 && t[0] == a && t[1] == b && t[2] == c;
+}
+
 // Whether a token is one of the rung keywords SOR, EOR, BST, NXB, BND (as structure_keyword
 // matches them: the whole token).
 constexpr bool is_structure_keyword(std::string_view t) {
-  return t == "SOR" || t == "EOR" || t == "BST" || t == "NXB" || t == "BND";
+  return is_word3(t, 'S', 'O', 'R') || is_word3(t, 'E', 'O', 'R') || is_word3(t, 'B', 'S', 'T') ||
+         is_word3(t, 'N', 'X', 'B') || is_word3(t, 'B', 'N', 'D');
 }
 
 // Where an operand may start: not at the end of the input, and not at a rung keyword or a
@@ -272,7 +280,7 @@ struct element_start {
   template <typename ParseInput>
   static bool match(ParseInput& in) {
     const std::string_view t = token_at(in, 3);
-    return !(t == "EOR" || t == "NXB" || t == "BND");
+    return !(is_word3(t, 'E', 'O', 'R') || is_word3(t, 'N', 'X', 'B') || is_word3(t, 'B', 'N', 'D'));
   }
 };
 

@@ -1296,6 +1296,7 @@ class Checker {
       } else {
         bool any_output = false, all_output = true;
         std::vector<SequenceInfo> legs;
+        legs.reserve(e.legs.size());
         for (auto& leg : e.legs) {
           legs.push_back(check_sequence(leg, false, file_number, rung_index, instruction_counter));
           any_output |= legs.back().has_output;

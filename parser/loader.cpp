@@ -881,6 +881,9 @@ template <> struct action<branch_open> {
     RungElement e;
     e.kind = RungElement::Kind::Branch;
     e.pos() = pos_of(in);
+    // Most branches have two legs: room for both at once (the legs block is then kept, see
+    // exact_legs) rather than grown when NXB opens the second.
+    e.legs.reserve(2);
     e.legs.emplace_back();
     auto& container = s.current_elements();
     container.push_back(std::move(e));
@@ -924,6 +927,17 @@ std::vector<RungElement> exact_copy(std::vector<RungElement>& scratch);
 
 void exact_legs(RungElement& c) {
   if (c.legs.empty()) return;  // an instruction: no legs block
+  if (c.legs.size() == 2) {
+    // The block branch_open reserved for two legs is exact: keep it, trim only the legs.
+    for (auto& leg : c.legs) {
+      if (leg.capacity() == leg.size()) {
+        for (RungElement& x : leg) exact_legs(x);
+      } else {
+        leg = exact_copy(leg);
+      }
+    }
+    return;
+  }
   BranchLegs<RungElement> legs = std::move(c.legs);
   c.legs.clear();
   c.legs.reserve(legs.size());

@@ -1,5 +1,8 @@
 #include "instructions/instruction_table.h"
 
+#include <algorithm>
+#include <array>
+
 namespace softslc {
 
 namespace {
@@ -11,9 +14,58 @@ constexpr bool table_is_in_opcode_order() {
 static_assert(table_is_in_opcode_order(), "kInstructionTable must be indexed by Opcode");
 }  // namespace
 
-const InstructionSpec* find_instruction(std::string_view mnemonic) {
+namespace {
+// find_instruction runs for every instruction of a program, and comparing each row's mnemonic in
+// turn was 5% of loading a 1M-rung program (docs/performance.md "Load time"). The rows are grouped
+// by their mnemonic's length and first letter (every mnemonic starts with a capital, checked
+// below), in table order within a group, so a lookup compares only the few rows of its group and
+// still finds the first row of a mnemonic with several forms.
+constexpr std::size_t mnemonic_group(std::size_t length, char first) {
+  return length * 26 + static_cast<std::size_t>(first - 'A');
+}
+constexpr std::size_t kLongestMnemonic = [] {
+  std::size_t n = 0;
+  for (const auto& s : kInstructionTable) n = std::max(n, s.mnemonic.size());
+  return n;
+}();
+static_assert([] {
   for (const auto& s : kInstructionTable)
-    if (s.mnemonic == mnemonic) return &s;
+    if (s.mnemonic.empty() || s.mnemonic[0] < 'A' || s.mnemonic[0] > 'Z') return false;
+  return true;
+}(), "find_instruction groups mnemonics by a capital first letter");
+constexpr std::size_t group_of_row(std::size_t row) {
+  return mnemonic_group(kInstructionTable[row].mnemonic.size(), kInstructionTable[row].mnemonic[0]);
+}
+// Row numbers ordered by group, table order kept within a group (an insertion sort: stable).
+constexpr auto kRowsByGroup = [] {
+  std::array<std::uint16_t, kInstructionCount> rows{};
+  for (std::size_t i = 0; i < kInstructionCount; ++i) {
+    std::size_t j = i;
+    while (j > 0 && group_of_row(rows[j - 1]) > group_of_row(i)) {
+      rows[j] = rows[j - 1];
+      --j;
+    }
+    rows[j] = static_cast<std::uint16_t>(i);
+  }
+  return rows;
+}();
+// Where each group starts in kRowsByGroup (group g is kGroupStart[g] to kGroupStart[g + 1]).
+constexpr auto kGroupStart = [] {
+  std::array<std::uint16_t, mnemonic_group(kLongestMnemonic + 1, 'A') + 1> start{};
+  std::size_t i = 0;
+  for (std::size_t g = 0; g < start.size(); ++g) {
+    while (i < kInstructionCount && group_of_row(kRowsByGroup[i]) < g) ++i;
+    start[g] = static_cast<std::uint16_t>(i);
+  }
+  return start;
+}();
+}  // namespace
+
+const InstructionSpec* find_instruction(std::string_view mnemonic) {
+  if (mnemonic.empty() || mnemonic.size() > kLongestMnemonic || mnemonic[0] < 'A' || mnemonic[0] > 'Z') return nullptr;
+  const std::size_t g = mnemonic_group(mnemonic.size(), mnemonic[0]);
+  for (std::size_t i = kGroupStart[g]; i < kGroupStart[g + 1]; ++i)
+    if (kInstructionTable[kRowsByGroup[i]].mnemonic == mnemonic) return &kInstructionTable[kRowsByGroup[i]];
   return nullptr;
 }
 

@@ -592,7 +592,7 @@ class Checker {
     // (building it for each was 4% of loading a 1M-rung program, docs/performance.md "Load time").
     const auto where = [&] { return mnemonic_of(in) + " " + std::string(os.label); };
     if (op.kind == Operand::Kind::Symbol && !op.resolved) {
-      error(op.pos, "unknown symbol '" + op.spelling + "' (" + where() + ")");
+      error(op.pos, "unknown symbol '" + op.text() + "' (" + where() + ")");
       return;
     }
     if (op.kind == Operand::Kind::Address && uses_memdef_file(op.address))
@@ -608,11 +608,11 @@ class Checker {
     if (op.kind == Operand::Kind::Symbol && os.access != OperandAccess::Read) {
       const Symbol* sym = symbols_.at(op.spelling);
       if (sym->automax && sym->automax->kind == AutomaxDef::Kind::IoDef)
-        return error(op.pos, where() + ": " + op.spelling + " is an IODEF point of drop 0, and drop 0 registers are read "
+        return error(op.pos, where() + ": " + op.text() + " is an IODEF point of drop 0, and drop 0 registers are read "
                                                         "only (AutoMax Remote I/O manual, section 4.2)");
     }
     auto expect = [&](std::string_view what) {
-      error(op.pos, where() + ": expected " + std::string(what) + ", found '" + op.spelling + "'");
+      error(op.pos, where() + ": expected " + std::string(what) + ", found '" + op.text() + "'");
     };
     switch (os.kind) {
       case OperandKind::Bit:
@@ -630,7 +630,7 @@ class Checker {
         if (op.is_number()) {
           if (op.kind == Operand::Kind::Integer && (op.integer < -32768 || op.integer > 65535) &&
               program_.processor.family != ProcessorFamily::MicroLogix)
-            return error(op.pos, where() + ": constant " + op.spelling + " does not fit a 16-bit word");
+            return error(op.pos, where() + ": constant " + op.text() + " does not fit a 16-bit word");
           return;
         }
         if (op.address.has_bit()) return expect("a word address or a constant");
@@ -650,7 +650,7 @@ class Checker {
         if (!op.is_address()) return expect("a file address such as #N7:0");
         if (op.address.has_bit()) return expect("a file address, not a bit");
         if (!op.address.indexed)
-          warning(op.pos, where() + ": file operand written without '#'; RSLogix 500 writes #" + op.spelling);
+          warning(op.pos, where() + ": file operand written without '#'; RSLogix 500 writes #" + op.text());
         break;
       case OperandKind::Timer:
       case OperandKind::Counter:
@@ -683,7 +683,7 @@ class Checker {
       case OperandKind::ProgramFile:
         if (op.kind != Operand::Kind::Integer) return expect("an integer constant");
         if (op.integer < os.min || op.integer > os.max)
-          return error(op.pos, where() + " " + op.spelling + " is out of range " + std::to_string(os.min) + "-" +
+          return error(op.pos, where() + " " + op.text() + " is out of range " + std::to_string(os.min) + "-" +
                                    std::to_string(os.max));
         break;
       case OperandKind::SlotWord: {
@@ -720,7 +720,7 @@ class Checker {
                             : "an integer file element such as N10:0");
         if (!op.address.indirect_element() && op.address.element + len > 256)
           return error(op.pos, where() + ": the " + std::to_string(len) + "-word control block starting at " +
-                                   op.spelling + " runs past the end of the file (element 255)");
+                                   op.text() + " runs past the end of the file (element 255)");
         break;
       }
       // MSG (docs/semantics.md "MSG"): the keywords are checked by check_keyword, the lengths and the
@@ -773,7 +773,7 @@ class Checker {
   void check_channel_select(const Operand& select) {
     const auto m = program_.processor.micrologix;
     if ((m == MicroLogixModel::ML1200 || m == MicroLogixModel::ML1500LSP) && select.integer != 1)
-      error(select.pos, "SVC channel select " + select.spelling + ": the " + program_.processor.display_name +
+      error(select.pos, "SVC channel select " + select.text() + ": the " + program_.processor.display_name +
                             " has one channel, channel 0: its channel select is 1 (1762-RM001C p. 21-27)");
   }
 
@@ -816,7 +816,7 @@ class Checker {
     if ((in.opcode == Opcode::HSL || in.opcode == Opcode::RAC) && in.operands[0].kind == Operand::Kind::Integer &&
         in.operands[0].integer >= 0 && in.operands[0].integer < 6 && in.operands[0].integer >= proc.hsc_count() &&
         proc.supports(s.requires_))
-      error(in.operands[0].pos, mnemonic_of(in) + " counter " + in.operands[0].spelling + ": the " + proc.display_name +
+      error(in.operands[0].pos, mnemonic_of(in) + " counter " + in.operands[0].text() + ": the " + proc.display_name +
                                     " has " + std::to_string(proc.hsc_count()) + " high-speed counter(s) (1762-RM001C p. 5-27; "
                                     "docs/semantics.md \"The HSC function file\")");
     if (in.opcode == Opcode::SVC_CH && in.operands[0].kind == Operand::Kind::Integer && proc.supports(s.requires_))
@@ -824,9 +824,9 @@ class Checker {
     // "You must configure a data log queue before programming a DLG instruction" (AG-UM008C p. 3-64).
     if (in.opcode == Opcode::DLG && in.operands[0].kind == Operand::Kind::Integer && proc.supports(s.requires_) &&
         !program_.find_data_log(static_cast<int>(in.operands[0].integer)))
-      error(in.operands[0].pos, "DLG " + in.operands[0].spelling + ": data log queue " + in.operands[0].spelling +
+      error(in.operands[0].pos, "DLG " + in.operands[0].text() + ": data log queue " + in.operands[0].text() +
                                     " is not configured (a queue must be configured before a DLG names it, AG-UM008C "
-                                    "p. 3-64); add DATALOG " + in.operands[0].spelling + " RECORDS n DELIMITER COMMA <fields>");
+                                    "p. 3-64); add DATALOG " + in.operands[0].text() + " RECORDS n DELIMITER COMMA <fields>");
     if (s.role == Role::Leading && !first_in_rung)
       error(in.pos, mnemonic_of(in) + " must be the first instruction of its rung");
     if (in.opcode == Opcode::SBR && (file_number < 3 || rung_index != 0))
@@ -859,7 +859,7 @@ class Checker {
     if (in.opcode == Opcode::RPC && in.operands.size() == s.operand_count && in.operands[1].is_address() &&
         in.operands[1].address.type != FileType::Integer)
       error(in.operands[1].pos, "RPC writes its checksum to an N word (1747-RM001G p. 7-23), not " +
-                                    in.operands[1].spelling);
+                                    in.operands[1].text());
     if (in.opcode == Opcode::PID && in.operands.size() == 3) check_pid(in);
     if ((in.opcode == Opcode::IID || in.opcode == Opcode::IIE || in.opcode == Opcode::RPI) &&
         in.operands.size() == 1 && in.operands[0].kind == Operand::Kind::Integer && (in.operands[0].integer & 1))
@@ -899,7 +899,7 @@ class Checker {
     auto in_1_82 = [&](std::size_t i, std::string_view what) {
       const Operand& op = in.operands[i];
       if (op.kind == Operand::Kind::Integer && (op.integer < 1 || op.integer > 82))
-        error(op.pos, mnemonic_of(in) + " " + std::string(what) + " " + op.spelling +
+        error(op.pos, mnemonic_of(in) + " " + std::string(what) + " " + op.text() +
                           " is out of range 1-82 (1747-RM001 p. 10-12)");
     };
     auto not_long = [&](std::size_t i) {
@@ -923,7 +923,7 @@ class Checker {
     for (auto w : keyword_words(os.kind)) choices += (choices.empty() ? "" : ", ") + std::string(w);
     if (op.kind != Operand::Kind::Symbol || !keyword_code(os.kind, op.spelling))
       error(op.pos, mnemonic_of(in) + " " + std::string(os.label) + ": expected " + choices + ", found '" +
-                        op.spelling + "'");
+                        op.text() + "'");
   }
 
   // The Ethernet block's setup that a DATA block gives it (RM 12-34 table 12.14): word 35 = 10h or 11h is a
@@ -938,12 +938,12 @@ class Checker {
         return d.words[static_cast<std::size_t>(i)];
       };
       if (auto type = value(kEthernetMessageTypeWord); type && is_multihop_message_type(static_cast<std::uint16_t>(*type)))
-        error(block.pos, "MSG control block " + block.spelling + ": word 35 (set by the DATA block at line " +
+        error(block.pos, "MSG control block " + block.text() + ": word 35 (set by the DATA block at line " +
                              std::to_string(d.pos.line) + ") makes it a MultiHop message (1747-RM001G p. 12-34 "
                              "table 12.14), which softslc does not simulate; the simulated Ethernet is one network "
                              "of SLC 5/05s reached by IP address (word 35 = 0)");
       if (auto ao = value(kMessageAoWord); plc5 && ao && (*ao & kMessageAoBit))
-        error(block.pos, "MSG control block " + block.spelling + ": AO (word 12 bit 15, set by the DATA block at line " +
+        error(block.pos, "MSG control block " + block.text() + ": AO (word 12 bit 15, set by the DATA block at line " +
                              std::to_string(d.pos.line) + ") selects PLC5 logical ASCII addressing (1747-10.4 p. 4-3), "
                              "which softslc does not simulate");
     }
@@ -990,7 +990,7 @@ class Checker {
       return error(block_length.pos,
                    "MSG on " + std::string(to_string(link)) + " (channel " + std::to_string(channel) + " of the " +
                        proc.display_name + ") takes a " + std::to_string(expected) + "-word control block, not " +
-                       block_length.spelling +
+                       block_length.text() +
                        (ethernet ? " (1747-RM001G p. 12-34 table 12.14)"
                                  : blen == kEthernetMessageBlockWords ? " (51 words is the SLC 5/05's Ethernet block)"
                                                                     : " (1747-RM001G p. 12-31)"));
@@ -1001,20 +1001,20 @@ class Checker {
         error(node.pos, "MSG on Ethernet has no target node: the target is the IP address string in words 14-34 of "
                         "the control block (1747-RM001G p. 12-34 table 12.14); write 0 for the node");
       else if (!ethernet && (node.integer < lo || node.integer > hi))
-        error(node.pos, "MSG target node " + node.spelling + " is out of range " + std::to_string(lo) + "-" +
+        error(node.pos, "MSG target node " + node.text() + " is out of range " + std::to_string(lo) + "-" +
                             std::to_string(hi) + " for " + std::string(to_string(link)) +
                             (link == MessageLink::Dh485 ? " (1747-RM001G p. 13-4: responders 1-31; node 0 is a "
                                                           "programming device)"
                                                         : " (DH+ node addresses 0-77 octal)"));
     }
     if (block.is_address() && block.address.element + blen > 256)
-      error(block.pos, "the " + std::to_string(blen) + "-word MSG control block starting at " + block.spelling +
+      error(block.pos, "the " + std::to_string(blen) + "-word MSG control block starting at " + block.text() +
                            " does not fit its file (it would end past element 255; 1747-RM001G p. " +
                            (ethernet ? "12-34)" : "12-31)"));
     if (block.is_address()) {
       const int first = block.address.element, last = block.address.element + blen - 1;
       if (const int line = claim_message_state(block.address.file, first, last, block.pos))
-        error(block.pos, "MSG control block " + block.spelling + " overlaps the one of the MSG at line " +
+        error(block.pos, "MSG control block " + block.text() + " overlaps the one of the MSG at line " +
                              std::to_string(line) + "; every MSG needs its own control block (1747-RM001G p. 12-30)");
       if (ethernet) check_ethernet_block_data(block, dev == "PLC5");
     }
@@ -1042,41 +1042,41 @@ class Checker {
     if (data.is_address() && size.kind == Operand::Kind::Integer) {
       const int wpe = words_per_element(data.address.type);
       if (data.address.element + size.integer > 256)
-        error(size.pos, "MSG of " + size.spelling + " element(s) from " + data.spelling +
+        error(size.pos, "MSG of " + size.text() + " element(s) from " + data.text() +
                             " runs past the end of the file (element 255)");
       else if (ethernet) {
         const int most = ethernet_max_elements(data.address.type, dev == "PLC5", command.kind == Operand::Kind::Symbol &&
                                                                                    command.spelling == "WRITE");
         if (size.integer > most)
-          error(size.pos, "MSG of " + size.spelling + " " + std::string(file_letter(data.address.type)) +
+          error(size.pos, "MSG of " + size.text() + " " + std::string(file_letter(data.address.type)) +
                               " element(s): one message on the SLC 5/05's Ethernet channel carries at most " +
                               std::to_string(most) + " (1747-RM001G p. D-21 table D.5)");
       } else if (size.integer * wpe > kMessageMaxWords)
-        error(size.pos, "MSG of " + size.spelling + " " + std::string(file_letter(data.address.type)) +
+        error(size.pos, "MSG of " + size.text() + " " + std::string(file_letter(data.address.type)) +
                             " element(s) is " + std::to_string(size.integer * wpe) + " words; one message carries at "
                             "most " + std::to_string(kMessageMaxWords) + " (docs/semantics.md \"MSG\")");
     }
     if (dev == "485CIF") {
       if (target.kind != Operand::Kind::Integer || target.integer < 0 || target.integer > 255)
         error(target.pos, "MSG 485CIF target: expected a word offset 0-255 into the target's common interface file "
-                          "(1763-RM001 \"Data Table Address/Offset\"), found '" + target.spelling + "'");
+                          "(1763-RM001 \"Data Table Address/Offset\"), found '" + target.text() + "'");
       return;
     }
     if (target.kind != Operand::Kind::Address)
       return error(target.pos, "MSG target address: expected the target controller's data table address such as "
                                "N7:0 (written as an address: a SYMBOL names this program's data), found '" +
-                                   target.spelling + "'");
+                                   target.text() + "'");
     const Address& t = target.address;
     if (t.has_bit() || t.is_indirect() || t.indexed || is_mfile(t.type) || is_function_file(t.type) ||
         (is_structured(t.type) && t.word >= 0) || (t.type == FileType::String && t.word > 0))
       return error(target.pos, "MSG target address: expected a direct element address such as N7:0, found '" +
-                                   target.spelling + "'");
+                                   target.text() + "'");
     if (data.is_address() && t.type != data.address.type)
-      error(target.pos, "MSG target " + target.spelling + " is not of the local data's file type (" +
+      error(target.pos, "MSG target " + target.text() + " is not of the local data's file type (" +
                             std::string(file_letter(data.address.type)) + "); the control block carries one file type "
                             "for both (1747-RM001G p. 12-31, word 4)");
     if (size.kind == Operand::Kind::Integer && t.element + size.integer > 256)
-      error(size.pos, "MSG of " + size.spelling + " element(s) to " + target.spelling +
+      error(size.pos, "MSG of " + size.text() + " element(s) to " + target.text() +
                           " runs past the end of any file (element 255)");
   }
 
@@ -1116,13 +1116,13 @@ class Checker {
     if (node.kind == Operand::Kind::Integer) {
       const auto [lo, hi] = message_node_range(MessageLink::Dh485);
       if (node.integer < lo || node.integer > hi)
-        error(node.pos, "MSG target node " + node.spelling + " is out of range " + std::to_string(lo) + "-" +
+        error(node.pos, "MSG target node " + node.text() + " is out of range " + std::to_string(lo) + "-" +
                             std::to_string(hi) + " for DH-485 (1747-RM001G p. 13-4: responders 1-31)");
     }
     if (element.is_address()) {
       const int e = element.address.element;
       if (const int line = claim_message_state(element.address.file, e, e, element.pos))
-        error(element.pos, "MSG element " + element.spelling + " is also the one of the MSG at line " +
+        error(element.pos, "MSG element " + element.text() + " is also the one of the MSG at line " +
                                std::to_string(line) + "; each MSG instruction must use a unique element in a MSG "
                                "file (1762-RM001C p. 21-4)");
     }
@@ -1139,10 +1139,10 @@ class Checker {
     std::optional<FileType> first;
     for (const Operand& op : in.operands) {
       if (!op.is_address())
-        return error(op.pos, mnemonic_of(in) + " takes N or F words (1747-RM001 p. 7-17), not the constant " + op.spelling);
+        return error(op.pos, mnemonic_of(in) + " takes N or F words (1747-RM001 p. 7-17), not the constant " + op.text());
       const FileType t = op.address.type;
       if (t != FileType::Integer && t != FileType::Float)
-        return error(op.pos, mnemonic_of(in) + " takes N or F words (1747-RM001 p. 7-17), not " + op.spelling);
+        return error(op.pos, mnemonic_of(in) + " takes N or F words (1747-RM001 p. 7-17), not " + op.text());
       if (first && *first != t)
         return error(op.pos, "TDF's start, stop and destination are all N words or all F words (1747-RM001 p. 7-17)");
       first = t;
@@ -1180,7 +1180,7 @@ class Checker {
     const Operand& pv = in.operands[1];
     if (pv.is_number())
       error(pv.pos, "PID process variable: expected an element address that stores the process input (for example "
-                    "I:1.0 or N10:28), found the constant '" + pv.spelling + "' (1747-RM001G p. 9-4)");
+                    "I:1.0 or N10:28), found the constant '" + pv.text() + "' (1747-RM001G p. 9-4)");
     if (!block.is_address() || block.address.type != FileType::Integer || block.address.indirect_element() ||
         block.address.indirect_file() || block.address.indexed)
       return;
@@ -1191,8 +1191,8 @@ class Checker {
       const Address& a = op.address;
       if (a.type != FileType::Integer || a.file != b.file || a.indirect_element() || a.indirect_file()) continue;
       if (a.element >= b.element && a.element < b.element + 23)
-        error(op.pos, std::string(i == 1 ? "PID process variable " : "PID control variable ") + op.spelling +
-                          " lies inside the control block " + block.spelling + " (N" + std::to_string(b.file) + ":" +
+        error(op.pos, std::string(i == 1 ? "PID process variable " : "PID control variable ") + op.text() +
+                          " lies inside the control block " + block.text() + " (N" + std::to_string(b.file) + ":" +
                           std::to_string(b.element) + " to N" + std::to_string(b.file) + ":" +
                           std::to_string(b.element + 22) + ", 23 words, 1747-RM001G p. 9-3), which the PID rewrites");
     }
@@ -1210,7 +1210,7 @@ class Checker {
     auto items = parse_expression(e.spelling, err);
     if (!items) return error(at(err.column), "CPT expression: " + err.message);
     bool is_float = in.operands[0].is_address() && in.operands[0].address.type == FileType::Float;
-    std::string float_reason = is_float ? "the destination " + in.operands[0].spelling + " is F" : "";
+    std::string float_reason = is_float ? "the destination " + in.operands[0].text() + " is F" : "";
     const ExprItem* bitwise = nullptr;
     for (const auto& it : *items) {
       if (it.code != ExprCode::Push) {
@@ -1296,6 +1296,7 @@ class Checker {
       } else {
         bool any_output = false, all_output = true;
         std::vector<SequenceInfo> legs;
+        legs.reserve(e.legs.size());
         for (auto& leg : e.legs) {
           legs.push_back(check_sequence(leg, false, file_number, rung_index, instruction_counter));
           any_output |= legs.back().has_output;

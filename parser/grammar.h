@@ -95,8 +95,15 @@ struct file_type_data_log : seq<TAO_PEGTL_STRING("DLS"), opt<one<'0'>>, at<one<'
 // The MicroLogix message (MG11:0) and routing information (RI12:0) files; RI before the R file's letter.
 struct file_type_mg : string<'M', 'G'> {};
 struct file_type_ri : string<'R', 'I'> {};
+// Most addresses are B3:0, N7:0 or T4:0: a one-letter type not followed by a capital, which no
+// longer name can be (every one starts with two capitals or M0/M1), is taken at once; the rest are
+// tried in order only after an initial capital. Before, a number operand and every one-letter
+// type first failed the function names and the DLS, ST, MG and RI strings, a memcmp each (3% of
+// loading a large program, docs/performance.md "Load time"). Same language, same matched text.
+struct file_type_single : seq<file_type_letter, not_at<upper>> {};
 struct file_type
-    : sor<file_type_function, file_type_data_log, file_type_st, file_type_m, file_type_mg, file_type_ri, file_type_letter> {};
+    : sor<file_type_single, seq<at<upper>, sor<file_type_function, file_type_data_log, file_type_st, file_type_m,
+                                                file_type_mg, file_type_ri, file_type_letter>>> {};
 
 // The word address inside brackets (no nesting, no expressions).
 struct ref_type : file_type {};
@@ -152,17 +159,36 @@ struct kw_nxb : keyword3<'N', 'X', 'B'> {};
 struct kw_bnd : keyword3<'B', 'N', 'D'> {};
 struct structure_keyword : seq<sor<kw_sor, kw_eor, kw_bst, kw_nxb, kw_bnd>, token_end> {};
 
+// The blank-delimited token at the current position, at most `limit` characters (a longer one
+// is returned cut to limit + 1 characters, enough to tell it is longer).
+template <typename ParseInput>
+std::string_view token_at(ParseInput& in, std::size_t limit) {
+  const std::size_t available = in.size(limit + 1);
+  const char* p = in.current();
+  std::size_t n = 0;
+  while (n < available && n <= limit && !(p[n] == ' ' || p[n] == '\t' || p[n] == '\r' || p[n] == '\n' || p[n] == '\f' ||
+                                           p[n] == '\v'))
+    ++n;
+  return {p, n};
+}
+
+// A mnemonic's group for known_mnemonic: its length and first letter (a capital).
+constexpr std::size_t mnemonic_group(std::size_t length, char first) {
+  return length * 26 + static_cast<std::size_t>(first - 'A');
+}
+
 // A token that is a mnemonic of the instruction table (followed by a blank or the end of the
 // input), generated from the table itself. It is tried before every operand (a symbol may not
-// spell a mnemonic), so it is one lookup in a sorted list rather than a PEGTL sor<> of a string
-// per row: the sor<> compared every row's spelling in turn and was a fifth of the load time of a
-// large program (docs/performance.md, "Load time").
+// spell a mnemonic), so it is a lookup rather than a PEGTL sor<> of a string per row (the sor<>
+// was a fifth of the load time of a large program) or a binary search of the sorted names (its
+// string comparisons were 3-4%; docs/performance.md "Load time"): the names are grouped by length
+// and first letter, and a token is compared only with the few of its own group.
 struct known_mnemonic {
   using rule_t = known_mnemonic;
   using subs_t = tao::pegtl::empty_list;
 
   // Every row's mnemonic as the .def spells it (a second form's opcode name too, as before).
-  static constexpr auto kSorted = [] {
+  static constexpr auto kNames = [] {
     std::array names{
 #define OPERAND(...)
 #define SOFTSLC_INSTRUCTION(m, ...) std::string_view(#m),
@@ -170,29 +196,91 @@ struct known_mnemonic {
 #undef SOFTSLC_INSTRUCTION
 #undef OPERAND
     };
-    std::sort(names.begin(), names.end());
     return names;
   }();
   static constexpr std::size_t kLongest = [] {
     std::size_t n = 0;
-    for (auto m : kSorted) n = std::max(n, m.size());
+    for (auto m : kNames) n = std::max(n, m.size());
     return n;
   }();
+  // The names ordered by group, and where each group starts in that order (kStart[g] to
+  // kStart[g + 1]).
+  static constexpr auto kOrdered = [] {
+    auto names = kNames;
+    std::sort(names.begin(), names.end(), [](std::string_view a, std::string_view b) {
+      const std::size_t ga = mnemonic_group(a.size(), a[0]), gb = mnemonic_group(b.size(), b[0]);
+      return ga < gb || (ga == gb && a < b);
+    });
+    return names;
+  }();
+  static constexpr auto kStart = [] {
+    std::array<std::uint16_t, mnemonic_group(kLongest + 1, 'A') + 1> start{};
+    std::size_t i = 0;
+    for (std::size_t g = 0; g < start.size(); ++g) {
+      while (i < kOrdered.size() && mnemonic_group(kOrdered[i].size(), kOrdered[i][0]) < g) ++i;
+      start[g] = static_cast<std::uint16_t>(i);
+    }
+    return start;
+  }();
+  static_assert(std::all_of(kNames.begin(), kNames.end(), [](std::string_view m) { return !m.empty() && m[0] >= 'A' && m[0] <= 'Z'; }),
+                "known_mnemonic groups names by a capital first letter");
 
-  static constexpr bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; }
+  static constexpr bool is_mnemonic(std::string_view token) {
+    if (token.empty() || token.size() > kLongest || token[0] < 'A' || token[0] > 'Z') return false;
+    const std::size_t g = mnemonic_group(token.size(), token[0]);
+    for (std::size_t i = kStart[g]; i < kStart[g + 1]; ++i)
+      if (std::equal(token.begin() + 1, token.end(), kOrdered[i].begin() + 1)) return true;
+    return false;
+  }
 
   template <typename ParseInput>
   static bool match(ParseInput& in) {
-    // The token runs to the next blank or the end of the input; longer than any mnemonic, it is none.
-    const std::size_t available = in.size(kLongest + 1);
-    const char* p = in.current();
-    std::size_t n = 0;
-    while (n < available && !is_space(p[n])) ++n;
-    if (n == 0 || n > kLongest) return false;
-    const std::string_view token(p, n);
-    if (!std::binary_search(kSorted.begin(), kSorted.end(), token)) return false;
-    in.bump(n);
+    const std::string_view token = token_at(in, kLongest);
+    if (!is_mnemonic(token)) return false;
+    in.bump(token.size());
     return true;
+  }
+};
+
+// Whether a token is the three letters a, b, c: compared as characters, since a string_view
+// comparison calls memcmp and these run for every operand and element (4% of loading a large
+// program, docs/performance.md "Load time").
+constexpr bool is_word3(std::string_view t, char a, char b, char c) {
+  return t.size() == 3 && t[0] == a && t[1] == b && t[2] == c;
+}
+
+// Whether a token is one of the rung keywords SOR, EOR, BST, NXB, BND (as structure_keyword
+// matches them: the whole token).
+constexpr bool is_structure_keyword(std::string_view t) {
+  return is_word3(t, 'S', 'O', 'R') || is_word3(t, 'E', 'O', 'R') || is_word3(t, 'B', 'S', 'T') ||
+         is_word3(t, 'N', 'X', 'B') || is_word3(t, 'B', 'N', 'D');
+}
+
+// Where an operand may start: not at the end of the input, and not at a rung keyword or a
+// mnemonic (a symbol may not spell one). One look at the token, consuming nothing: as three
+// not_at<> rules (eof, structure_keyword, known_mnemonic) each saved and restored the input's
+// position and the keyword rules were tried in turn (docs/performance.md "Load time"). Same
+// tokens accepted.
+struct operand_start {
+  using rule_t = operand_start;
+  using subs_t = tao::pegtl::empty_list;
+  template <typename ParseInput>
+  static bool match(ParseInput& in) {
+    if (in.empty()) return false;
+    const std::string_view token = token_at(in, known_mnemonic::kLongest);
+    return !is_structure_keyword(token) && !known_mnemonic::is_mnemonic(token);
+  }
+};
+
+// Where a rung element may start: not at EOR, NXB or BND (the end of the rung or of a branch
+// leg), as not_at<> of each did, in one look at the token.
+struct element_start {
+  using rule_t = element_start;
+  using subs_t = tao::pegtl::empty_list;
+  template <typename ParseInput>
+  static bool match(ParseInput& in) {
+    const std::string_view t = token_at(in, 3);
+    return !(is_word3(t, 'E', 'O', 'R') || is_word3(t, 'N', 'X', 'B') || is_word3(t, 'B', 'N', 'D'));
   }
 };
 
@@ -201,7 +289,7 @@ struct known_mnemonic {
 struct message_device_word : sor<TAO_PEGTL_STRING("500CPU"), TAO_PEGTL_STRING("485CIF")> {};
 struct symbol_name : seq<sor<message_device_word, identifier>, token_end> {};
 struct operand : sor<address, number, symbol_name> {};
-struct operand_token : seq<not_at<eof>, not_at<structure_keyword>, not_at<known_mnemonic>, must<operand>> {};
+struct operand_token : seq<operand_start, must<operand>> {};
 struct mnemonic : seq<identifier, token_end> {};
 // CPT (issue 15): its expression runs from after the destination to the end of the instruction:
 // EOR, a branch keyword, or the next mnemonic that is not also an expression word (AND, OR, XOR,
@@ -228,7 +316,7 @@ struct branch_close : seq<kw_bnd, token_end> {};
 // The same rule as branch_close where its absence is an error (messages key on the rule type).
 struct branch_close_required : branch_close {};
 struct branch : seq<branch_open, opt_ws, leg, star<branch_next, opt_ws, leg>, must<branch_close_required>> {};
-struct rung_element : seq<not_at<kw_eor, token_end>, not_at<branch_next>, not_at<branch_close>, sor<branch, instruction>> {};
+struct rung_element : seq<element_start, sor<branch, instruction>> {};
 struct rung_end : seq<kw_eor, token_end> {};
 // NXB or BND with no open BST: reported by its action, then parsing goes on.
 struct stray_branch_keyword : sor<branch_next, branch_close> {};
@@ -366,3 +454,8 @@ struct statement : seq<opt_ws, sor<start_stmt, slot_stmt, project_stmt, ladder_s
 // For tao::pegtl::analyze (tests/parser/program_test.cpp): a mnemonic consumes at least one character.
 template <typename Name>
 struct tao::pegtl::analyze_traits<Name, softslc::grammar::known_mnemonic> : tao::pegtl::analyze_any_traits<> {};
+// The guards look ahead without consuming, as the not_at<> rules they replace.
+template <typename Name>
+struct tao::pegtl::analyze_traits<Name, softslc::grammar::operand_start> : tao::pegtl::analyze_opt_traits<> {};
+template <typename Name>
+struct tao::pegtl::analyze_traits<Name, softslc::grammar::element_start> : tao::pegtl::analyze_opt_traits<> {};

@@ -15,6 +15,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include "parser/checker.h"
 #include "parser/grammar.h"
@@ -75,13 +76,59 @@ namespace {
 
 using namespace grammar;
 
-SourcePos pos_of(const pegtl::position& p) {
-  return {static_cast<std::uint32_t>(p.line), static_cast<std::uint32_t>(p.column)};
-}
+// A statement's input. PEGTL's eager line tracking updates a line and column at every character
+// the grammar consumes and copies them into every backtracking mark (a quarter of loading a large
+// program went to the marks and the bumps, docs/performance.md "Load time"); this input tracks
+// nothing while parsing, and an action asks for a position only where it keeps one. pos_at counts
+// on from the position asked for last (actions ask in text order, so a statement is scanned about
+// once, however long its rung), or from the statement's start when asked for an earlier one.
+// The source name is held by pointer: a std::string would copy it for every statement (an
+// allocation each when the path is longer than 15 characters).
+class StatementInput : public pegtl::memory_input<pegtl::tracking_mode::lazy, pegtl::eol::lf_crlf, const char*> {
+ public:
+  // Actions see this type itself (PEGTL builds an action's input from ParseInput::action_t).
+  using action_t = pegtl::internal::action_input<StatementInput>;
 
+  StatementInput(const char* begin, const char* end, const char* source, std::size_t byte, std::size_t line)
+      : memory_input(begin, end, source, byte, line, 1), cursor_(begin), line_(line), column_(1) {}
+
+  // The line and column of `p`, a character of this statement, as eager tracking would count
+  // them (a byte is a column; '\n' starts the next line).
+  SourcePos pos_at(const char* p) const {
+    if (p < cursor_) {
+      cursor_ = m_begin.data;
+      line_ = m_begin.line;
+      column_ = m_begin.column;
+    }
+    for (; cursor_ < p; ++cursor_) {
+      if (*cursor_ == '\n') {
+        ++line_;
+        column_ = 1;
+      } else {
+        ++column_;
+      }
+    }
+    return {static_cast<std::uint32_t>(line_), static_cast<std::uint32_t>(column_)};
+  }
+
+ private:
+  mutable const char* cursor_;
+  mutable std::size_t line_;
+  mutable std::size_t column_;
+};
+
+// Where the matched text of an action starts. A statement's input computes it (above); other
+// inputs (parse_address) track positions eagerly and read them off the iterator — in.position()
+// would build a pegtl::position, whose std::string copy of the source name cost 3% of loading a
+// large program.
 template <typename Input>
 SourcePos pos_of(const Input& in) {
-  return pos_of(in.position());
+  if constexpr (std::is_same_v<std::decay_t<decltype(in.input())>, StatementInput>) {
+    return in.input().pos_at(in.begin());
+  } else {
+    const auto& it = in.iterator();
+    return {static_cast<std::uint32_t>(it.line), static_cast<std::uint32_t>(it.column)};
+  }
 }
 
 template <typename Input>
@@ -110,6 +157,23 @@ std::string strip_quotes(std::string_view s) {
 }
 
 std::optional<FileType> file_type_from_letters(std::string_view s) {
+  // A one-letter type without comparing strings: it is the type of nearly every address.
+  if (s.size() == 1) {
+    switch (s[0]) {
+      case 'O': return FileType::Output;
+      case 'I': return FileType::Input;
+      case 'S': return FileType::Status;
+      case 'B': return FileType::Bit;
+      case 'T': return FileType::Timer;
+      case 'C': return FileType::Counter;
+      case 'R': return FileType::Control;
+      case 'N': return FileType::Integer;
+      case 'F': return FileType::Float;
+      case 'L': return FileType::Long;
+      case 'A': return FileType::Ascii;
+      default: break;
+    }
+  }
   static constexpr std::pair<std::string_view, FileType> kTypes[] = {
       {"O", FileType::Output}, {"I", FileType::Input},    {"S", FileType::Status},   {"B", FileType::Bit},
       {"T", FileType::Timer},  {"C", FileType::Counter},  {"R", FileType::Control},  {"N", FileType::Integer},
@@ -139,7 +203,8 @@ struct OperandBuilder {
     op.kind = Operand::Kind::Address;
     op.address = a;
     op.pos = pos;
-    op.spelling = to_string(a);
+    // No spelling: an address's is to_string(address), built where a message needs it
+    // (Operand::text()).
   }
 };
 
@@ -700,6 +765,26 @@ template <> struct action<project_name> {
   template <typename Input>
   static void apply(const Input& in, LoadState& s) { s.program.project = strip_quotes(in.string_view()); }
 };
+// How many lines after `from` begin with SOR before the next line that begins with LADDER: the
+// rungs of the program file being declared, counted ahead so that its rung vector is allocated
+// once. Grown by doubling, a 50,000-rung file moved every rung 16 times and left each outgrown
+// buffer behind (4% of loading a 1M-rung program, docs/performance.md "Load time"). The count only
+// sets a capacity: a line it miscounts (a comment line that begins with SOR) costs a rung's worth
+// of memory, nothing else.
+std::size_t count_rung_lines(std::string_view text, std::size_t from) {
+  std::size_t n = 0;
+  std::size_t nl = text.find('\n', from);
+  while (nl != std::string_view::npos) {
+    std::size_t b = nl + 1;
+    while (b < text.size() && (text[b] == ' ' || text[b] == '\t')) ++b;
+    const std::string_view rest = text.substr(b);
+    if (rest.starts_with("SOR")) ++n;
+    else if (rest.starts_with("LADDER")) break;
+    nl = text.find('\n', b);
+  }
+  return n;
+}
+
 template <> struct action<ladder_number> {
   template <typename Input>
   static void apply(const Input& in, LoadState& s) {
@@ -716,6 +801,7 @@ template <> struct action<ladder_number> {
     ProgramFile f;
     f.number = n;
     f.pos = p;
+    f.rungs.reserve(count_rung_lines(s.source, static_cast<std::size_t>(in.end() - s.source.data())));
     s.program.files.push_back(std::move(f));
     s.current_file = static_cast<int>(s.program.files.size() - 1);
   }
@@ -795,6 +881,9 @@ template <> struct action<branch_open> {
     RungElement e;
     e.kind = RungElement::Kind::Branch;
     e.pos() = pos_of(in);
+    // Most branches have two legs: room for both at once (the legs block is then kept, see
+    // exact_legs) rather than grown when NXB opens the second.
+    e.legs.reserve(2);
     e.legs.emplace_back();
     auto& container = s.current_elements();
     container.push_back(std::move(e));
@@ -831,20 +920,41 @@ template <> struct action<stray_branch_keyword> {
 // too). The scratch vectors the actions append to grow by doubling, which would leave a quarter of
 // their capacity unused on average and free every outgrown buffer in the middle of the program
 // tree; the copy makes one allocation per vector and no free, and the instructions (with their
-// operands) are moved, not copied. Recursion is bounded by kMaxBranchNesting, which the
+// operands) are moved, not copied. A leg that is already exact (one or two elements, as most
+// are) is moved whole rather than copied. Recursion is bounded by kMaxBranchNesting, which the
 // branch_open action enforces while parsing.
+std::vector<RungElement> exact_copy(std::vector<RungElement>& scratch);
+
+void exact_legs(RungElement& c) {
+  if (c.legs.empty()) return;  // an instruction: no legs block
+  if (c.legs.size() == 2) {
+    // The block branch_open reserved for two legs is exact: keep it, trim only the legs.
+    for (auto& leg : c.legs) {
+      if (leg.capacity() == leg.size()) {
+        for (RungElement& x : leg) exact_legs(x);
+      } else {
+        leg = exact_copy(leg);
+      }
+    }
+    return;
+  }
+  BranchLegs<RungElement> legs = std::move(c.legs);
+  c.legs.clear();
+  c.legs.reserve(legs.size());
+  for (auto& leg : legs) {
+    if (leg.capacity() == leg.size()) {
+      for (RungElement& x : leg) exact_legs(x);
+      c.legs.push_back(std::move(leg));
+    } else {
+      c.legs.push_back(exact_copy(leg));
+    }
+  }
+}
+
 std::vector<RungElement> exact_copy(std::vector<RungElement>& scratch) {
   std::vector<RungElement> out;
   out.reserve(scratch.size());
-  for (RungElement& e : scratch) {
-    // Every field is moved; only the legs are rebuilt at their exact sizes.
-    BranchLegs<RungElement> legs = std::move(e.legs);
-    RungElement& c = out.emplace_back(std::move(e));
-    c.legs.clear();
-    if (legs.empty()) continue;  // an instruction: no legs block
-    c.legs.reserve(legs.size());
-    for (auto& leg : legs) c.legs.push_back(exact_copy(leg));
-  }
+  for (RungElement& e : scratch) exact_legs(out.emplace_back(std::move(e)));
   return out;
 }
 
@@ -1253,7 +1363,9 @@ void split_statements(std::string_view text, OnStatement&& on_statement) {
     auto l = text.substr(pos, next - pos);
     auto tok = first_token(l);
     bool in_block = cur && cur->kind == SpanKind::Data;
-    auto percent_count = static_cast<std::size_t>(std::count(l.begin(), l.end(), '%'));
+    // Most lines have no '%': one memchr rather than a count over every character.
+    auto percent_count = l.find('%') == std::string_view::npos ? std::size_t{0}
+                                                                : static_cast<std::size_t>(std::count(l.begin(), l.end(), '%'));
     if (!comment_open && defines_register_name(l, tok)) --percent_count;  // RIODEF SPD_REF%[...]
     if (comment_open) {
       // Continue the open comment whatever this line holds.
@@ -1304,8 +1416,8 @@ struct SyntaxOutcome {
 SyntaxOutcome parse_statements(LoadState& state, std::string_view text, const std::string& source_name) {
   SyntaxOutcome outcome;
   split_statements(text, [&](const Span& span) {
-    // The source name by pointer: a memory_input over a std::string copies it, one allocation per statement.
-    pegtl::memory_input in(text.data() + span.begin, text.data() + span.end, source_name.c_str(), span.begin, span.line, 1);
+    // StatementInput holds the source name by pointer and computes positions only where asked.
+    StatementInput in(text.data() + span.begin, text.data() + span.end, source_name.c_str(), span.begin, span.line);
     const std::size_t errors_before = state.diags.error_count();
     const std::size_t rungs_before = state.current_file >= 0 ? state.program.files[state.current_file].rungs.size() : 0;
     try {

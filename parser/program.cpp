@@ -18,6 +18,11 @@ bool Operand::same_as(const Operand& o) const {
   return false;
 }
 
+std::string Operand::text() const {
+  if (kind == Kind::Address && spelling.empty()) return to_string(address);
+  return spelling;
+}
+
 const ProgramFile* Program::find_file(int number) const {
   for (const auto& f : files)
     if (f.number == number) return &f;
@@ -67,7 +72,7 @@ struct Comparer {
         return fail(where + ": instruction " + std::to_string(i) + " differs");
       for (std::size_t k = 0; k < x.operands.size(); ++k)
         if (!x.operands[k].same_as(y.operands[k]))
-          return fail(where + ": operand '" + x.operands[k].spelling + "' vs '" + y.operands[k].spelling + "'");
+          return fail(where + ": operand '" + x.operands[k].text() + "' vs '" + y.operands[k].text() + "'");
     }
     return true;
   }

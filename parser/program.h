@@ -44,13 +44,20 @@ struct Operand {
   SourcePos pos;
   std::int64_t integer = 0;    // Kind::Integer
   double real = 0.0;           // Kind::Float
-  // The text as written, for diagnostics; Kind::Symbol: the symbol's name; Kind::Expression: the
-  // CPT expression.
+  // Kind::Symbol: the symbol's name; Kind::Expression: the CPT expression, blanks collapsed;
+  // Kind::Integer and Kind::Float: the number as written (fmt keeps a hexadecimal constant hex).
+  // Kind::Address: empty as the loader leaves it — the canonical spelling is to_string(address),
+  // built where a message needs it (storing it cost a to_string per address, 4% of loading a
+  // large program, docs/performance.md "Load time"); an operand made elsewhere (a CPT atom) may
+  // carry its text here. Read it through text() where the operand may be an address.
   std::string spelling;
 
   // True when the operand designates a data-table location (directly or through a symbol).
   bool is_address() const { return kind == Kind::Address || (kind == Kind::Symbol && resolved); }
   bool is_number() const { return kind == Kind::Integer || kind == Kind::Float; }
+  // The operand's text for a message: `spelling`, or for an address without one its canonical
+  // spelling ("T4:0/DN").
+  std::string text() const;
   // Semantic equality (ignores spelling and position).
   bool same_as(const Operand& o) const;
 };

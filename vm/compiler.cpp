@@ -262,10 +262,12 @@ class Compiler {
   void note_elements(const std::vector<RungElement>& elems) {
     for (const auto& e : elems) {
       if (e.kind == RungElement::Kind::Branch) {
+        code_words_ += 1 + e.legs.size();  // BST, an NXB between legs, BND
         for (const auto& leg : e.legs) note_elements(leg);
         continue;
       }
       const auto& in = e.instruction;
+      code_words_ += 1 + in.operands.size() + (in.opcode == Opcode::JMP || in.opcode == Opcode::JSR ? 1 : 0);
       if (in.opcode == Opcode::RPC) reads_checksum_ = true;
       const InstructionSpec& sp = spec(in.opcode);
       for (std::size_t i = 0; i < in.operands.size(); ++i) {
@@ -310,6 +312,7 @@ class Compiler {
     }
     for (const auto& f : prog_.files) {
       cur_file_ = f.number;
+      code_words_ += f.rungs.size() + 1;  // a SOR per rung, the file's EOF
       for (std::size_t r = 0; r < f.rungs.size(); ++r) {
         cur_rung_ = static_cast<int>(r);
         note_elements(f.rungs[r].elements);
@@ -734,7 +737,7 @@ class Compiler {
     }
     if (!op.is_address()) {
       if (dest || file_start) {
-        error(pos, "'" + op.spelling + "' is a constant; this operand must be an address");
+        error(pos, "'" + op.text() + "' is a constant; this operand must be an address");
         return 0;
       }
       if (op.kind == Operand::Kind::Float) {
@@ -826,7 +829,7 @@ class Compiler {
       return 0;
     }
     if (!op.is_address() || !op.address.has_bit()) {
-      error(pos, "'" + op.spelling + "' is not a bit address");
+      error(pos, "'" + op.text() + "' is not a bit address");
       return 0;
     }
     const Address& a = op.address;
@@ -852,7 +855,7 @@ class Compiler {
                           (kind == OperandKind::Control && a.type == FileType::Control) ||
                           (kind == OperandKind::Resettable && is_structured(a.type)));
     if (!ok_type || a.has_bit() || a.word > 0 || a.indirect_word()) {
-      error(pos, "'" + op.spelling + "' is not a " +
+      error(pos, "'" + op.text() + "' is not a " +
                      (kind == OperandKind::Timer     ? "timer (T) element"
                       : kind == OperandKind::Counter ? "counter (C) element"
                       : kind == OperandKind::Control ? "control (R) element"
@@ -872,7 +875,7 @@ class Compiler {
 
   std::uint32_t slot_word_operand(const Instruction& in, const Operand& op, SourcePos pos) {
     if (!op.is_address() || !is_io(op.address.type) || op.address.is_indirect() || op.address.indexed) {
-      error(pos, "'" + op.spelling + "' must name a slot word such as I:1.0 or O:2.0");
+      error(pos, "'" + op.text() + "' must name a slot word such as I:1.0 or O:2.0");
       return 0;
     }
     const Address& a = op.address;
@@ -931,7 +934,10 @@ class Compiler {
     std::uint32_t aux = 0;
     bool any_float = false;
     bool bad_int_operand = false;  // a float or long where only 16-bit words are allowed
-    std::vector<std::uint32_t> ops;
+    // The operand words: a scratch vector that keeps its capacity (one allocation per instruction
+    // otherwise). emit_instruction does not call itself.
+    std::vector<std::uint32_t>& ops = ops_scratch_;
+    ops.clear();
     FileType element_type = FileType::Timer;
     for (std::size_t i = 0; i < sp.operand_count; ++i) {
       const OperandSpec& os = sp.operands[i];
@@ -981,7 +987,7 @@ class Compiler {
             w = bc::imm(0);
             flags |= bc::kFlagB;
           } else {
-            error(pos, "time base must be 1.0 or 0.01 seconds (RM 2-8), not '" + op.spelling + "'");
+            error(pos, "time base must be 1.0 or 0.01 seconds (RM 2-8), not '" + op.text() + "'");
           }
           break;
         }
@@ -1030,7 +1036,7 @@ class Compiler {
           if (auto code = op.kind == Operand::Kind::Symbol ? keyword_code(os.kind, op.spelling) : std::nullopt)
             w = bc::imm(*code);
           else
-            error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + ": '" + op.spelling + "' is not one of its words");
+            error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + ": '" + op.text() + "' is not one of its words");
           break;
         case OperandKind::MessageBlock:
         case OperandKind::MessageData:
@@ -1197,6 +1203,7 @@ class Compiler {
     CompiledFile cf;
     cf.number = f.number;
     cf.begin = static_cast<std::uint32_t>(out_.code.size());
+    cf.rungs.reserve(std::min<std::size_t>(f.rungs.size(), 0x10000));
     std::map<int, std::uint32_t> labels;
     std::map<int, SourcePos> label_pos;
     const std::size_t first_jump = jumps_.size();
@@ -1209,7 +1216,8 @@ class Compiler {
       const bool has_mcr = contains(rung.elements, Opcode::MCR);
       emit(bc::header(Op::SOR, 0, has_mcr ? bc::kFlagA : 0, static_cast<std::uint32_t>(r)));
       // Every LBL of the rung makes the rung a jump target (the checker wants it first).
-      std::vector<const RungElement*> stack;
+      std::vector<const RungElement*>& stack = element_stack_;
+      stack.clear();
       for (const auto& e : rung.elements) stack.push_back(&e);
       while (!stack.empty()) {
         const RungElement* e = stack.back();
@@ -1263,6 +1271,12 @@ class Compiler {
       error({}, "the program has no main program file (LADDER 2)");
       return;
     }
+    // The code is allocated once at about its size rather than grown by doubling (each doubling
+    // copied all of it and left the old block behind: 5% of loading a 1M-rung program,
+    // docs/performance.md "Load time"). The estimate is a header and a word per operand for each
+    // instruction; a sixteenth more covers what it misses, and capacity not written to is never
+    // touched.
+    out_.code.reserve(code_words_ + code_words_ / 16);
     for (const auto* f : files) {
       out_.file_index[static_cast<std::size_t>(f->number)] = static_cast<std::int16_t>(out_.files.size());
       emit_file(*f);
@@ -1314,6 +1328,9 @@ class Compiler {
   int cur_file_ = -1;
   int cur_rung_ = -1;
   bool reads_checksum_ = false;  // the program has an RPC, so out_.program_checksum is computed
+  std::size_t code_words_ = 0;   // the code's expected size, counted by size_files
+  std::vector<std::uint32_t> ops_scratch_;           // emit_instruction's operand words
+  std::vector<const RungElement*> element_stack_;    // emit_file's walk of a rung for its LBLs
   MFileAccess current_row_ = MFileAccess::OtherM;  // access-time row of the operand being compiled
 };
 

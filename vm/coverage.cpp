@@ -24,7 +24,7 @@ void flatten(const std::vector<RungElement>& elements, std::vector<const Instruc
 
 std::string instruction_text(const Instruction& in) {
   std::string s(spec(in.opcode).mnemonic);
-  for (const auto& o : in.operands) s += " " + o.spelling;
+  for (const auto& o : in.operands) s += " " + o.text();
   return s;
 }
 

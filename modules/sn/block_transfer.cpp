@@ -107,7 +107,7 @@ void check_buffer_sharing(const Program& program, int slot, DiagnosticList& diag
                   "block-transfer buffer " + std::to_string(x) + " of the 1747-SN in slot " + std::to_string(slot) +
                       " (M0:" + std::to_string(slot) + "." + std::to_string(x * kBufferStride) + " and M1:" +
                       std::to_string(slot) + "." + std::to_string(x * kBufferStride) + ") is already used by " +
-                      std::string(spec(other.opcode).mnemonic) + " " + other.operands[0].spelling + " in file " +
+                      std::string(spec(other.opcode).mnemonic) + " " + other.operands[0].text() + " in file " +
                       std::to_string(it->second.file) + " rung " + std::to_string(it->second.rung) + " (line " +
                       std::to_string(other.pos.line) + "): the scanner has 32 buffers, one per block transfer; " +
                       "\"the next BT instruction must use another M-file buffer\" (1747-SN p. 5-6)");

@@ -114,6 +114,74 @@ TEST(Program, RungMaySpanLines) {
   EXPECT_EQ(p.files[0].rungs[0].elements.size(), 3u);
 }
 
+// Positions on the continuation lines of a rung, counted by hand: a byte (a tab too) is a column,
+// and the line after '\n' starts at column 1. The loader computes positions on demand rather than
+// tracking them while parsing (docs/performance.md "Load time"), so this checks the count.
+TEST(Program, PositionsOnContinuationLinesOfARung) {
+  // kHeader is lines 1-3, LADDER line 4, SOR line 5.
+  auto p = load_ok(kHeader + "LADDER 2\nSOR XIC I:1/0\n    XIO I:1/1\n\tOTE O:2/0 EOR\nSOR XIC I:1/2 OTE O:2/2 EOR\n");
+  const auto& e = p.files[0].rungs[0].elements;
+  ASSERT_EQ(e.size(), 3u);
+  EXPECT_EQ(e[0].instruction.operands[0].pos, (SourcePos{5, 9}));
+  EXPECT_EQ(e[1].pos(), (SourcePos{6, 5}));
+  EXPECT_EQ(e[1].instruction.operands[0].pos, (SourcePos{6, 9}));
+  EXPECT_EQ(e[2].pos(), (SourcePos{7, 2}));
+  EXPECT_EQ(e[2].instruction.operands[0].pos, (SourcePos{7, 6}));
+  const auto& next = p.files[0].rungs[1];
+  EXPECT_EQ(next.pos, (SourcePos{8, 1}));
+  EXPECT_EQ(next.elements[1].instruction.operands[0].pos, (SourcePos{8, 19}));
+}
+
+TEST(Program, ErrorsOnContinuationLinesArePositioned) {
+  // An action's error (unknown mnemonic, line 9 after a tab) and a syntax error raised inside the
+  // address grammar (N without a file number: at the element, line 6 column 9).
+  auto r = load_program(kHeader + "LADDER 2\nSOR XIC I:1/0\n  XIC N:0\n  OTE O:2/0 EOR\nSOR XIC I:1/0\n\tFOO I:1/1\n  OTE O:2/0 EOR\n",
+                        "t.slc");
+  ASSERT_FALSE(r.ok());
+  const auto text = r.render_diagnostics();
+  EXPECT_NE(text.find("t.slc:6:9: error: expected a file number after 'N'"), std::string::npos) << text;
+  EXPECT_NE(text.find("t.slc:9:2: error: unknown instruction 'FOO'"), std::string::npos) << text;
+}
+
+// A token that only begins like a mnemonic or a rung keyword is an operand (a symbol); the whole
+// token spelling one ends the instruction's operands.
+TEST(Program, SymbolsThatBeginLikeAMnemonicOrKeyword) {
+  auto p = load_ok(kHeader + "SYMBOL B3:0/1 XICX\nSYMBOL B3:0/2 EORX\nSYMBOL B3:0/3 BSTA\nSYMBOL B3:0/4 MOV_\n" +
+                   "LADDER 2\nSOR XIC XICX XIO EORX BST XIC BSTA NXB XIC MOV_ BND OTE O:2/0 EOR\n");
+  const auto& e = p.files[0].rungs[0].elements;
+  ASSERT_EQ(e.size(), 4u);
+  EXPECT_EQ(e[0].instruction.operands[0].spelling, "XICX");
+  EXPECT_EQ(e[1].instruction.operands[0].spelling, "EORX");
+  ASSERT_EQ(e[2].legs.size(), 2u);
+  EXPECT_EQ(e[2].legs[0][0].instruction.operands[0].spelling, "BSTA");
+  EXPECT_EQ(e[2].legs[1][0].instruction.operands[0].spelling, "MOV_");
+  // OTE followed by the mnemonic XIC: OTE has no operand, and XIC starts the next instruction.
+  auto r = load_program(kHeader + "LADDER 2\nSOR XIC I:1/0 OTE XIC I:1/1 EOR\n", "t.slc");
+  EXPECT_NE(r.render_diagnostics().find("OTE takes 1 operand (bit), found 0"), std::string::npos) << r.render_diagnostics();
+}
+
+// An address operand keeps no spelling; text() is its canonical one (B3/17 is bit 1 of word 1,
+// PT1 4-8 as in address_test; bit 13 of a timer's word 0 is DN), other operands' text is as written.
+TEST(Program, AddressOperandTextIsTheCanonicalSpelling) {
+  auto p = load_ok(kHeader + "LADDER 2\nSOR XIC B3/17 MOV 0x00FF N7:0 OTE T4:0/13 EOR\n");
+  const auto& e = p.files[0].rungs[0].elements;
+  EXPECT_TRUE(e[0].instruction.operands[0].spelling.empty());
+  EXPECT_EQ(e[0].instruction.operands[0].text(), "B3:1/1");
+  EXPECT_EQ(e[1].instruction.operands[0].text(), "0x00FF");
+  EXPECT_EQ(e[2].instruction.operands[0].text(), "T4:0/DN");
+}
+
+// Each program file's rung vector is allocated once, at the count of SOR lines before the next
+// LADDER (docs/performance.md "Load time").
+TEST(Program, RungVectorIsReservedToTheFilesRungs) {
+  auto p = load_ok(kHeader + "LADDER 2\nSOR JSR 3 EOR\nSOR XIC I:1/0 OTE O:2/0 EOR\nSOR XIC I:1/1 OTE O:2/1 EOR\n" +
+                   "LADDER 3\nSOR SBR OTE B3:1/0 EOR\nSOR RET EOR\n");
+  ASSERT_EQ(p.files.size(), 2u);
+  EXPECT_EQ(p.files[0].rungs.size(), 3u);
+  EXPECT_EQ(p.files[0].rungs.capacity(), 3u);
+  EXPECT_EQ(p.files[1].rungs.capacity(), 2u);
+}
+
 TEST(Program, ProjectAndLadderNames) {
   auto p = load_ok(kHeader + "PROJECT \"CONVEYOR\"\nLADDER 2 MAIN\nSOR JSR 3 EOR\nLADDER 3 \"FILL\"\nSOR XIC I:1/0 OTE O:2/0 EOR\n");
   EXPECT_EQ(p.project, "CONVEYOR");

@@ -200,10 +200,10 @@ class Layouter {
           Address w = in.operands[0].address;
           w.word = label == "Preset" ? 1 : 2;
           auto v = state_->value(w);
-          ib.rows.emplace_back(label, v ? v->to_string() : o.spelling);
+          ib.rows.emplace_back(label, v ? v->to_string() : o.text());
           continue;
         }
-        ib.rows.emplace_back(label, o.spelling);
+        ib.rows.emplace_back(label, o.text());
         // A MSG target is the other controller's address: no value of this one's under it.
         const bool remote = i < specs.size() && specs[i].kind == OperandKind::RemoteAddress;
         if (o.is_address() && !remote) {

@@ -114,8 +114,9 @@ TEST(MicroLogixMsg, CheckRefusesWhatTheChannelCannotSend) {
       {"Bul.1763", "SOR MSG MG11:0 READ 500CPU LOCAL 0 N7:0 5 32 N10:0 5 EOR", "target node 32 is out of range 1-31"},
       {"Bul.1763", "SOR MSG MG11:0 READ 500CPU REMOTE 0 N7:0 5 2 N10:0 5 EOR", "MSG REMOTE"},
       {"Bul.1763", "SOR MSG MG11:0 READ PLC5 LOCAL 0 N7:0 5 2 N10:0 5 EOR", "MSG PLC5 on DH-485"},
-      // Channel 1: Ethernet on the 1100/1400 (not yet), the LRP's second port, none on the 1200.
-      {"Bul.1766", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "Ethernet port, with an RI routing element"},
+      // Channel 1: Ethernet on the 1100/1400, with an RI element where the node is (msg_ethernet_test.cpp),
+      // the LRP's second port, none on the 1200.
+      {"Bul.1766", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "names its RI routing element where channel 0 names the target node"},
       {"1764-LRP", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "channel 1 of the 1764-LRP"},
       {"Bul.1762", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "its MSG channel is always 0"},
       {"Bul.1762", "SOR MSG MG11:0 READ 500CPU LOCAL 0 N7:0 5 2 N10:0 256 EOR", "message timeout 256 is out of range 0-255"},

@@ -1138,19 +1138,29 @@ class Checker {
         error(node.pos, "MSG target node " + node.spelling + " is out of range " + std::to_string(lo) + "-" +
                             std::to_string(hi) + " for DH-485 (1747-RM001G p. 13-4: responders 1-31)");
     }
-    if (element.is_address()) {
-      const int e = element.address.element;
-      if (const int line = claim_message_state(element.address.file, e, e, element.pos))
-        error(element.pos, "MSG element " + element.spelling + " is also the one of the MSG at line " +
-                               std::to_string(line) + "; each MSG instruction must use a unique element in a MSG "
-                               "file (1762-RM001C p. 21-4)");
-    }
+    claim_message_element(element);
     const Operand& data = ops[5];
-    if (data.is_address() && data.address.type == FileType::Long)
-      return error(data.pos, "MSG of L (long word) elements is not simulated by softslc: the file type code a "
-                             "MicroLogix sends for L is not in its sources (docs/semantics.md \"The MicroLogix MSG\")");
+    if (long_message_data(data)) return;
     check_message_data(ops[1], dev, data, ops[6], ops[8], false);
   }
+  // "Each MSG instruction must use a unique Element in a MSG File" (1762-RM001C p. 21-4).
+  void claim_message_element(const Operand& element) {
+    if (!element.is_address()) return;
+    const int e = element.address.element;
+    if (const int line = claim_message_state(element.address.file, e, e, element.pos))
+      error(element.pos, "MSG element " + element.spelling + " is also the one of the MSG at line " +
+                             std::to_string(line) + "; each MSG instruction must use a unique element in a MSG "
+                             "file (1762-RM001C p. 21-4)");
+  }
+
+  // L data is refused on either channel: the PCCC type code a MicroLogix sends for L is not in the sources.
+  bool long_message_data(const Operand& data) {
+    if (!data.is_address() || data.address.type != FileType::Long) return false;
+    error(data.pos, "MSG of L (long word) elements is not simulated by softslc: the file type code a "
+                    "MicroLogix sends for L is not in its sources (docs/semantics.md \"The MicroLogix MSG\")");
+    return true;
+  }
+
   // The MicroLogix 1100/1400 MSG on channel 1, the embedded Ethernet port (docs/semantics.md "The MicroLogix
   // MSG on Ethernet"): the setup screen names the message's RI routing element where channel 0 names the
   // node (1763-RM001B p. 384, 1766-RM001A p. 435); the 1400 assigns the timeout itself (1766-RM001A p. 421);
@@ -1172,13 +1182,7 @@ class Checker {
                          "(1766-RM001A p. 421): " + std::to_string(kMl1400EthernetMessageTimeoutSeconds) +
                          " s with the defaults softslc simulates (15 s and 3 s); write " +
                          std::to_string(kMl1400EthernetMessageTimeoutSeconds));
-    if (element.is_address()) {
-      const int e = element.address.element;
-      if (const int line = claim_message_state(element.address.file, e, e, element.pos))
-        error(element.pos, "MSG element " + element.spelling + " is also the one of the MSG at line " +
-                               std::to_string(line) + "; each MSG instruction must use a unique element in a MSG "
-                               "file (1762-RM001C p. 21-4)");
-    }
+    claim_message_element(element);
     // "Each channel 1 Ethernet MSG names its own RI element" (RSLogix creates one per MSG when the rung is
     // verified, 1766-RM001A p. 435); two MSGs sharing one still read the same address: a warning.
     const auto shared = std::find_if(routing_elements_.begin(), routing_elements_.end(), [&](const RoutingUse& r) {
@@ -1192,9 +1196,7 @@ class Checker {
       routing_elements_.push_back({node.address.file, node.address.element, node.pos});
     check_routing_data(node);
     const Operand& data = ops[5];
-    if (data.is_address() && data.address.type == FileType::Long)
-      return error(data.pos, "MSG of L (long word) elements is not simulated by softslc: the file type code a "
-                             "MicroLogix sends for L is not in its sources (docs/semantics.md \"The MicroLogix MSG\")");
+    if (long_message_data(data)) return;
     const std::string dev = ops[2].kind == Operand::Kind::Symbol ? ops[2].spelling : "";
     check_message_data(ops[1], dev, data, ops[6], ops[8], false);
   }

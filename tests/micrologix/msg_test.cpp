@@ -318,5 +318,40 @@ TEST(MicroLogixMsg, ProfilesPriceTheManualsFigures) {
   }
 }
 
+// The scan where a MSG's rung goes false to true costs the manual's "false-to-true transition" figure
+// instead of the steady-state true one; the scans after it the steady-state figure again. 1762-RM001C
+// p. 21-3 Table 21.1: MicroLogix 1200 reads 230.0 us, writes 264 us + 1.6 us per word, steady state true
+// 20.0 us; 1500 reads 198.0 us, writes 226 us + 1.4 us per word, true 17.0 us. 1766-RM001A p. 398:
+// MicroLogix 1400 reads 48.1677 us, writes 58.8510 us, true 2.5670 us. Five one-word elements: the
+// 1200's write is 264 + 5 x 1.6 = 272 us, the 1500's 226 + 5 x 1.4 = 233 us.
+TEST(MicroLogixMsg, TheFalseToTrueScanCostsTheTransitionFigure) {
+  struct Figure {
+    const char* processor;
+    const char* command;
+    Nanoseconds transition_ns, true_ns;
+  };
+  const Figure figures[] = {
+      {"Bul.1762", "READ", 230'000, 20'000}, {"Bul.1762", "WRITE", 272'000, 20'000},
+      {"1764-LSP", "READ", 198'000, 17'000}, {"1764-LRP", "WRITE", 233'000, 17'000},
+      {"Bul.1766", "READ", 48'168, 2'567},   {"Bul.1766", "WRITE", 58'851, 2'567},
+  };
+  for (const Figure& f : figures) {
+    Plc plc("SOR XIC B3:0/0 MSG MG11:0 " + std::string(f.command) + " 500CPU LOCAL 0 N7:0 5 2 N10:0 5 EOR", {},
+            "START " + std::string(f.processor) + "\n");
+    plc.run_scans(2);
+    auto scan_ns = [&] {
+      const VirtualTime t = plc->now();
+      plc->scan(1);
+      return plc->now() - t;
+    };
+    const Nanoseconds rung_false = scan_ns();
+    plc.set("B3:0/0", 1);
+    const Nanoseconds transition = scan_ns();
+    const Nanoseconds steady = scan_ns();
+    EXPECT_EQ(transition - steady, f.transition_ns - f.true_ns) << f.processor << " " << f.command;
+    EXPECT_GT(steady, rung_false) << f.processor;  // true costs more than false on every profile
+  }
+}
+
 }  // namespace
 }  // namespace softslc::test

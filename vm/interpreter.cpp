@@ -1505,8 +1505,8 @@ void Interpreter::message(Op op, const std::uint32_t* o, bool rung, Nanoseconds 
   }
 }
 
-// The words `elements` elements of the file holding `data` are (0 outside every file: the network ends
-// such a message with 04h).
+// How many words `elements` elements of the file holding `data` take: the words a MSG moves (0 outside
+// every file, a message the network ends with 04h).
 std::uint32_t Interpreter::message_words(std::uint32_t data, std::uint16_t elements) const {
   const int file = prog_.layout->file_containing(data);
   if (file < 0) return 0;

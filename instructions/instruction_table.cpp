@@ -104,6 +104,7 @@ std::string_view to_string(OperandKind k) {
     case OperandKind::MessageBlock: return "integer control block (the control block length)";
     case OperandKind::MessageData: return "data table element address";
     case OperandKind::MessageElement: return "MG message file element (MG11:0)";
+    case OperandKind::MessageTarget: return "target node (channel 0) or RI routing element (RI12:0, channel 1 Ethernet)";
     case OperandKind::RemoteAddress: return "the target's data table address (485CIF: word offset)";
   }
   return "?";

@@ -52,6 +52,9 @@ enum class OperandKind : std::uint8_t {
                    // never looked up in this program: it names the other controller's data table
   MessageElement,  // the MicroLogix MSG's MG file element (MG11:0): its 25 words are the instruction's
                    // parameters and status (1762-RM001C p. 21-4)
+  MessageTarget,   // the MicroLogix MSG's target: a node number on channel 0 (DH-485), the RI routing
+                   // element (RI12:0) on the 1100/1400 channel 1 Ethernet, whose words 1-2 hold the target's
+                   // IP address (1766-RM001A p. 435; docs/semantics.md "The MicroLogix MSG on Ethernet")
 };
 
 // Whether an operand kind is written as a destination word (never a constant).

@@ -51,6 +51,17 @@ constexpr MessageLink network_link(ProcessorFamily family) {
   }
 }
 
+// The link a station is on in softslc's one-link network: its family's network_link, except that a
+// MicroLogix 1100 or 1400 given an IP address is on its channel 1, the embedded EtherNet/IP port
+// (1763-RM001B p. 384, 1766-RM001A p. 435), with the SLC 5/05s. Decision: softslc has no channel
+// configuration, and the IP address a test gives the controller is what configures that port (its
+// default IP address is 0, "undefined", 1766-UM001O p. 286); without one it is on channel 0, DH-485
+// (docs/semantics.md "The MicroLogix MSG on Ethernet").
+inline MessageLink station_link(const ProcessorModel& p, bool has_ip) {
+  if (p.has_routing_files() && has_ip) return MessageLink::Ethernet;
+  return network_link(p.family);
+}
+
 // The node addresses a MSG may name on a link. DH-485: "The node address range for all responders
 // is 1 to 31" and an SLC processor never has node 0 (RM 13-4). DH+: 0-77 octal (64 stations).
 // Ethernet has no node numbers: the target is the IP address string in the control block (RM 12-34).
@@ -107,6 +118,39 @@ constexpr int ethernet_max_elements(FileType local, bool plc5, bool write) {
     default: return 256;
   }
 }
+
+// The Ethernet channel's MSG Connection Timeout and MSG Reply Timeout, at their defaults: softslc has no
+// channel configuration. SLC 5/05: 15,000 ms and 3,000 ms (1747-UM011G p. 242). MicroLogix 1400: MSG
+// Reply Timeout 3,000 ms (1766-UM001O p. 287, table 43); its MSG Connection Timeout row was not reached
+// and is taken to be the 5/05's 15,000 ms [U]; the MicroLogix 1100's channel configuration was not reached
+// either and is taken to be the same [U] (docs/semantics.md "The MicroLogix MSG on Ethernet").
+inline constexpr int kEthernetConnectionTimeoutSeconds = 15;
+inline constexpr int kEthernetReplyTimeoutSeconds = 3;
+// "Message Timeout for any MicroLogix 1400 channel 1 MSG can not be modified in the Ethernet Message
+// Setup dialog box. It is assigned by the processor and is determined by adding the Channel 1 MSG
+// Connection Timeout to the MSG Reply Timeout, then adding 15 seconds" (1766-RM001A p. 421): 33 s.
+inline constexpr int kMl1400EthernetMessageTimeoutSeconds =
+    kEthernetConnectionTimeoutSeconds + kEthernetReplyTimeoutSeconds + 15;
+
+// The RI element's subtype (word 0, 1766-RM001A p. 435): 10h a MultiHop message straight to the IP
+// address in words 1-2 (every channel 1 MSG of the 1100/1400 is a MultiHop one, its first hop the IP
+// address); 11h remote MultiHop to DH+ through a bridge, which softslc does not simulate.
+inline constexpr std::uint16_t kRoutingLocal = 0x10;
+inline constexpr std::uint16_t kRoutingRemoteDhPlus = 0x11;
+// The IP address in the RI element's words 1 and 2, "stored in network byte order (big-endian order)"
+// as the manual's table lays it out (1766-RM001A p. 435: 10.121.30.11 is word 1 = 790Ah, word 2 =
+// 0B1Eh): each word holds two of the address's bytes, the earlier one in its low byte.
+constexpr std::uint32_t routing_ip(std::uint16_t word1, std::uint16_t word2) {
+  return (static_cast<std::uint32_t>(word1 & 0xFFu) << 24) | (static_cast<std::uint32_t>(word1 >> 8) << 16) |
+         (static_cast<std::uint32_t>(word2 & 0xFFu) << 8) | static_cast<std::uint32_t>(word2 >> 8);
+}
+constexpr std::uint16_t routing_ip_word(std::uint32_t ip, int word) {
+  const std::uint32_t earlier = word == 1 ? ip >> 24 : (ip >> 8) & 0xFFu;
+  const std::uint32_t later = word == 1 ? (ip >> 16) & 0xFFu : ip & 0xFFu;
+  return static_cast<std::uint16_t>(earlier | (later << 8));
+}
+static_assert(routing_ip(0x790A, 0x0B1E) == 0x0A791E0Bu, "1766-RM001A p. 435: 10.121.30.11");
+static_assert(routing_ip_word(0x0A791E0Bu, 1) == 0x790A && routing_ip_word(0x0A791E0Bu, 2) == 0x0B1E);
 
 constexpr std::string_view to_string(MessageLink link) {
   switch (link) {

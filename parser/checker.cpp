@@ -62,6 +62,12 @@ class Checker {
     SourcePos pos;
   };
   std::vector<MessageBlockUse> message_blocks_;  // the MSG control blocks seen so far
+  struct RoutingUse {
+    int file;
+    int element;
+    SourcePos pos;
+  };
+  std::vector<RoutingUse> routing_elements_;  // the RI elements channel 1 MSGs named so far
   // File number → first use (type and position), to catch one number used as two types.
   struct FileUse {
     FileType type;
@@ -751,6 +757,20 @@ class Checker {
             op.address.is_indirect() || op.address.indexed)
           return expect("an MG file element such as MG11:0 (the MicroLogix MSG file, 1762-RM001C p. 21-4)");
         break;
+      // A node number (range checked per channel by check_micrologix_message), or the RI element of a
+      // channel 1 Ethernet message (1766-RM001A p. 435), a whole element the setup screen names.
+      case OperandKind::MessageTarget:
+        if (op.kind == Operand::Kind::Integer) {
+          if (op.integer < os.min || op.integer > os.max)
+            return error(op.pos, where() + " " + op.spelling + " is out of range " + std::to_string(os.min) + "-" +
+                                     std::to_string(os.max));
+          break;
+        }
+        if (!op.is_address() || op.address.type != FileType::Routing || op.address.word >= 0 || op.address.has_bit() ||
+            op.address.is_indirect() || op.address.indexed)
+          return expect("a target node number, or on channel 1 (Ethernet) an RI routing element such as RI12:0 "
+                        "(1763-RM001B p. 384, 1766-RM001A p. 435)");
+        break;
     }
     if (op.is_address()) check_address(op.address, op.pos, os.kind, os.mfile);
   }
@@ -1094,13 +1114,8 @@ class Checker {
       return error(ops[3].pos, "MSG REMOTE (a message through a bridge to another link, 1762-RM001C p. 21-13) is not "
                                "simulated by softslc; the simulated network is one link: use LOCAL");
     if (channel.kind == Operand::Kind::Integer && channel.integer == 1) {
-      const bool ethernet = proc.micrologix == MicroLogixModel::ML1100 || proc.micrologix == MicroLogixModel::ML1400;
       const bool lrp = proc.micrologix == MicroLogixModel::ML1500LRP;
-      if (ethernet)
-        return error(channel.pos, "MSG on channel 1 (the " + proc.display_name + "'s Ethernet port, with an RI routing "
-                                  "element, 1766-RM001A p. 435) is not simulated by softslc yet; channel 0 is the "
-                                  "controller's DH-485 port on the simulated network (docs/semantics.md \"The "
-                                  "MicroLogix MSG\")");
+      if (proc.has_routing_files()) return check_micrologix_ethernet_message(in);
       if (lrp)
         return error(channel.pos, "MSG on channel 1 of the 1764-LRP (its second serial port) is not simulated by "
                                   "softslc: the simulated network is on channel 0 (docs/semantics.md \"The "
@@ -1108,6 +1123,10 @@ class Checker {
       return error(channel.pos, "the " + proc.display_name + " has one channel: its MSG channel is always 0 "
                                 "(1762-RM001C p. 21-4, sub-element 8)");
     }
+    if (node.is_address())
+      return error(node.pos, "MSG target " + node.text() + ": an RI routing element is for a channel 1 Ethernet "
+                             "message (1763-RM001B p. 384, 1766-RM001A p. 435); on channel 0 (DH-485) the target is a "
+                             "node number, 1-31");
     const std::string dev = device.kind == Operand::Kind::Symbol ? device.spelling : "";
     if (dev == "PLC5")
       return error(device.pos, "MSG PLC5 on DH-485: a PLC-5 is on DH+ or Ethernet; the " + proc.display_name +
@@ -1119,19 +1138,89 @@ class Checker {
         error(node.pos, "MSG target node " + node.text() + " is out of range " + std::to_string(lo) + "-" +
                             std::to_string(hi) + " for DH-485 (1747-RM001G p. 13-4: responders 1-31)");
     }
-    if (element.is_address()) {
-      const int e = element.address.element;
-      if (const int line = claim_message_state(element.address.file, e, e, element.pos))
-        error(element.pos, "MSG element " + element.text() + " is also the one of the MSG at line " +
-                               std::to_string(line) + "; each MSG instruction must use a unique element in a MSG "
-                               "file (1762-RM001C p. 21-4)");
-    }
+    claim_message_element(element);
     const Operand& data = ops[5];
-    if (data.is_address() && data.address.type == FileType::Long)
-      return error(data.pos, "MSG of L (long word) elements is not simulated by softslc: the file type code a "
-                             "MicroLogix sends for L is not in its sources (docs/semantics.md \"The MicroLogix MSG\")");
+    if (long_message_data(data)) return;
     check_message_data(ops[1], dev, data, ops[6], ops[8], false);
   }
+  // "Each MSG instruction must use a unique Element in a MSG File" (1762-RM001C p. 21-4).
+  void claim_message_element(const Operand& element) {
+    if (!element.is_address()) return;
+    const int e = element.address.element;
+    if (const int line = claim_message_state(element.address.file, e, e, element.pos))
+      error(element.pos, "MSG element " + element.text() + " is also the one of the MSG at line " +
+                             std::to_string(line) + "; each MSG instruction must use a unique element in a MSG "
+                             "file (1762-RM001C p. 21-4)");
+  }
+
+  // L data is refused on either channel: the PCCC type code a MicroLogix sends for L is not in the sources.
+  bool long_message_data(const Operand& data) {
+    if (!data.is_address() || data.address.type != FileType::Long) return false;
+    error(data.pos, "MSG of L (long word) elements is not simulated by softslc: the file type code a "
+                    "MicroLogix sends for L is not in its sources (docs/semantics.md \"The MicroLogix MSG\")");
+    return true;
+  }
+
+  // The MicroLogix 1100/1400 MSG on channel 1, the embedded Ethernet port (docs/semantics.md "The MicroLogix
+  // MSG on Ethernet"): the setup screen names the message's RI routing element where channel 0 names the
+  // node (1763-RM001B p. 384, 1766-RM001A p. 435); the 1400 assigns the timeout itself (1766-RM001A p. 421);
+  // 103 words a message as on channel 0 (AG-UM008C p. 3-38).
+  void check_micrologix_ethernet_message(const Instruction& in) {
+    const auto& ops = in.operands;
+    const Operand& element = ops[0];
+    const Operand& node = ops[7];
+    const Operand& timeout = ops[9];
+    const auto& proc = program_.processor;
+    if (!node.is_address())
+      return error(node.pos, "MSG on channel 1 (the " + proc.display_name + "'s Ethernet port) names its RI routing "
+                             "element where channel 0 names the target node, e.g. RI12:0; its words 1-2 hold the "
+                             "target's IP address (1763-RM001B p. 384, 1766-RM001A p. 435)");
+    if (proc.micrologix == MicroLogixModel::ML1400 && timeout.kind == Operand::Kind::Integer &&
+        timeout.integer != kMl1400EthernetMessageTimeoutSeconds)
+      error(timeout.pos, "MSG message timeout " + timeout.spelling + ": the MicroLogix 1400 assigns a channel 1 MSG's "
+                         "timeout itself, the channel's MSG Connection Timeout plus its MSG Reply Timeout plus 15 s "
+                         "(1766-RM001A p. 421): " + std::to_string(kMl1400EthernetMessageTimeoutSeconds) +
+                         " s with the defaults softslc simulates (15 s and 3 s); write " +
+                         std::to_string(kMl1400EthernetMessageTimeoutSeconds));
+    claim_message_element(element);
+    // "Each channel 1 Ethernet MSG names its own RI element" (RSLogix creates one per MSG when the rung is
+    // verified, 1766-RM001A p. 435); two MSGs sharing one still read the same address: a warning.
+    const auto shared = std::find_if(routing_elements_.begin(), routing_elements_.end(), [&](const RoutingUse& r) {
+      return r.file == node.address.file && r.element == node.address.element;
+    });
+    if (shared != routing_elements_.end())
+      warning(node.pos, "MSG routing element " + node.text() + " is also the one of the MSG at line " +
+                            std::to_string(shared->pos.line) + "; each channel 1 MSG has its own RI element "
+                            "(1766-RM001A p. 435)");
+    else
+      routing_elements_.push_back({node.address.file, node.address.element, node.pos});
+    check_routing_data(node);
+    const Operand& data = ops[5];
+    if (long_message_data(data)) return;
+    const std::string dev = ops[2].kind == Operand::Kind::Symbol ? ops[2].spelling : "";
+    check_message_data(ops[1], dev, data, ops[6], ops[8], false);
+  }
+
+  // An RI element a DATA block sets up (1766-RM001A p. 435): subtype 10h, a message to the IP address in
+  // words 1-2; 11h (remote MultiHop to DH+ through a bridge) is not simulated, and any other subtype names
+  // no routing. The network ends such messages with 17h and 21h; check says so where the DATA block is.
+  void check_routing_data(const Operand& ri) {
+    for (const DataBlock& d : program_.data) {
+      if (d.type != FileType::Routing || d.file != ri.address.file) continue;
+      const long i = static_cast<long>(ri.address.element - d.start_element) * ri::kWords + ri::kSubtype;
+      if (i < 0 || static_cast<std::size_t>(i) >= d.words.size()) continue;
+      const auto subtype = static_cast<std::uint16_t>(d.words[static_cast<std::size_t>(i)]);
+      if (subtype == kRoutingRemoteDhPlus)
+        error(ri.pos, "MSG routing element " + ri.text() + ": subtype 11h (set by the DATA block at line " +
+                          std::to_string(d.pos.line) + ") is a remote MultiHop to DH+ (1766-RM001A p. 435), which "
+                          "softslc does not simulate; a message to the IP address in words 1-2 has subtype 10h");
+      else if (subtype != kRoutingLocal)
+        error(ri.pos, "MSG routing element " + ri.text() + ": subtype " + std::to_string(subtype) +
+                          " (set by the DATA block at line " + std::to_string(d.pos.line) + ") is neither 10h (16, "
+                          "a message to the IP address in words 1-2) nor 11h (1766-RM001A p. 435)");
+    }
+  }
+
 
   // RHC, TDF (1747-RM001G p. 7-17): "an integer address (Nx:x) or Float address (Fx:x)", and TDF's
   // three "should be of the same data type". A time stamp is a word RHC wrote, never a constant.

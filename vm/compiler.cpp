@@ -657,6 +657,10 @@ class Compiler {
     init_literal(ops[0], mg::kTargetElement, cif ? (t.kind == Operand::Kind::Integer ? t.integer : 0)
                                                  : (t.is_address() ? t.address.element : 0));
     init_literal(ops[0], mg::kStatus, 1u << mg::kRangeBit);
+    // Channel 1 (Ethernet): word 24, "supplemental routing path data address", names the RI element, bits
+    // 8-15 its file, 0-7 its element (1766-RM001A p. 400); the processor reads the IP address there.
+    if (const Operand& ri = in.operands[7]; ri.is_address() && ri.address.type == FileType::Routing)
+      init_literal(ops[0], mg::kRoutingPath, (ri.address.file << 8) | ri.address.element);
   }
 
   void init_literal(std::uint32_t op_word, std::uint32_t sub, std::int64_t value) {
@@ -1049,6 +1053,18 @@ class Compiler {
           }
           break;
         case OperandKind::RemoteAddress: w = bc::imm(0); break;
+        // The MicroLogix MSG's target: a node number, or the RI element (its word index, for the listing:
+        // the processor finds it through MG word 24, which the setup holds).
+        case OperandKind::MessageTarget:
+          if (op.kind == Operand::Kind::Integer) {
+            w = bc::imm(static_cast<std::int32_t>(op.integer));
+          } else if (op.is_address() && !needs_dyn(op.address, false)) {
+            bool f = false;
+            w = value_operand(op, false, true, f, pos);
+          } else {
+            error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + " must be a node number or an RI element");
+          }
+          break;
       }
       if (bc::mode_of(w) == bc::kDyn) flags |= bc::kFlagDyn;
       ops.push_back(w);

@@ -66,6 +66,7 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
     cost_[i * 2 + 1] = std::max<Nanoseconds>(1, model.instruction_cost(op, true));
     countable_[i] = 1;
     per_word_[i] = std::max<Nanoseconds>(0, model.per_word_cost(op));
+    for (std::size_t v = 0; v < transition_[i].size(); ++v) transition_[i][v] = model.transition_cost(op, static_cast<int>(v));
   }
   // SVC's channel select (1-3) can have figures of its own (the MicroLogix manuals print one per
   // channel): the difference from the table's cost is charged at the SVC.
@@ -1495,12 +1496,22 @@ void Interpreter::message(Op op, const std::uint32_t* o, bool rung, Nanoseconds 
     m.block = block;
     m.data = bc::payload_of(o[slc502 ? 4 : 6]);
     m.at = scan_start_ + now_in_scan;
+    charge_transition(op, m.write ? 1 : 0, message_words(m.data, w_[block + 2]));
     chassis_.message_start(m);
   } else if ((w0 & msg::kTO) && (w0 & msg::kEN) && !done) {
     chassis_.message_abort(block);
   } else if (!rung && (w0 & msg::kEN) && done) {
     w_[block] = static_cast<std::uint16_t>(w0 & ~msg::kEN);
   }
+}
+
+// How many words `elements` elements of the file holding `data` take: the words a MSG moves (0 outside
+// every file, a message the network ends with 04h).
+std::uint32_t Interpreter::message_words(std::uint32_t data, std::uint16_t elements) const {
+  const int file = prog_.layout->file_containing(data);
+  if (file < 0) return 0;
+  return static_cast<std::uint32_t>(static_cast<std::int16_t>(elements) > 0 ? static_cast<std::int16_t>(elements) : 0) *
+         prog_.layout->files[static_cast<std::size_t>(file)].words_per_element;
 }
 
 // The MicroLogix MSG (1762-RM001C pp. 21-3, 21-15; docs/semantics.md "The MicroLogix MSG"): the same rung
@@ -1521,6 +1532,8 @@ void Interpreter::micrologix_message(const std::uint32_t* o, bool rung, Nanoseco
     m.data = bc::payload_of(o[5]);
     m.elements = bc::imm_of(o[6]);
     m.at = scan_start_ + now_in_scan;
+    // The false-to-true figures of 1762-RM001C Table 21.1 / 1766-RM001A p. 398 ("264 us + 1.6 us per word").
+    charge_transition(Op::MSG_ML, m.write ? 1 : 0, message_words(m.data, static_cast<std::uint16_t>(m.elements)));
     chassis_.message_start(m);
   } else if ((control & msg::kTO) && enabled && !done) {
     chassis_.message_abort(element);
@@ -2374,8 +2387,14 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
 
       // ---- Communication (docs/semantics.md "MSG") ----
       case Op::MSG:
-      case Op::MSG_502: message(op, o, rung, elapsed); break;
-      case Op::MSG_ML: micrologix_message(o, rung, elapsed); break;
+      case Op::MSG_502:
+        message(op, o, rung, elapsed);
+        elapsed += std::exchange(extra_ns_, 0);  // the false-to-true figure of a message started here
+        break;
+      case Op::MSG_ML:
+        micrologix_message(o, rung, elapsed);
+        elapsed += std::exchange(extra_ns_, 0);
+        break;
       case Op::SVC:
         if (rung) chassis_.service_communications(0x3, scan_start_ + elapsed);
         break;

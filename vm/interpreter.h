@@ -413,8 +413,15 @@ class Interpreter {
   // Virtual time spent on the slow paths (M0/M1 accesses, file-instruction words); folded into
   // the scan time after the instruction.
   void charge_m(MFileAccess row, int words) { extra_ns_ += model_.mfile_access_cost(row, words); }
+  std::uint32_t message_words(std::uint32_t data, std::uint16_t elements) const;
   void charge_words(Op op, std::uint32_t words) {
     extra_ns_ += per_word_[static_cast<std::size_t>(op)] * static_cast<Nanoseconds>(words);
+  }
+  // The rung went false to true at `op` (ScanTimeModel::transition_cost): its transition figure less the
+  // true one already charged, and its words; `variant` is its first keyword operand's code.
+  void charge_transition(Op op, int variant, std::uint32_t words) {
+    const auto& t = transition_[static_cast<std::size_t>(op)][static_cast<std::size_t>(variant < 0 ? 0 : variant > 3 ? 3 : variant)];
+    extra_ns_ += t.ns + t.per_word_ns * static_cast<Nanoseconds>(words);
   }
 
   const CompiledProgram& prog_;
@@ -422,6 +429,8 @@ class Interpreter {
   ChassisAccess& chassis_;
   const ScanTimeModel& model_;
   std::array<Nanoseconds, kInstructionCount> per_word_{};
+  // By opcode and keyword variant (0-3): ScanTimeModel::transition_cost.
+  std::array<std::array<ScanTimeModel::TransitionCost, 4>, kInstructionCount> transition_{};
   // By SVC channel select (1-3) and rung state: the select's own figure less SVC's table cost.
   std::array<std::array<Nanoseconds, 2>, 4> svc_select_extra_{};
   Nanoseconds extra_ns_ = 0;

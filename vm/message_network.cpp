@@ -17,13 +17,6 @@ constexpr std::uint16_t kTypeCodes[][2] = {
     {static_cast<std::uint16_t>(FileType::Ascii), 0x8E},
 };
 
-// The network channel of a station's processor: channel 0 on the 5/02 (its only one) and on a MicroLogix
-// (its serial port, on DH-485: docs/semantics.md "The MicroLogix MSG"), 1 on the others.
-int network_channel(const Runtime& rt) {
-  const ProcessorFamily family = rt.compiled().processor.family;
-  return family == ProcessorFamily::Slc502 || family == ProcessorFamily::MicroLogix ? 0 : 1;
-}
-
 std::int16_t as_signed(std::uint16_t w) { return static_cast<std::int16_t>(w); }
 
 }  // namespace
@@ -110,6 +103,19 @@ void MessageNetwork::set_status(std::size_t station, const MessageInstruction& i
   set_word(station, in.block + mg::kError, static_cast<std::uint16_t>(w0 & msg::kErrorCode));
 }
 
+int MessageNetwork::network_channel(std::size_t station) const {
+  const ProcessorFamily family = stations_[station].rt->compiled().processor.family;
+  if (family == ProcessorFamily::MicroLogix) return link_ == MessageLink::Ethernet ? 1 : 0;
+  return family == ProcessorFamily::Slc502 ? 0 : 1;
+}
+
+MessageLink MessageNetwork::channel_link(std::size_t station, int channel) const {
+  if (channel == network_channel(station)) return link_;
+  // Only a MicroLogix 1100/1400 sends on a channel off the network (check holds every other MSG to its
+  // processor's network channel): its Ethernet port (channel 1) or its serial port (channel 0, DH-485).
+  return channel == 1 ? MessageLink::Ethernet : MessageLink::Dh485;
+}
+
 std::optional<std::size_t> MessageNetwork::station_at(int node) const {
   for (std::size_t i = 0; i < stations_.size(); ++i)
     if (stations_[i].node == node) return i;
@@ -164,15 +170,20 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
   m.serial = next_serial_++;
   m.in = in;
   m.started = in.at;
+  const MessageLink link = channel_link(station, in.channel);
   if (in.micrologix) {
     // The MG element's setup (1762-RM001C p. 21-4): NOD, the target file type (word 12), TFN, ELE, MTO in
-    // whole seconds, 0 = no timeout (p. 21-12).
+    // whole seconds, 0 = no timeout (p. 21-12). The MicroLogix 1400's channel 1 timeout is not the MSG's:
+    // the channel's connection and reply timeouts plus 15 s (1766-RM001A p. 421).
     m.target_node = word(station, in.block + mg::kNode) & 0xFF;
     m.elements = in.elements;
     m.target_file = as_signed(word(station, in.block + mg::kTargetFile));
     m.type_code = word(station, in.block + mg::kTargetFileType);
     m.target_element = as_signed(word(station, in.block + mg::kTargetElement));
-    m.timeout = static_cast<Nanoseconds>(word(station, in.block + mg::kTimeout) & 0xFF) * kNsPerS;
+    const bool ml1400_ethernet =
+        link == MessageLink::Ethernet && rt.compiled().processor.micrologix == MicroLogixModel::ML1400;
+    m.timeout = ml1400_ethernet ? static_cast<Nanoseconds>(kMl1400EthernetMessageTimeoutSeconds) * kNsPerS
+                                : static_cast<Nanoseconds>(word(station, in.block + mg::kTimeout) & 0xFF) * kNsPerS;
   } else {
     m.target_node = word(station, in.block + 1) & 0xFF;
     m.elements = as_signed(word(station, in.block + 2));
@@ -197,15 +208,18 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
   } else {
     const FileLayout& f = layout.files[static_cast<std::size_t>(file)];
     m.words = m.elements * f.words_per_element;
-    const bool too_many = link_ == MessageLink::Ethernet
+    // The SLC 5/05's Ethernet messages are longer (RM D-21 table D.5); a MicroLogix message carries 103
+    // words on either channel ("The maximum read or write message for a MicroLogix 1100/1200/1500
+    // controller is 103 words", AG-UM008C p. 3-38; 1762-RM001C p. 21-12).
+    const bool too_many = link == MessageLink::Ethernet && !in.micrologix
                               ? m.elements > ethernet_max_elements(f.type, in.device == 2, in.write)
                               : m.words > kMessageMaxWords;
     if (m.type_code != message_file_type_code(f.type) || m.elements < 1 || too_many ||
         in.data + static_cast<std::uint32_t>(m.words) > f.end())
       error = msg::kBadParameters;
-    else if (link_ == MessageLink::Ethernet)
-      error = check_ethernet_block(station, in, m);
-    else if (m.target_node > message_node_range(link_).second)
+    else if (link == MessageLink::Ethernet)
+      error = in.micrologix ? check_routing_element(station, in, m) : check_ethernet_block(station, in, m);
+    else if (m.target_node > message_node_range(link).second)
       error = msg::kNodeTooHigh;
   }
   if (error) {
@@ -259,6 +273,29 @@ std::uint8_t MessageNetwork::check_ethernet_block(std::size_t station, const Mes
   return 0;
 }
 
+// The MicroLogix 1100/1400 channel 1 message's routing (1766-RM001A p. 435, 1763-RM001B p. 384): MG word 24
+// names its RI element (bits 8-15 the file, 0-7 the element; 1766-RM001A p. 400), whose subtype says how
+// the message is routed and whose words 1-2 hold the target's IP address. The codes are the SLC 5/05's
+// ("MSG on Ethernet"): D0h this controller has no IP address, D2h an address that is no station's
+// (0.0.0.0: the element was never set up); 17h for the remote MultiHop softslc does not simulate, 21h a
+// routing word or subtype that names no routing (docs/semantics.md "The MicroLogix MSG on Ethernet").
+std::uint8_t MessageNetwork::check_routing_element(std::size_t station, const MessageInstruction& in, Message& m) {
+  const DataTableLayout& layout = *stations_[station].rt->compiled().layout;
+  const std::uint16_t path = word(station, in.block + mg::kRoutingPath);
+  const std::size_t file = path >> 8, element = path & 0xFFu;
+  if (file >= layout.files.size() || !layout.files[file].present || layout.files[file].type != FileType::Routing ||
+      element >= layout.files[file].elements)
+    return msg::kBadMessageFile;
+  const std::uint32_t ri = layout.files[file].base + static_cast<std::uint32_t>(element) * layout.files[file].words_per_element;
+  const std::uint16_t subtype = word(station, ri + ri::kSubtype);
+  if (subtype == kRoutingRemoteDhPlus) return msg::kServiceUnsupported;  // not simulated
+  if (subtype != kRoutingLocal) return msg::kBadMessageFile;
+  if (stations_[station].ip == 0) return msg::kNoIpConfigured;
+  m.target_ip = routing_ip(word(station, ri + ri::kIpHigh), word(station, ri + ri::kIpLow));
+  if (m.target_ip == 0) return msg::kBadIpAddress;
+  return 0;
+}
+
 void MessageNetwork::enter_buffer(std::size_t station, Message& m) {
   // EW: "the message is in the buffer ... and waiting to be sent"; a write's source data is buffered
   // now (RM 12-29, table 12.10).
@@ -308,9 +345,13 @@ void MessageNetwork::post(std::size_t to, VirtualTime arrival, Frame f) {
 
 void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
   m.sent = true;
-  const Nanoseconds d = message_frame_time(link_, m.in.write ? 2 * m.words : 0);
-  const bool ethernet = link_ == MessageLink::Ethernet;
-  const std::optional<std::size_t> target = ethernet ? station_at_ip(m.target_ip) : station_at(m.target_node);
+  const MessageLink link = channel_link(station, m.in.channel);
+  const Nanoseconds d = message_frame_time(link, m.in.write ? 2 * m.words : 0);
+  const bool ethernet = link == MessageLink::Ethernet;
+  // A MicroLogix's channel off this network reaches nobody (a serial port no other station is on).
+  std::optional<std::size_t> target;
+  if (link == link_ && m.in.channel == network_channel(station))
+    target = ethernet ? station_at_ip(m.target_ip) : station_at(m.target_node);
   if (!target) {
     // No station acknowledges: on DH-485 and DH+ the link gives up after the frame's time (EST: retries
     // not modelled); on Ethernet the connection is not completed before the channel's MSG Connection
@@ -396,15 +437,23 @@ void MessageNetwork::receive(std::size_t station, VirtualTime at, Frame& f) {
 
 void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t channel_mask) {
   Station& st = stations_[station];
-  const int channel = network_channel(*st.rt);
-  if (!(channel_mask & (1u << channel))) return;
-  // 1. What reached this station by now, in arrival order.
-  while (!st.inbox.empty() && st.inbox.begin()->first.first <= at) {
-    Frame f = std::move(st.inbox.begin()->second);
-    st.inbox.erase(st.inbox.begin());
-    receive(station, at, f);
-  }
-  Channel& ch = st.channels[static_cast<std::size_t>(channel)];
+  // 1. What reached this station by now, in arrival order (the network channel's frames; the NoAck of a
+  // MicroLogix message on its other channel is among them).
+  if (channel_mask & (1u << network_channel(station)))
+    while (!st.inbox.empty() && st.inbox.begin()->first.first <= at) {
+      Frame f = std::move(st.inbox.begin()->second);
+      st.inbox.erase(st.inbox.begin());
+      receive(station, at, f);
+    }
+  for (int channel = 0; channel < 2; ++channel)
+    if ((channel_mask & (1u << channel)) && !(st.channels[static_cast<std::size_t>(channel)].buffers.empty() &&
+                                              st.channels[static_cast<std::size_t>(channel)].queue.empty()))
+      service_channel(station, at, channel);
+}
+
+void MessageNetwork::service_channel(std::size_t station, VirtualTime at, int channel) {
+  Channel& ch = stations_[station].channels[static_cast<std::size_t>(channel)];
+  const bool ethernet = channel_link(station, channel) == MessageLink::Ethernet;
   // 2. Message timers (SLC 5/03-5/05): ER, TO and 37h once the timeout has passed since the rung went
   // true; the accumulator (word 10) shows the whole seconds so far (docs/semantics.md "MSG").
   std::vector<std::uint64_t> expired, late;
@@ -416,7 +465,7 @@ void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t 
       set_word(station, m.in.block + (m.in.micrologix ? mg::kElapsed : 10),
                static_cast<std::uint16_t>(std::min<Nanoseconds>(elapsed / kNsPerS, 32767)));
       if (m.timeout > 0 && elapsed >= m.timeout) expired.push_back(m.serial);
-      else if (link_ == MessageLink::Ethernet && m.acked && at - *m.acked >= msg::kReplyTimeoutNs)
+      else if (ethernet && m.acked && at - *m.acked >= msg::kReplyTimeoutNs)
         late.push_back(m.serial);
     }
   for (std::uint64_t serial : expired)

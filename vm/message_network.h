@@ -2,7 +2,10 @@
 //
 // A MessageNetwork joins several Runtimes (stations), each with its node address, on one link
 // (DH-485, DH+ or Ethernet, instructions/message_link.h; on Ethernet a station is named by its IP
-// address and a message by the IP address string in its 51-word control block, RM 12-34). It keeps, per station and channel, what the
+// address and a message by the IP address string in its 51-word control block, RM 12-34, or on a
+// MicroLogix 1100/1400's channel 1 by the IP address in the RI element its MG element names,
+// 1766-RM001A p. 435). A MicroLogix's other channel is off the network: its messages there reach
+// nobody (docs/semantics.md "The MicroLogix MSG on Ethernet"). It keeps, per station and channel, what the
 // processor keeps for MSG (1747-RM001G ch. 12): four message buffers and a 10-position overflow
 // queue on the SLC 5/03-5/05 (one buffer on the 5/02), the message timers, and the frames in
 // flight. The MSG instruction's state is its control block in the data table; the interpreter
@@ -77,6 +80,9 @@ inline constexpr std::uint8_t kNoIpConfigured = 0xD0;    // "No IP address confi
 inline constexpr std::uint8_t kBadIpAddress = 0xD2;      // "Invalid internet address or host name" [U]
 inline constexpr std::uint8_t kConnectionTimeout = 0xD5;  // "Connection not completed before user-specified timeout" [U]
 inline constexpr std::uint8_t kReplyTimeout = 0xD9;      // "Reply not received before user-specified timeout."
+// "Bad MSG file parameter for building message" (1766-RM001A p. 466): a MicroLogix channel 1 MSG whose RI
+// routing element (MG word 24) is not an RI element of the program, or whose subtype is neither 10h nor 11h.
+inline constexpr std::uint8_t kBadMessageFile = 0x21;
 
 // The MicroLogix MG element keeps the control word's bits in two words: EN and TO in word 16 (the control
 // bits, [U] positions: docs/semantics.md "The MG and RI files"), ST, DN, ER and EW in word 17 at the same
@@ -100,10 +106,10 @@ inline constexpr int kIpBytes = 42;
 inline constexpr std::uint32_t kEthernetTypeWord = kEthernetMessageTypeWord;
 // The channel's MSG Connection Timeout: 15,000 ms by default (1747-UM011G p. 242; the channel
 // configuration is not simulated). A message to an IP address no station has fails when it expires.
-inline constexpr Nanoseconds kConnectionTimeoutNs = 15 * kNsPerS;
+inline constexpr Nanoseconds kConnectionTimeoutNs = kEthernetConnectionTimeoutSeconds * kNsPerS;
 // The channel's MSG Reply Timeout, "the amount of time (in ms) that the SLC 5/05 will wait for a reply to a
 // command that it has initiated via a MSG instruction": 3,000 ms by default (1747-UM011G p. 242).
-inline constexpr Nanoseconds kReplyTimeoutNs = 3 * kNsPerS;
+inline constexpr Nanoseconds kReplyTimeoutNs = kEthernetReplyTimeoutSeconds * kNsPerS;
 }  // namespace msg
 
 // An IPv4 address written A.B.C.D (each 0-255 in decimal, leading zeros allowed: the manual's own
@@ -219,6 +225,7 @@ class MessageNetwork {
   };
 
   void service(std::size_t station, VirtualTime at, std::uint16_t channel_mask);
+  void service_channel(std::size_t station, VirtualTime at, int channel);
   void run_lockstep(VirtualTime until);
   void receive(std::size_t station, VirtualTime at, Frame& f);
   void answer(std::size_t station, VirtualTime at, const Frame& request);
@@ -237,6 +244,14 @@ class MessageNetwork {
   std::optional<std::size_t> station_at(int node) const;
   std::optional<std::size_t> station_at_ip(std::uint32_t ip) const;
   std::uint8_t check_ethernet_block(std::size_t station, const MessageInstruction& in, Message& m);
+  std::uint8_t check_routing_element(std::size_t station, const MessageInstruction& in, Message& m);
+  // The channel of `station` this network's link is on: 0 on the SLC 5/02 and on a MicroLogix on DH-485
+  // (its serial port), 1 on the SLC 5/03-5/05 and on a MicroLogix 1100/1400 on Ethernet.
+  int network_channel(std::size_t station) const;
+  // The link a message on `channel` of `station` travels: this network's on its network channel; on the
+  // other channel of a MicroLogix 1100/1400 (Ethernet when it is on DH-485, DH-485 when it is on
+  // Ethernet) a link no other station is on (docs/semantics.md "The MicroLogix MSG on Ethernet").
+  MessageLink channel_link(std::size_t station, int channel) const;
 
   MessageLink link_;
   std::vector<Station> stations_;

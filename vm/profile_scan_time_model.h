@@ -34,6 +34,11 @@ class ProfileScanTimeModel final : public ScanTimeModel {
     return profile_.instruction(op).for_operand(first, rung_in);
   }
   Nanoseconds mfile_access_cost(MFileAccess row, int words) const override;
+  TransitionCost transition_cost(Opcode op, int variant) const override {
+    const InstructionTiming& t = profile_.instruction(op);
+    const TransitionTiming* x = t.transition(variant);
+    return x ? TransitionCost{x->true_ns - t.true_ns, x->per_word_ns} : TransitionCost{};
+  }
 
   const TimingProfile& profile() const { return profile_; }
 

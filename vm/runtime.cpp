@@ -209,9 +209,10 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
 
 // The MSG network of a leader and its peers (docs/semantics.md "MSG"): one link, every peer a
 // processor on that link; on DH-485 and DH+ every node unique and in the link's range, on Ethernet
-// every IP address given and unique.
+// every IP address given and unique. A MicroLogix 1100/1400 is on Ethernet when it has an IP address
+// (its channel 1), on DH-485 otherwise (station_link).
 std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
-  const MessageLink link = network_link(program_->processor.family);
+  const MessageLink link = station_link(program_->processor, ip_ != 0);
   if (link == MessageLink::None)
     return "a MSG network needs SLC 500 or MicroLogix processors (DH-485, DH+ or Ethernet); " +
            program_->processor.display_name + " has none that softslc simulates for MSG";
@@ -228,7 +229,7 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
   if (auto e = node_error("this controller", node_); !e.empty()) return e;
   if (!ethernet && ip_ != 0)
     return "this controller is on " + std::string(to_string(link)) + ", which names stations by node number: "
-           "an IP address is for an SLC 5/05 on Ethernet";
+           "an IP address is for an SLC 5/05, or a MicroLogix 1100 or 1400 on its channel 1, on Ethernet";
   auto net = std::make_unique<MessageNetwork>(link);
   net->attach(*this, node_, "", nullptr, ip_);
   for (const PeerController& p : peers) {
@@ -239,13 +240,17 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
     po.ip = p.ip;
     RuntimeResult pr = Runtime::create(*p.program, std::move(po));
     if (!pr.ok()) return "peer " + p.name + ": " + pr.render_errors();
-    const MessageLink plink = network_link(pr.runtime->program_->processor.family);
-    if (plink != link)
-      return "peer " + p.name + ": its " + pr.runtime->program_->processor.display_name + " is on " +
-             std::string(to_string(plink)) + ", this network is " + std::string(to_string(link));
+    const ProcessorModel& pproc = pr.runtime->program_->processor;
+    const MessageLink plink = station_link(pproc, p.ip != 0);
+    // A MicroLogix 1100/1400 without an address is on DH-485: on Ethernet it needs one, as a 5/05 does.
+    if (plink != link && !(ethernet && pproc.has_routing_files()))
+      return "peer " + p.name + ": its " + pproc.display_name + " is on " + std::string(to_string(plink)) +
+             ", this network is " + std::string(to_string(link));
     if (ethernet) {
       if (p.ip == 0)
-        return "peer " + p.name + ": an SLC 5/05 on Ethernet is named by its IP address (ip A.B.C.D), not a node";
+        return "peer " + p.name + ": " +
+               (pproc.is_micrologix() ? "a " + pproc.display_name + " on Ethernet (its channel 1)" : "an SLC 5/05 on Ethernet") +
+               " is named by its IP address (ip A.B.C.D), not a node";
       for (std::size_t i = 0; i < net->size(); ++i)
         if (net->ip(i) == p.ip)
           return "peer " + p.name + ": IP address " + format_ipv4(p.ip) + " is already " +
@@ -289,7 +294,7 @@ MessageNetwork& Runtime::network() {
   // A controller alone gets a network of its own on its first message: its MSGs to other nodes find
   // nobody (07h), as on a link with no other station.
   if (!network_) {
-    own_network_ = std::make_unique<MessageNetwork>(network_link(program_->processor.family));
+    own_network_ = std::make_unique<MessageNetwork>(station_link(program_->processor, ip_ != 0));
     station_ = own_network_->attach(*this, node_, "", nullptr, ip_);
     network_ = own_network_.get();
   }

@@ -46,6 +46,16 @@ class ScanTimeModel {
   // (1747-SN appendix B, 1203-SM1 appendix A). Asked at each M-file access: a virtual call, but
   // only on the M-file path.
   virtual Nanoseconds mfile_access_cost(MFileAccess /*row*/, int /*words*/) const { return 0; }
+  // What `op` costs beyond its steady-state true time on the scan where its rung goes false to true,
+  // for the instructions whose manuals print a "false-to-true transition" figure (the MicroLogix MSG,
+  // 1762-RM001C p. 21-3 Table 21.1): the transition figure less the true one, and a time per word the
+  // instruction moves. `variant` is the code of the instance's first keyword operand (READ 0, WRITE 1:
+  // keyword_code), whose rows may differ. Asked once per opcode and variant at construction.
+  struct TransitionCost {
+    Nanoseconds ns = 0;
+    Nanoseconds per_word_ns = 0;
+  };
+  virtual TransitionCost transition_cost(Opcode /*op*/, int /*variant*/) const { return {}; }
 };
 
 // Placeholder costs, chosen to be plausible for an SLC 5/03 and easy to reason about in tests:

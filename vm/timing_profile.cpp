@@ -68,6 +68,36 @@ void check_keys(const json& obj, const std::string& path, std::initializer_list<
   }
 }
 
+// An instruction row's "transition": {"true_us": T, "per_word_us": W} for every instance, or one such row
+// per word of the instruction's first keyword operand, as the instruction table spells them ("READ",
+// "WRITE" for MSG: 1762-RM001C Table 21.1 gives reads and writes apart).
+void parse_transition(const json& tr, const InstructionSpec& spec, const std::string& path, InstructionTiming& t) {
+  auto row = [&](const json& r, const std::string& rpath, int variant) {
+    check_keys(r, rpath, {"true_us", "per_word_us"});
+    TransitionTiming x;
+    x.variant = variant;
+    x.true_ns = us_to_ns(member(r, "true_us", rpath), rpath + ".true_us");
+    x.per_word_ns = r.contains("per_word_us") ? us_to_ns(r["per_word_us"], rpath + ".per_word_us") : 0;
+    t.transitions.push_back(x);
+  };
+  // Only MSG charges it in a run (the handler that starts a message, Interpreter::charge_transition), so
+  // a figure scantime's steady state leaves out and run would never charge is refused, as by_operand is.
+  if (spec.mnemonic != "MSG") fail(path, "only MSG has a false-to-true figure charged in a run (docs/timing.md \"MSG\")");
+  if (!tr.is_object()) fail(path, "expected an object");
+  if (tr.contains("true_us")) return row(tr, path, -1);
+  const OperandSpec* keyword = nullptr;
+  for (const OperandSpec& os : spec.operand_specs())
+    if (!keyword_words(os.kind).empty()) {
+      keyword = &os;
+      break;
+    }
+  for (auto v = tr.begin(); v != tr.end(); ++v) {
+    const std::optional<int> code = keyword ? keyword_code(keyword->kind, v.key()) : std::nullopt;
+    if (!code) fail(path + "." + v.key(), "expected true_us, or rows keyed by the words of the instruction's first keyword operand");
+    row(*v, path + "." + v.key(), *code);
+  }
+}
+
 // Applies `j` onto `p`. A built-in profile is applied onto an empty one; a user profile onto
 // the built-in one of its processor, so it may give any subset of figures.
 void apply_profile_json(const json& j, TimingProfile& p) {
@@ -111,7 +141,7 @@ void apply_profile_json(const json& j, TimingProfile& p) {
       std::string path = "instructions." + e.key();
       const InstructionSpec* spec = find_instruction(e.key());
       if (!spec) fail(path, "unknown instruction mnemonic");
-      check_keys(*e, path, {"true_us", "false_us", "per_word_us", "by_operand", "source"});
+      check_keys(*e, path, {"true_us", "false_us", "per_word_us", "by_operand", "transition", "source"});
       InstructionTiming t;
       t.true_ns = us_to_ns(member(*e, "true_us", path), path + ".true_us");
       t.false_ns = us_to_ns(member(*e, "false_us", path), path + ".false_us");
@@ -136,6 +166,7 @@ void apply_profile_json(const json& j, TimingProfile& p) {
                                   us_to_ns(member(*v, "false_us", vpath), vpath + ".false_us")});
         }
       }
+      if (auto tr = e->find("transition"); tr != e->end()) parse_transition(*tr, *spec, path + ".transition", t);
       // A mnemonic's figure covers every form of it (OSR: the SLC's and the MicroLogix's), since a
       // processor has only one of them.
       for (const auto& row : kInstructionTable)

@@ -50,6 +50,15 @@ struct OperandTiming {
   Nanoseconds false_ns = 0;
 };
 
+// A "false-to-true transition" row (1762-RM001C p. 21-3 Table 21.1): the instruction's time on the scan
+// where its rung goes false to true, instead of the steady-state true time, plus a time per word. `variant`
+// is the code of the instruction's first keyword operand the row is for (MSG: READ 0, WRITE 1), -1 for all.
+struct TransitionTiming {
+  int variant = -1;
+  Nanoseconds true_ns = 0;
+  Nanoseconds per_word_ns = 0;
+};
+
 struct InstructionTiming {
   Nanoseconds true_ns = 0;      // rung-in true
   Nanoseconds false_ns = 0;     // rung-in false
@@ -57,6 +66,14 @@ struct InstructionTiming {
   std::string source;
   // Rows that replace true_ns/false_ns when the first operand is that literal ("by_operand").
   std::vector<OperandTiming> by_operand;
+  // "transition": the false-to-true rows, by keyword variant (none: the transition costs the true time).
+  std::vector<TransitionTiming> transitions;
+
+  const TransitionTiming* transition(int variant) const {
+    for (const auto& t : transitions)
+      if (t.variant == variant || t.variant < 0) return &t;
+    return nullptr;
+  }
 
   // The true (or false) figure for an instance whose first operand is the literal `first`.
   Nanoseconds for_operand(std::int64_t first, bool rung_in) const {

@@ -114,8 +114,9 @@ TEST(MicroLogixMsg, CheckRefusesWhatTheChannelCannotSend) {
       {"Bul.1763", "SOR MSG MG11:0 READ 500CPU LOCAL 0 N7:0 5 32 N10:0 5 EOR", "target node 32 is out of range 1-31"},
       {"Bul.1763", "SOR MSG MG11:0 READ 500CPU REMOTE 0 N7:0 5 2 N10:0 5 EOR", "MSG REMOTE"},
       {"Bul.1763", "SOR MSG MG11:0 READ PLC5 LOCAL 0 N7:0 5 2 N10:0 5 EOR", "MSG PLC5 on DH-485"},
-      // Channel 1: Ethernet on the 1100/1400 (not yet), the LRP's second port, none on the 1200.
-      {"Bul.1766", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "Ethernet port, with an RI routing element"},
+      // Channel 1: Ethernet on the 1100/1400, with an RI element where the node is (msg_ethernet_test.cpp),
+      // the LRP's second port, none on the 1200.
+      {"Bul.1766", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "names its RI routing element where channel 0 names the target node"},
       {"1764-LRP", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "channel 1 of the 1764-LRP"},
       {"Bul.1762", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "its MSG channel is always 0"},
       {"Bul.1762", "SOR MSG MG11:0 READ 500CPU LOCAL 0 N7:0 5 2 N10:0 256 EOR", "message timeout 256 is out of range 0-255"},
@@ -314,6 +315,41 @@ TEST(MicroLogixMsg, ProfilesPriceTheManualsFigures) {
     EXPECT_EQ(t.true_ns, f.true_ns) << f.processor;
     EXPECT_EQ(t.false_ns, f.false_ns) << f.processor;
     EXPECT_EQ(profile->is_estimate(t.source), f.estimate) << f.processor;
+  }
+}
+
+// The scan where a MSG's rung goes false to true costs the manual's "false-to-true transition" figure
+// instead of the steady-state true one; the scans after it the steady-state figure again. 1762-RM001C
+// p. 21-3 Table 21.1: MicroLogix 1200 reads 230.0 us, writes 264 us + 1.6 us per word, steady state true
+// 20.0 us; 1500 reads 198.0 us, writes 226 us + 1.4 us per word, true 17.0 us. 1766-RM001A p. 398:
+// MicroLogix 1400 reads 48.1677 us, writes 58.8510 us, true 2.5670 us. Five one-word elements: the
+// 1200's write is 264 + 5 x 1.6 = 272 us, the 1500's 226 + 5 x 1.4 = 233 us.
+TEST(MicroLogixMsg, TheFalseToTrueScanCostsTheTransitionFigure) {
+  struct Figure {
+    const char* processor;
+    const char* command;
+    Nanoseconds transition_ns, true_ns;
+  };
+  const Figure figures[] = {
+      {"Bul.1762", "READ", 230'000, 20'000}, {"Bul.1762", "WRITE", 272'000, 20'000},
+      {"1764-LSP", "READ", 198'000, 17'000}, {"1764-LRP", "WRITE", 233'000, 17'000},
+      {"Bul.1766", "READ", 48'168, 2'567},   {"Bul.1766", "WRITE", 58'851, 2'567},
+  };
+  for (const Figure& f : figures) {
+    Plc plc("SOR XIC B3:0/0 MSG MG11:0 " + std::string(f.command) + " 500CPU LOCAL 0 N7:0 5 2 N10:0 5 EOR", {},
+            "START " + std::string(f.processor) + "\n");
+    plc.run_scans(2);
+    auto scan_ns = [&] {
+      const VirtualTime t = plc->now();
+      plc->scan(1);
+      return plc->now() - t;
+    };
+    const Nanoseconds rung_false = scan_ns();
+    plc.set("B3:0/0", 1);
+    const Nanoseconds transition = scan_ns();
+    const Nanoseconds steady = scan_ns();
+    EXPECT_EQ(transition - steady, f.transition_ns - f.true_ns) << f.processor << " " << f.command;
+    EXPECT_GT(steady, rung_false) << f.processor;  // true costs more than false on every profile
   }
 }
 

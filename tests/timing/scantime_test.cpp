@@ -180,6 +180,24 @@ TEST(TimingProfiles, UserProfileOverridesAndValidates) {
   })"));
   EXPECT_EQ(svc.instruction(Opcode::SVC_CH).for_operand(2, true), 50'000);
   EXPECT_EQ(svc.instruction(Opcode::SVC_CH).for_operand(1, true), 90'000);
+  // transition: MSG's false-to-true rows, keyed by its READ/WRITE operand's words (1762-RM001C Table 21.1).
+  expect_error(R"({"schema": "softslc-timing-profile-1", "processor": "ML1200",
+                   "instructions": {"TON": {"true_us": 4, "false_us": 2, "source": "EST",
+                                            "transition": {"true_us": 9}}}})",
+               "instructions.TON.transition: only MSG has a false-to-true figure");
+  expect_error(R"({"schema": "softslc-timing-profile-1", "processor": "ML1200",
+                   "instructions": {"MSG": {"true_us": 20, "false_us": 6, "source": "EST",
+                                            "transition": {"SEND": {"true_us": 9}}}}})",
+               "instructions.MSG.transition.SEND: expected true_us, or rows keyed by the words");
+  auto msg = load_timing_profile(nlohmann::json::parse(R"({
+    "schema": "softslc-timing-profile-1", "processor": "ML1200",
+    "instructions": {"MSG": {"true_us": 20, "false_us": 6, "source": "EST",
+                             "transition": {"READ": {"true_us": 230}, "WRITE": {"true_us": 264, "per_word_us": 1.6}}}}
+  })"));
+  ASSERT_NE(msg.instruction(Opcode::MSG_ML).transition(1), nullptr);
+  EXPECT_EQ(msg.instruction(Opcode::MSG_ML).transition(1)->true_ns, 264'000);
+  EXPECT_EQ(msg.instruction(Opcode::MSG_ML).transition(1)->per_word_ns, 1'600);
+  EXPECT_EQ(msg.instruction(Opcode::MSG_ML).transition(0)->true_ns, 230'000);
 }
 
 }  // namespace

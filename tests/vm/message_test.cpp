@@ -514,7 +514,7 @@ TEST(MessageCheck, RefusesBadOperandsWithAPosition) {
   EXPECT_NE(check_errors(kReadFive, "START Bul.1766\n").find("MG message file element"), std::string::npos);
   const std::string ml = check_errors("SOR XIC B3:0/0 MSG MG11:0 EOR", "START Bul.1766\n");
   EXPECT_NE(ml.find("MSG takes 10 operands (message file, read/write, target device, local/remote, channel, data "
-                    "table address, size in elements, target node, target address, message timeout), found 1"),
+                    "table address, size in elements, target node or RI element, target address, message timeout), found 1"),
             std::string::npos)
       << ml;
   EXPECT_EQ(ml.find("SLC 500 form"), std::string::npos) << ml;

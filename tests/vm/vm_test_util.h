@@ -60,6 +60,7 @@ class SlowModel final : public ScanTimeModel {
   Nanoseconds output_scan_cost(const Module& m) const override { return base_->output_scan_cost(m); }
   Nanoseconds housekeeping_cost() const override { return housekeeping_; }
   Nanoseconds per_word_cost(Opcode op) const override { return base_->per_word_cost(op); }
+  TransitionCost transition_cost(Opcode op, int variant) const override { return base_->transition_cost(op, variant); }
 
  private:
   std::shared_ptr<const ScanTimeModel> base_;

@@ -276,9 +276,21 @@ MAccess RioScanner::write_m(MFile f, int word, std::uint16_t value) {
   // "M1 is a read only file; do not write to this file" (chapter 4; appendix B: the M1 file is a
   // module input file, read only to the processor).
   if (f == MFile::M1) return MAccess::Forbidden;
+  if (!m_write_changes_nothing(f, word, value)) ++program_changes_;
   file[static_cast<std::size_t>(word)] = value;
   if (const int x = rio::buffer_at(word)) note_control_write(x, value);
   return MAccess::Ok;
+}
+
+// See the header: the word holds the value, and a control word's EN and TO are those noted last.
+bool RioScanner::m_write_changes_nothing(MFile f, int word, std::uint16_t value) const {
+  if (f != MFile::M0 || word < 0 || static_cast<std::size_t>(word) >= m0_.size()) return false;
+  if (m0_[static_cast<std::size_t>(word)] != value) return false;
+  if (const int x = rio::buffer_at(word)) {
+    const Buffer& b = bt_[static_cast<std::size_t>(x)];
+    if (((value & rio::kEN) != 0) != b.en_written || ((value & rio::kTO) != 0) != b.to_written) return false;
+  }
+  return true;
 }
 
 void RioScanner::on_mode_change(Mode from, Mode to) {

@@ -47,7 +47,11 @@ constexpr std::array<int, 6> kRuntimeStatusWords = {status::kWatchdog, status::k
 // writes the checksum the compiler computed, a constant of the program. DLG's queue is outside the
 // data table, but DLG appends a record only on a scan that finds its rung true and its queue's EN
 // bit (a DLS word, in the table) clear, and it then sets EN: a probe that logged a record changed
-// the table and is no probe that repeats (vm/ml_data_log.cpp DataLogs::scan). Everything else —
+// the table and is no probe that repeats (vm/ml_data_log.cpp DataLogs::scan). SUS suspends the
+// processor when its rung is true (the probe is then not in Run) and does nothing otherwise; INT
+// marks an interrupt routine; STD and STE set or clear S:2/1; STS writes S:30, S:31 and S:2 and
+// restarts the SLC's STI timer, which the probe compares (a rung-true STS moves the timer's due
+// time every scan, so its probe is not repeated). Everything else —
 // I/O, modules, messages, interrupts, ASCII, PID, the clocks, function files, the MicroLogix HSC
 // (HSL, RAC) and pulse outputs (PTO, PTOX) — and any instruction added later rules repeats out
 // until it is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
@@ -70,6 +74,7 @@ bool acts_on_the_table_alone(Opcode op) {
     case Opcode::JMP: case Opcode::LBL: case Opcode::JSR: case Opcode::SBR: case Opcode::RET:
     case Opcode::END: case Opcode::TND: case Opcode::MCR:
     case Opcode::CPT: case Opcode::RPC: case Opcode::DLG:
+    case Opcode::SUS: case Opcode::INT: case Opcode::STD: case Opcode::STE: case Opcode::STS:
       return true;
     default:
       return false;
@@ -775,6 +780,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint64_t instructions = stats_.instructions;
   const std::uint64_t process_writes = process_writes_;
   const std::uint64_t module_time_reads = interp_->module_time_reads();
+  const StiTimer sti_before = interp_->sti();
   probing_ = true;
   probe_unsteady_ = false;
   reached_.clear();
@@ -795,8 +801,13 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // advances the network to it, so an event could run in the middle of the scan), no process
   // changed a word, and every module still gives the input image and the M0/M1 answers the probe
   // read, and would take every M0/M1 write it made without a change.
-  bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && interp_->nothing_pending_between_scans() &&
-                 modules_passive() && reached_modules_unchanged();
+  // The STI timer: no expiry, no routine run, no STS restart during the probe.
+  const StiTimer& sti = interp_->sti();
+  const bool sti_same = sti.file == sti_before.file && sti.period == sti_before.period &&
+                        sti.next_period == sti_before.next_period && sti.due == sti_before.due &&
+                        sti.setpoint == sti_before.setpoint && sti.runs == sti_before.runs;
+  bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti_same &&
+                 interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
   const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
   for (int s : kRuntimeStatusWords) before_probe_[L.status_word(s)] = w[L.status_word(s)];
   repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);
@@ -854,6 +865,10 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     }
     const std::optional<VirtualTime> next = events_.next_time();
     if (next) k = std::min<std::int64_t>(k, (*next - t - 1) / d);
+    // A timing STI expires at a known time, in the middle of the scan that reaches it: the repeats
+    // end before that scan, and no repeat across events goes past it.
+    const bool sti_timing = sti.file != 0;
+    if (sti_timing) k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (sti.due - t - 1) / d));
     if (k > 0) {
       take(k);
       taken += k;
@@ -863,7 +878,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     // (the event runs after it), so it is taken too when the probe may repeat across events; the
     // events then run as at the end of an executed scan, and the repeats go on while they changed
     // nothing the program reads.
-    if (!across_events || !next || t >= end || (rtc.present && in_second <= k)) break;
+    if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || (sti_timing && t + d >= sti.due))
+      break;
     take(1);
     taken += 1;
     events_at_last_scan_end_ = events_.run_until(t);

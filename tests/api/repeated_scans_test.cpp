@@ -554,5 +554,33 @@ TEST(RepeatedScans, AnSnM0WriteOfANewValueIsNotRepeated) {
   EXPECT_GT(skipping.runtime().stats().repeated, 0u);
 }
 
+// ---- The SLC's STI ----------------------------------------------------------------------------------
+
+// A timing STI (RM 11-12: every 10 ms here, S:30 = 1 with S:2/10 clear) expires in the middle of a
+// scan; the scans between its expiries change nothing and repeat, and the repeats end before the
+// scan the expiry falls in, so the routine runs at the same times (N7:0 counts them). Without that
+// bound this fails (tried: the count lags). A rung-true STS restarts the timer every scan (RM
+// 11-16), so the STI never expires while B3:0/0 is set: the probe compares the timer, and without
+// that comparison this fails too (tried: the routine runs in the repeats' place).
+TEST(RepeatedScans, AnStiRoutineRunsAtTheSameTimesWithRepeats) {
+  const std::string text =
+      "START 1747-L532\nLADDER 2\nSOR XIC S:1/15 STS 3 1 EOR\nSOR XIC B3:0/0 STS 3 1 EOR\nSOR XIC B3:0/1 STD EOR\n"
+      "SOR XIO B3:0/1 STE EOR\nLADDER 3\nSOR INT ADD N7:0 1 N7:0 EOR\n";
+  Controller skipping = Controller::from_text(text);
+  Controller executing = Controller::from_text(text);
+  run_side_by_side(skipping, executing, 50, milliseconds(17), "STI timing");
+  const std::int64_t runs = skipping.get_int("N7:0");
+  EXPECT_GE(runs, 80);
+  EXPECT_GT(skipping.runtime().stats().repeated, skipping.runtime().stats().scans / 2);
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
+  run_side_by_side(skipping, executing, 20, milliseconds(17), "STS every scan");
+  EXPECT_LE(skipping.get_int("N7:0"), runs + 1) << "restarted every scan, the STI does not expire";
+  for (Controller* c : {&skipping, &executing}) {
+    c->set("B3:0/0", 0);
+    c->set("B3:0/1", 1);
+  }
+  run_side_by_side(skipping, executing, 20, milliseconds(17), "STI disabled (STD)");
+}
+
 }  // namespace
 }  // namespace softslc

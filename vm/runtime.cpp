@@ -733,7 +733,12 @@ bool Runtime::probe_due() {
     --probe_wait_;
     return false;
   }
-  return modules_passive() && interp_->nothing_pending_between_scans();
+  if (modules_passive() && interp_->nothing_pending_between_scans()) return true;
+  // Asked again after a wait that grows as after a probe that found a change: a 1747-SN whose
+  // program keeps block transfers going is seldom passive, and asking every scan costs.
+  probe_wait_ = probe_backoff_;
+  probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
+  return false;
 }
 
 bool Runtime::modules_passive() const {
@@ -825,7 +830,6 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
     return 1;
   }
-  probe_backoff_ = 1;
   const std::uint64_t per_scan = stats_.instructions - instructions;
   const Nanoseconds scan_time = stats_.last;  // what the probe's housekeeping was given
   const std::uint16_t s33_toggle = (data_.status(status::kCommBits) ^ s33_before) & 0x0200u;
@@ -886,6 +890,16 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     if (mode_ != Mode::Run || fault_ || !interp_->nothing_pending_between_scans() || !modules_passive() ||
         process_writes_ != process_writes || !probe_reads_the_same())
       break;
+  }
+  // A probe that could take no scan (the next event or the STI was due within one) was an executed
+  // scan like any other, but its saving and comparing of the table was wasted: the wait before the
+  // next probe grows as after a change (a 1747-SDN program with a DEM, whose network has an event
+  // at the end of most scans, probes much less often).
+  if (taken == 0) {
+    probe_wait_ = probe_backoff_;
+    probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
+  } else {
+    probe_backoff_ = 1;
   }
   return 1 + taken;
 }

@@ -246,7 +246,11 @@ void RioScanner::attach(ModuleHost& host) {
 }
 
 void RioScanner::input_scan(std::span<std::uint16_t> image) {
-  for (std::size_t w = 0; w < image.size(); ++w) image[w] = w < in_image_.size() && static_cast<int>(w) < scan_in_ ? in_image_[w] : 0;
+  // The words the link keeps, as many as SCAN_IN takes; zeros past them. One copy: the runtime also
+  // asks for the image after every event between repeated scans.
+  const std::size_t n = std::min({image.size(), in_image_.size(), static_cast<std::size_t>(std::max(scan_in_, 0))});
+  std::copy_n(in_image_.begin(), n, image.begin());
+  std::fill(image.begin() + static_cast<std::ptrdiff_t>(n), image.end(), std::uint16_t{0});
 }
 
 void RioScanner::output_scan(std::span<const std::uint16_t> image) {

@@ -331,10 +331,14 @@ void RioScanner::on_mode_change(Mode from, Mode to) {
 
 // See the header: the image scans are copies, the rest is events; not while a new mode waits for
 // its first scan or a block transfer is under way.
+//
+// A buffer is Waiting or Active exactly while it is in its rack's queue: enable() queues it as it
+// sets Waiting, start() makes only a queue's front Active, and post(), disable() and cancel_all()
+// take it out as they set Done, Error or Idle. So the four queues answer for the 33 buffers (the
+// runtime asks after every event between repeated scans).
 bool RioScanner::passive() const {
   if (pending_mode_ || !notes_.empty() || !ready_.empty()) return false;
-  return std::none_of(bt_.begin(), bt_.end(),
-                      [](const Buffer& b) { return b.state == BtState::Waiting || b.state == BtState::Active; });
+  return std::all_of(rack_queue_.begin(), rack_queue_.end(), [](const std::deque<int>& q) { return q.empty(); });
 }
 
 void RioScanner::execute(ModuleInstructionContext& ctx) {

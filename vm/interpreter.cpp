@@ -605,7 +605,10 @@ class ModuleCall final : public ModuleInstructionContext {
   Opcode opcode() const override { return op_; }
   bool rung_in() const override { return rung_; }
   bool first_pass() const override { return in_.first_pass_; }
-  VirtualTime now() const override { return now_; }
+  VirtualTime now() const override {
+    ++in_.module_time_reads_;
+    return now_;
+  }
   std::span<const ModuleOperand> operands() const override { return ops_; }
 
   bool read(std::size_t i, std::uint32_t k, std::uint16_t& value) override {

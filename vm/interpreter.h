@@ -209,6 +209,10 @@ class Interpreter {
   const EventInterrupt* event_interrupt(bool counter, int number) const;
   const DiiState& dii() const { return dii_; }
   std::uint64_t isr_runs() const { return isr_runs_; }
+  // How many times a module instruction asked the time of its execution
+  // (ModuleInstructionContext::now): a repeated scan cannot stand for such an instruction past an
+  // event (docs/semantics.md "Repeated scans").
+  std::uint64_t module_time_reads() const { return module_time_reads_; }
   const StiTimer& sti() const { return sti_; }
   // The MicroLogix high-speed counters (vm/ml_hsc.h); no counters on a processor without them.
   MicroLogixHsc& hsc() { return hsc_; }
@@ -494,6 +498,7 @@ class Interpreter {
   std::array<bool, 31> io_requested_{};   // a module's request not yet serviced
   int io_requests_ = 0;                   // how many of io_requested_ are set
   std::uint64_t isr_runs_ = 0;
+  std::uint64_t module_time_reads_ = 0;
   int last_file_ = 2;
   int last_rung_ = -1;
   std::array<std::uint16_t, 64> scratch_{};  // where a faulting operand's access lands

@@ -686,8 +686,11 @@ void Interpreter::locate_event_interrupts() {
 bool Interpreter::nothing_pending_between_scans() const {
   // An EII fires only on an input edge, which a repeated scan cannot bring (inputs change through
   // tools between runs, or through module events, which bound the skip); one already queued vetoes.
+  // The SLC's STI timing is allowed: its expiries are at known times (sti_.due), which the runtime
+  // bounds the repeats by, and a probe that moved the timer (an expiry, an STS) is not repeated.
+  // The MicroLogix STI function file is not judged yet.
   const bool no_isr = std::all_of(isr_file_.begin(), isr_file_.end(), [](int f) { return f == 0; });
-  return sti_.file == 0 && sti_queued_ == 0 && dii_.file == 0 && no_isr && events_queued_ == 0 &&
+  return (sti_.file == 0 || sti_file_word_ < 0) && sti_queued_ == 0 && dii_.file == 0 && no_isr && events_queued_ == 0 &&
          !hsc_.pulses_arriving() && ascii_port_ == nullptr && coverage_ == nullptr;
 }
 

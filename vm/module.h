@@ -203,6 +203,23 @@ class Module {
   // false, never allows that.
   virtual bool passive() const { return false; }
 
+  // Repeated scans of a program that reaches the module through M0/M1 or its instructions (BTR,
+  // BTW, DEM; docs/semantics.md "Repeated scans"). A module that returns a count promises, while
+  // it is passive(): read_m changes nothing and answers from state that changes only in the
+  // module's own events and in write_m and execute; every write_m or execute that changes
+  // anything the module does or answers (a value not already there, a transfer or message started
+  // or dropped, a command taken) advances the count; and execute depends only on what it reads
+  // through its context (the table, M0/M1, the rung, the time) and on state that only write_m and
+  // execute change. So a scan whose M0/M1 writes and module instructions left every count where it
+  // was, and whose M0/M1 reads read the same afterwards, is followed by the same scan. The
+  // default, nullopt ("cannot say"), keeps a program that reaches the module from repeating.
+  virtual std::optional<std::uint64_t> program_changes() const { return std::nullopt; }
+  // Whether write_m(f, word, value) now would be accepted and change nothing. The runtime asks it
+  // of every M0/M1 write a probe made, after an event, to go on repeating the probe past the event
+  // (the event may have changed what a write does: an AutoMax drop's rail, a pending mode). The
+  // default, false, stops the repeats at the first event.
+  virtual bool m_write_changes_nothing(MFile /*f*/, int /*word*/, std::uint16_t /*value*/) const { return false; }
+
   // The ISR for this module's interrupt request has been scanned to completion, or an RPI reset
   // the request (RM 11-27 step 3): the module may request again.
   virtual void interrupt_serviced() {}

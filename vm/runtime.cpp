@@ -47,7 +47,11 @@ constexpr std::array<int, 6> kRuntimeStatusWords = {status::kWatchdog, status::k
 // writes the checksum the compiler computed, a constant of the program. DLG's queue is outside the
 // data table, but DLG appends a record only on a scan that finds its rung true and its queue's EN
 // bit (a DLS word, in the table) clear, and it then sets EN: a probe that logged a record changed
-// the table and is no probe that repeats (vm/ml_data_log.cpp DataLogs::scan). Everything else —
+// the table and is no probe that repeats (vm/ml_data_log.cpp DataLogs::scan). SUS suspends the
+// processor when its rung is true (the probe is then not in Run) and does nothing otherwise; INT
+// marks an interrupt routine; STD and STE set or clear S:2/1; STS writes S:30, S:31 and S:2 and
+// restarts the SLC's STI timer, which the probe compares (a rung-true STS moves the timer's due
+// time every scan, so its probe is not repeated). Everything else —
 // I/O, modules, messages, interrupts, ASCII, PID, the clocks, function files, the MicroLogix HSC
 // (HSL, RAC) and pulse outputs (PTO, PTOX) — and any instruction added later rules repeats out
 // until it is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
@@ -70,13 +74,18 @@ bool acts_on_the_table_alone(Opcode op) {
     case Opcode::JMP: case Opcode::LBL: case Opcode::JSR: case Opcode::SBR: case Opcode::RET:
     case Opcode::END: case Opcode::TND: case Opcode::MCR:
     case Opcode::CPT: case Opcode::RPC: case Opcode::DLG:
+    case Opcode::SUS: case Opcode::INT: case Opcode::STD: case Opcode::STE: case Opcode::STS:
       return true;
     default:
       return false;
   }
 }
 
-bool reads_only_program_words(const Address& a);
+// The specialty-module instructions: they act through the module in their slot, which a probe then
+// asks (Module::program_changes; docs/semantics.md "Repeated scans").
+bool acts_through_a_module(Opcode op) { return op == Opcode::BTR || op == Opcode::BTW || op == Opcode::DEM; }
+
+bool reads_only_program_words(const Address& a, bool file_start = false);
 
 // A CPT expression's operands are its pushed atoms, constants or addresses as the compiler reads
 // them (vm/compiler.cpp expression_operand); an expression that does not parse is never repeated.
@@ -94,17 +103,21 @@ bool expression_reads_only_program_words(const std::string& text) {
   return true;
 }
 
-// An operand a repeated scan would read the same: not resolved at run time (indirect or indexed),
-// not a function file or M file, and not one of the runtime's own status words (nor a file
-// operand in S, which could span them).
-bool reads_only_program_words(const Operand& op) {
+// An operand a repeated scan would read the same: not resolved at run time (indirect or indexed;
+// the '#' of a file operand marks where the file starts, as the compiler reads it, and is no
+// index), not a function file, and not one of the runtime's own status words (nor a file operand
+// in S, which could span them). An M0/M1 word is allowed: the probe asks its module
+// (Runtime::reach).
+bool reads_only_program_words(const Operand& op, OperandKind kind) {
   if (op.kind == Operand::Kind::Expression) return expression_reads_only_program_words(op.spelling);
-  return !op.is_address() || reads_only_program_words(op.address);
+  return !op.is_address() ||
+         reads_only_program_words(op.address, kind == OperandKind::File || kind == OperandKind::String);
 }
 
-bool reads_only_program_words(const Address& a) {
-  if (a.is_indirect() || a.indexed || is_function_file(a.type) || is_mfile(a.type)) return false;
+bool reads_only_program_words(const Address& a, bool file_start) {
+  if (a.is_indirect() || (a.indexed && !file_start) || is_function_file(a.type)) return false;
   if (a.type != FileType::Status) return true;
+  if (file_start) return false;
   return std::find(kRuntimeStatusWords.begin(), kRuntimeStatusWords.end(), a.element) == kRuntimeStatusWords.end();
 }
 
@@ -115,9 +128,12 @@ bool elements_repeatable(const std::vector<RungElement>& elements) {
         if (!elements_repeatable(leg)) return false;
       continue;
     }
-    if (!acts_on_the_table_alone(e.instruction.opcode)) return false;
-    for (const Operand& op : e.instruction.operands)
-      if (!reads_only_program_words(op)) return false;
+    if (!acts_on_the_table_alone(e.instruction.opcode) && !acts_through_a_module(e.instruction.opcode)) return false;
+    const InstructionSpec& sp = spec(e.instruction.opcode);
+    for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
+      const OperandKind kind = i < sp.operand_count ? sp.operands[i].kind : OperandKind::Source;
+      if (!reads_only_program_words(e.instruction.operands[i], kind)) return false;
+    }
   }
   return true;
 }
@@ -152,7 +168,10 @@ class Runtime::ProcessHost final : public FieldProcessHost {
     return index < rt_.data_.size() ? rt_.data_.word(index) : 0;
   }
   void write_word(std::uint32_t index, std::uint16_t value) override {
-    if (index < rt_.data_.size()) rt_.data_.set_word(index, value);
+    if (index >= rt_.data_.size()) return;
+    // An event between repeated scans may run a process; one that changes a word stops them.
+    if (rt_.data_.word(index) != value) ++rt_.process_writes_;
+    rt_.data_.set_word(index, value);
   }
 
  private:
@@ -533,6 +552,8 @@ Nanoseconds Runtime::input_scan() {
     if (si.present) sm.module->input_scan(std::span<std::uint16_t>(w + in.base + si.first, si.words));
     cost += sm.input_cost;
   }
+  // A probe keeps what every module gave, so an event between repeats that changes it stops them.
+  if (probing_) probe_inputs_.assign(w + in.base, w + in.base + in.elements);
   apply_input_forces(0, in.elements);
   return cost;
 }
@@ -717,7 +738,12 @@ bool Runtime::probe_due() {
     --probe_wait_;
     return false;
   }
-  return modules_passive() && interp_->nothing_pending_between_scans();
+  if (modules_passive() && interp_->nothing_pending_between_scans()) return true;
+  // Asked again after a wait that grows as after a probe that found a change: a 1747-SN whose
+  // program keeps block transfers going is seldom passive, and asking every scan costs.
+  probe_wait_ = probe_backoff_;
+  probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
+  return false;
 }
 
 bool Runtime::modules_passive() const {
@@ -726,22 +752,72 @@ bool Runtime::modules_passive() const {
   return true;
 }
 
+void Runtime::reach(int slot) {
+  Module* m = module(slot);
+  if (!m) return;
+  for (const ReachedModule& r : reached_)
+    if (r.module == m) return;
+  const std::optional<std::uint64_t> n = m->program_changes();
+  if (!n) probe_unsteady_ = true;
+  reached_.push_back({m, n.value_or(0)});
+}
+
+bool Runtime::reached_modules_unchanged() const {
+  for (const ReachedModule& r : reached_)
+    if (r.module->program_changes() != std::optional<std::uint64_t>(r.changes)) return false;
+  return true;
+}
+
+bool Runtime::probe_reads_the_same() {
+  for (const MRead& r : m_reads_) {
+    std::uint16_t v = 0;
+    if (modules_[static_cast<std::size_t>(r.slot)]->read_m(r.file, r.word, v) != MAccess::Ok || v != r.value) return false;
+  }
+  for (const MRead& r : m_writes_)
+    if (!modules_[static_cast<std::size_t>(r.slot)]->m_write_changes_nothing(r.file, r.word, r.value)) return false;
+  const DataTableLayout& L = *program_->layout;
+  inputs_scratch_.assign(probe_inputs_.begin(), probe_inputs_.end());
+  for (const ScannedModule& sm : scanned_) {
+    const SlotImage& si = L.input_slots[static_cast<std::size_t>(sm.module->slot())];
+    if (si.present) sm.module->input_scan(std::span<std::uint16_t>(inputs_scratch_.data() + si.first, si.words));
+  }
+  return inputs_scratch_ == probe_inputs_;
+}
+
 std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   before_probe_.assign(data_.words(), data_.words() + data_.size());
   const VirtualTime start = clock_.now();
   const std::uint64_t instructions = stats_.instructions;
+  const std::uint64_t process_writes = process_writes_;
+  const std::uint64_t module_time_reads = interp_->module_time_reads();
+  const StiTimer sti_before = interp_->sti();
+  probing_ = true;
+  probe_unsteady_ = false;
+  reached_.clear();
+  m_reads_.clear();
+  m_writes_.clear();
   scan_once(false);
-  const VirtualTime t = clock_.now();  // the end of the probe, the start of the first repeat
+  probing_ = false;
+  VirtualTime t = clock_.now();  // the end of the probe, the start of the first repeat
   const Nanoseconds d = t - start;
   const std::uint16_t* w = data_.words();
   const DataTableLayout& L = *program_->layout;
-  // The probe changed nothing but the runtime's own status words, no event ran at its end (one
-  // may have changed a field input or a module), nothing is pending, no timer is timing and every
-  // module is still passive (the probe's output scan may have handed one an output image a tool
-  // changed, and a drive told to start is no longer settled): the next scan would do exactly what
-  // it did.
-  bool repeats = mode_ == Mode::Run && !fault_ && events_at_last_scan_end_ == 0 &&
-                 interp_->nothing_pending_between_scans() && modules_passive();
+  // The probe changed nothing but the runtime's own status words, nothing is pending, no timer is
+  // timing, every module is still passive (the probe's output scan may have handed one an output
+  // image a tool changed, and a drive told to start is no longer settled), and no module it reached
+  // through M0/M1 or an instruction counted a change: the next scan would do exactly what it did.
+  // An event that ran at its end may have changed a field input or a module: that is allowed only
+  // when no module instruction of the probe asked the time of its execution (the 1747-SDN's DEM
+  // advances the network to it, so an event could run in the middle of the scan), no process
+  // changed a word, and every module still gives the input image and the M0/M1 answers the probe
+  // read, and would take every M0/M1 write it made without a change.
+  // The STI timer: no expiry, no routine run, no STS restart during the probe.
+  const StiTimer& sti = interp_->sti();
+  const bool sti_same = sti.file == sti_before.file && sti.period == sti_before.period &&
+                        sti.next_period == sti_before.next_period && sti.due == sti_before.due &&
+                        sti.setpoint == sti_before.setpoint && sti.runs == sti_before.runs;
+  bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti_same &&
+                 interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
   const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
   for (int s : kRuntimeStatusWords) before_probe_[L.status_word(s)] = w[L.status_word(s)];
   repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);
@@ -751,44 +827,86 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     for (std::uint32_t e = f.base; e < f.end(); e += f.words_per_element)
       if (w[e] & bits::kTT) repeats = false;
   }
+  const bool across_events = interp_->module_time_reads() == module_time_reads;
+  if (repeats && events_at_last_scan_end_ != 0)
+    repeats = across_events && process_writes_ == process_writes && probe_reads_the_same();
   if (!repeats) {
     probe_wait_ = probe_backoff_;
     probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
     return 1;
   }
-  probe_backoff_ = 1;
-  // How many scans would repeat it: those that start before `end`, end before the next event, and
-  // (with a real-time clock) start their program scan in the same second, so the clock words stay.
-  std::int64_t k = t < end ? (end - t + d - 1) / d : 0;
-  if (auto next = events_.next_time()) k = std::min<std::int64_t>(k, (*next - t - 1) / d);
-  const FileLayout& rtc = L.function_file(FunctionFile::RTC);
-  if (rtc.present) {
-    const VirtualTime next_second = (rtc_second_ + 1) * kNsPerS;
-    k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (next_second - t - input_scan_ns_ + d - 1) / d));
-  }
-  if (k <= 0) return 1;
-  // Take them: each would have advanced S:4 at its program scan, toggled S:33/9 (when the probe
-  // did), and gone through housekeeping with the probe's scan time.
-  // The last repeat's program scan starts after its input scan.
-  advance_free_running_clock(t + (k - 1) * d + input_scan_ns_);
-  const std::uint16_t s33 = data_.status(status::kCommBits);
-  if (k % 2 == 1) data_.set_status(status::kCommBits, static_cast<std::uint16_t>(s33 ^ ((s33 ^ s33_before) & 0x0200u)));
   const std::uint64_t per_scan = stats_.instructions - instructions;
   const Nanoseconds scan_time = stats_.last;  // what the probe's housekeeping was given
-  for (std::int64_t i = 0; i < k; ++i) {
-    const std::uint16_t avg = data_.status(status::kAvgScan);
-    housekeeping(scan_time, true);
-    if (data_.status(status::kAvgScan) == avg) {  // the rest leave every status word as it is
-      const auto rest = static_cast<std::uint64_t>(k - i - 1);
-      stats_.scans += rest;
-      stats_.total += static_cast<Nanoseconds>(rest) * scan_time;
-      break;
+  const std::uint16_t s33_toggle = (data_.status(status::kCommBits) ^ s33_before) & 0x0200u;
+  const FileLayout& rtc = L.function_file(FunctionFile::RTC);
+  // Takes k scans from t without executing them: each would have advanced S:4 at its program scan
+  // (after its input scan), toggled S:33/9 (when the probe did), and gone through housekeeping
+  // with the probe's scan time.
+  const auto take = [&](std::int64_t k) {
+    advance_free_running_clock(t + (k - 1) * d + input_scan_ns_);
+    const std::uint16_t s33 = data_.status(status::kCommBits);
+    if (k % 2 == 1) data_.set_status(status::kCommBits, static_cast<std::uint16_t>(s33 ^ s33_toggle));
+    for (std::int64_t i = 0; i < k; ++i) {
+      const std::uint16_t avg = data_.status(status::kAvgScan);
+      housekeeping(scan_time, true);
+      if (data_.status(status::kAvgScan) == avg) {  // the rest leave every status word as it is
+        const auto rest = static_cast<std::uint64_t>(k - i - 1);
+        stats_.scans += rest;
+        stats_.total += static_cast<Nanoseconds>(rest) * scan_time;
+        break;
+      }
     }
+    stats_.instructions += per_scan * static_cast<std::uint64_t>(k);
+    stats_.repeated += static_cast<std::uint64_t>(k);
+    t += k * d;
+  };
+  std::int64_t taken = 0;
+  for (;;) {
+    // How many scans would repeat it: those that start before `end`, end before the next event,
+    // and (with a real-time clock) start their program scan in the same second, so the clock
+    // words stay.
+    std::int64_t k = t < end ? (end - t + d - 1) / d : 0;
+    std::int64_t in_second = k;
+    if (rtc.present) {
+      const VirtualTime next_second = (rtc_second_ + 1) * kNsPerS;
+      in_second = std::max<std::int64_t>(0, (next_second - t - input_scan_ns_ + d - 1) / d);
+      k = std::min(k, in_second);
+    }
+    const std::optional<VirtualTime> next = events_.next_time();
+    if (next) k = std::min<std::int64_t>(k, (*next - t - 1) / d);
+    // A timing STI expires at a known time, in the middle of the scan that reaches it: the repeats
+    // end before that scan, and no repeat across events goes past it.
+    const bool sti_timing = sti.file != 0;
+    if (sti_timing) k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (sti.due - t - 1) / d));
+    if (k > 0) {
+      take(k);
+      taken += k;
+      events_.run_until(t);  // none is due before t: this moves the clock
+    }
+    // The next scan would end at or after the next event. Its program scan is still the probe's
+    // (the event runs after it), so it is taken too when the probe may repeat across events; the
+    // events then run as at the end of an executed scan, and the repeats go on while they changed
+    // nothing the program reads.
+    if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || (sti_timing && t + d >= sti.due))
+      break;
+    take(1);
+    taken += 1;
+    events_at_last_scan_end_ = events_.run_until(t);
+    if (mode_ != Mode::Run || fault_ || !interp_->nothing_pending_between_scans() || !modules_passive() ||
+        process_writes_ != process_writes || !probe_reads_the_same())
+      break;
   }
-  stats_.instructions += per_scan * static_cast<std::uint64_t>(k);
-  stats_.repeated += static_cast<std::uint64_t>(k);
-  events_.run_until(t + k * d);
-  return 1 + k;
+  // A probe that could take no scan (the next event or the STI was due within one) was an executed
+  // scan like any other, but its saving and comparing of the table was wasted: the wait before the
+  // next probe grows as after a change (a 1747-SDN program with a DEM, whose network has an event
+  // at the end of most scans, probes much less often).
+  if (taken == 0) {
+    probe_wait_ = probe_backoff_;
+    probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
+  } else {
+    probe_backoff_ = 1;
+  }
+  return 1 + taken;
 }
 
 bool Runtime::run_until(const std::function<bool(const Runtime&)>& pred, Nanoseconds limit) {
@@ -1036,12 +1154,21 @@ bool Runtime::cancel_event(EventQueue::EventId id) { return events_.cancel(id); 
 
 MAccess Runtime::read_m(int slot, MFile f, int word, std::uint16_t& value) {
   Module* m = module(slot);
-  return m ? m->read_m(f, word, value) : MAccess::NoSuchWord;
+  if (!m) return MAccess::NoSuchWord;
+  if (probing_) [[unlikely]] reach(slot);
+  const MAccess a = m->read_m(f, word, value);
+  if (probing_ && a == MAccess::Ok) [[unlikely]] m_reads_.push_back({slot, f, word, value});
+  return a;
 }
 
 MAccess Runtime::write_m(int slot, MFile f, int word, std::uint16_t value) {
   Module* m = module(slot);
-  return m ? m->write_m(f, word, value) : MAccess::NoSuchWord;
+  if (!m) return MAccess::NoSuchWord;
+  if (probing_) [[unlikely]] {
+    reach(slot);
+    m_writes_.push_back({slot, f, word, value});
+  }
+  return m->write_m(f, word, value);
 }
 
 std::string Runtime::m_refusal(int slot, MFile f, int word, bool write) const {
@@ -1066,6 +1193,7 @@ void Runtime::immediate_input(int slot, int first, int count, std::uint16_t mask
 
 void Runtime::module_instruction(int slot, ModuleInstructionContext& ctx) {
   if (Module* m = module(slot)) {
+    if (probing_) [[unlikely]] reach(slot);
     m->execute(ctx);
     return;
   }
@@ -1165,3 +1293,4 @@ void Runtime::immediate_output(int slot, int first, int count, std::uint16_t mas
 }
 
 }  // namespace softslc
+

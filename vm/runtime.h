@@ -257,6 +257,13 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::int64_t probe_and_repeat(VirtualTime end);
   // Every scanned module says it is passive (Module::passive).
   bool modules_passive() const;
+  // During a probe: notes a module the program reaches (its count before the first access).
+  void reach(int slot);
+  // After a probe, or after events between repeats: no module the probe reached has counted a
+  // change, every M0/M1 word it read reads the same, every M0/M1 write it made would change
+  // nothing, and every module's input image is the one its input scan gave.
+  bool reached_modules_unchanged() const;
+  bool probe_reads_the_same();
   void enter_fault(const FaultInfo& f);
   void enter_suspend();
   void apply_input_forces(std::uint32_t first, std::uint32_t count);
@@ -336,6 +343,30 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::vector<std::uint16_t> before_probe_;
   Nanoseconds input_scan_ns_ = 0;
   std::size_t events_at_last_scan_end_ = 0;  // events the last scan cycle ran at its end
+  // What a probe did with the modules (docs/semantics.md "Repeated scans"): the modules it reached
+  // through M0/M1 or an instruction, each with its Module::program_changes() before the first
+  // access; the M0/M1 words it read and what it read, and those it wrote with the value; whether
+  // a module it reached cannot say (no count); each
+  // module's input image at its input scan (slot order, as scanned_); and the data-table words
+  // field processes changed (ProcessHost::write_word), which an event between repeats must leave
+  // alone.
+  struct ReachedModule {
+    Module* module;
+    std::uint64_t changes;
+  };
+  struct MRead {
+    int slot;
+    MFile file;
+    int word;
+    std::uint16_t value;
+  };
+  bool probing_ = false;
+  bool probe_unsteady_ = false;
+  std::vector<ReachedModule> reached_;
+  std::vector<MRead> m_reads_, m_writes_;
+  std::vector<std::uint16_t> probe_inputs_;
+  std::vector<std::uint16_t> inputs_scratch_;
+  std::uint64_t process_writes_ = 0;
   std::int64_t rtc_second_ = 0;  // whole seconds of virtual time when the RTC was last advanced
   // A module fault raised while modules are being told of a mode change waits here until every
   // module has seen the change.

@@ -369,8 +369,20 @@ MAccess AutomaxMaster::write_m(MFile f, int word, std::uint16_t value) {
   const Access a = access(word, nullptr);
   if (a == Access::BusError) return MAccess::NoSuchWord;
   if (a == Access::ReadOnly) return MAccess::Forbidden;
-  if (a == Access::ReadWrite) image_[static_cast<std::size_t>(storage_word(word))] = value;
+  if (a == Access::ReadWrite) {
+    std::uint16_t& stored = image_[static_cast<std::size_t>(storage_word(word))];
+    if (stored != value) ++program_changes_;
+    stored = value;
+  }
   return MAccess::Ok;
+}
+
+// See the header: accepted, and either ignored or storing the value the image holds.
+bool AutomaxMaster::m_write_changes_nothing(MFile f, int word, std::uint16_t value) const {
+  if (f != MFile::M0) return false;
+  const Access a = access(word, nullptr);
+  if (a == Access::BusError || a == Access::ReadOnly) return false;
+  return a == Access::Ignored || image_[static_cast<std::size_t>(storage_word(word))] == value;
 }
 
 // A Stop-All (the processor leaving Run) lets a mixed Shark rack take a new configuration word

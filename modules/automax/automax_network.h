@@ -18,8 +18,14 @@
 // Passive (Module::passive, docs/semantics.md "Repeated scans"): always. The master has no image
 // words (its input and output scans do nothing); everything it does in time — polls, retries, the
 // rail reads, a drop's power-up diagnostics, which `answers` compares with the time of its poll —
-// happens in its update-cycle events on the runtime's queue, and the program reaches it only
-// through M0, which keeps a program from repeating its scans anyway.
+// happens in its update-cycle events on the runtime's queue.
+//
+// M0 in repeated scans (Module::program_changes): M0 is the dual-port image, changed only by the
+// update-cycle events (a poll stores a drop's inputs and the drop 0 counters) and by write_m; read_m
+// copies it under the access rules. A write changes something only when it stores a value the
+// image does not hold (an output register, read/write); a write the rules ignore changes nothing,
+// and a refused one faults the processor. The access rules follow the drops' configuration and
+// rails, which events may change, so m_write_changes_nothing asks them again.
 #pragma once
 
 #include <array>
@@ -107,6 +113,8 @@ class AutomaxMaster : public Module {
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
   bool passive() const override { return true; }
+  std::optional<std::uint64_t> program_changes() const override { return program_changes_; }
+  bool m_write_changes_nothing(MFile f, int word, std::uint16_t value) const override;
 
   std::vector<std::string> device_names() const override;
   DeviceStatus inject(const DeviceFault& fault) override;
@@ -168,6 +176,7 @@ class AutomaxMaster : public Module {
   int next_inactive_ = 1;  // round robin of the inactive poll
   Nanoseconds update_period_ = 0;
   std::int64_t cycles_ = 0;
+  std::uint64_t program_changes_ = 0;  // M0 writes that stored a new value
 };
 
 }  // namespace softslc

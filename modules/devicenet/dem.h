@@ -96,6 +96,8 @@ class DemPort {
   // owner's control block keeps EN until it executes again with its rung false, which clears it.
   void abandon();
   std::optional<std::uint32_t> owner() const { return owner_; }
+  // The owner abandon() dropped, until its EN is cleared.
+  std::optional<std::uint32_t> abandoned() const { return abandoned_; }
 
  private:
   void finish(std::span<std::uint16_t, kWords> cb, Error e, bool done);

@@ -105,6 +105,7 @@ MAccess SdnScanner::read_m(MFile f, int word, std::uint16_t& value) {
 MAccess SdnScanner::write_m(MFile f, int word, std::uint16_t value) {
   if (word < 0 || word >= m_file_words(f)) return MAccess::NoSuchWord;
   sync(host()->now());
+  if (!m_write_changes_nothing(f, word, value)) ++program_changes_;
   if (!scanner_->write_m(library_file(f), word, value)) return MAccess::NoSuchWord;
   // The request block is acted on once per processor scan that wrote it, after the scan: a block
   // built word by word over several rungs, or copied by one COP, is one request.
@@ -119,6 +120,16 @@ MAccess SdnScanner::write_m(MFile f, int word, std::uint16_t value) {
   }
   rearm();
   return MAccess::Ok;
+}
+
+// See the header: M0 outside the request block, or M1's data area, already holding the value, or an
+// M1 word outside the data area (the library ignores writes there).
+bool SdnScanner::m_write_changes_nothing(MFile f, int word, std::uint16_t value) const {
+  if (word < 0 || word >= m_file_words(f)) return false;
+  if (f == MFile::M0 && in_request_block(word)) return false;
+  if (f == MFile::M1 && word >= dn::layout::kDataWords) return true;
+  std::uint16_t held = 0;
+  return scanner_->read_m(library_file(f), word, held) && held == value;
 }
 
 // Leaving Run or Test drops the DEM in flight, as the processor resets its message instructions;
@@ -151,8 +162,13 @@ void SdnScanner::execute(ModuleInstructionContext& ctx) {
   std::array<std::uint16_t, dn::dem::kWords> cb{};
   if (!ctx.read_block(cb_op, 0, cb)) return;
   const auto before = cb;
+  const std::optional<VirtualTime> next = network_->next_event_time();
+  if (next && *next <= ctx.now()) ++program_changes_;  // the network moves mid-scan
   sync(ctx.now());
+  const auto owner = dem_->owner();
+  const auto abandoned = dem_->abandoned();
   dem_->on_rung(ops[cb_op].word, cb, ctx.rung_in(), ctx.now());
+  if (cb != before || dem_->owner() != owner || dem_->abandoned() != abandoned) ++program_changes_;
   // Most scans change nothing in the block: one compare of the whole block then, not 70.
   if (cb != before)
     for (int k = 0; k < dn::dem::kWords; ++k) {

@@ -27,8 +27,17 @@
 // edge only, and otherwise reconciles the port with levels it already holds, so the same image
 // again changes nothing. The module is passive unless a DEM is in flight, a request block written
 // this scan waits for its event, or an explicit-message transaction is open (their progress is
-// events too, but the M1 response area changes with it; a program with a DEM or an M-file operand
-// never repeats, so being conservative costs nothing).
+// events too, but the M1 response area changes with it).
+//
+// M files and DEM in repeated scans (Module::program_changes): read_m reads M0 as written and M1
+// as the network's events left it (the data area, or status recomputed from the node states), so
+// its answers change only in those events and in write_m. A write changes something when it
+// stores a value the word does not hold (M0, or M1's data area; the rest of M1 ignores writes) and
+// always when it is to the request block (M0 224-255: every write has the block taken at the end
+// of the scan). A DEM changes something when it starts or drops a message (the port's owner or
+// its abandoned block changes), when it changes its control block (the runtime sees that in the
+// table too), or when it advances the network to its own time within the scan past one of the
+// network's events (the event then ran mid-scan instead of at its end).
 #pragma once
 
 #include <memory>
@@ -57,6 +66,8 @@ class SdnScanner final : public Module {
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
   bool passive() const override;
+  std::optional<std::uint64_t> program_changes() const override { return program_changes_; }
+  bool m_write_changes_nothing(MFile f, int word, std::uint16_t value) const override;
   void execute(ModuleInstructionContext& ctx) override;
   std::vector<std::string> device_names() const override;
   DeviceStatus inject(const DeviceFault& fault) override;
@@ -84,6 +95,7 @@ class SdnScanner final : public Module {
   std::optional<VirtualTime> wake_at_;  // time of the armed host event
   EventQueue::EventId wake_id_ = 0;
   bool request_block_written_ = false;  // M0:224-255 written this processor scan
+  std::uint64_t program_changes_ = 0;   // see the header
 };
 
 }  // namespace softslc

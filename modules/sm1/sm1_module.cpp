@@ -269,7 +269,8 @@ MAccess Sm1Module::write_m(MFile f, int word, std::uint16_t value) {
   // "The M1 file is a module input file (read-only)" (chapter 4).
   if (f == MFile::M1) return MAccess::Forbidden;
   m0_[static_cast<std::size_t>(word)] = value;
-  // M0 STA drops while the module reads the changes (chapter 4, "M0 STA").
+  // M0 STA drops while the module reads the changes (chapter 4, "M0 STA"), whatever was written.
+  ++program_changes_;
   m0_loaded_ = true;
   if (host()) m0_ready_at_ = host()->now() + kM0ReadTime;
   return MAccess::Ok;

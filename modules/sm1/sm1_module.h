@@ -19,6 +19,12 @@
 // the clock, not an event). Given the same output image again, the output scan then changes
 // nothing: the logic command's functions act on rising edges only, and the reference, datalinks
 // and DE are levels the drive already holds.
+//
+// M files in repeated scans (Module::program_changes): read_m is a copy of M0 or M1; M1 changes
+// only when a message's answer lands (an event) and M0 only in write_m. But every M0 write, even
+// of the value already there, drops M0 STA for the module's read time (chapter 4, "M0 STA"), so
+// every write counts as a change and m_write_changes_nothing is never true: a program that writes
+// M0 every scan does not repeat, one that only reads M1 does.
 #pragma once
 
 #include <array>
@@ -53,6 +59,7 @@ class Sm1Module final : public Module {
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
   bool passive() const override;
+  std::optional<std::uint64_t> program_changes() const override { return program_changes_; }
   std::vector<std::string> device_names() const override;
   DeviceStatus inject(const DeviceFault& fault) override;
   std::optional<std::vector<std::int64_t>> observe(std::string_view device, std::string_view what) const override;
@@ -114,6 +121,7 @@ class Sm1Module final : public Module {
   std::vector<std::uint16_t> m0_, m1_;
   std::vector<std::uint16_t> last_outputs_;
   bool m0_loaded_ = false;
+  std::uint64_t program_changes_ = 0;  // M0 writes (each one drops M0 STA)
   VirtualTime m0_ready_at_ = 0;
 };
 

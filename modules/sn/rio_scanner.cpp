@@ -246,7 +246,11 @@ void RioScanner::attach(ModuleHost& host) {
 }
 
 void RioScanner::input_scan(std::span<std::uint16_t> image) {
-  for (std::size_t w = 0; w < image.size(); ++w) image[w] = w < in_image_.size() && static_cast<int>(w) < scan_in_ ? in_image_[w] : 0;
+  // The words the link keeps, as many as SCAN_IN takes; zeros past them. One copy: the runtime also
+  // asks for the image after every event between repeated scans.
+  const std::size_t n = std::min({image.size(), in_image_.size(), static_cast<std::size_t>(std::max(scan_in_, 0))});
+  std::copy_n(in_image_.begin(), n, image.begin());
+  std::fill(image.begin() + static_cast<std::ptrdiff_t>(n), image.end(), std::uint16_t{0});
 }
 
 void RioScanner::output_scan(std::span<const std::uint16_t> image) {
@@ -276,9 +280,21 @@ MAccess RioScanner::write_m(MFile f, int word, std::uint16_t value) {
   // "M1 is a read only file; do not write to this file" (chapter 4; appendix B: the M1 file is a
   // module input file, read only to the processor).
   if (f == MFile::M1) return MAccess::Forbidden;
+  if (!m_write_changes_nothing(f, word, value)) ++program_changes_;
   file[static_cast<std::size_t>(word)] = value;
   if (const int x = rio::buffer_at(word)) note_control_write(x, value);
   return MAccess::Ok;
+}
+
+// See the header: the word holds the value, and a control word's EN and TO are those noted last.
+bool RioScanner::m_write_changes_nothing(MFile f, int word, std::uint16_t value) const {
+  if (f != MFile::M0 || word < 0 || static_cast<std::size_t>(word) >= m0_.size()) return false;
+  if (m0_[static_cast<std::size_t>(word)] != value) return false;
+  if (const int x = rio::buffer_at(word)) {
+    const Buffer& b = bt_[static_cast<std::size_t>(x)];
+    if (((value & rio::kEN) != 0) != b.en_written || ((value & rio::kTO) != 0) != b.to_written) return false;
+  }
+  return true;
 }
 
 void RioScanner::on_mode_change(Mode from, Mode to) {
@@ -315,10 +331,14 @@ void RioScanner::on_mode_change(Mode from, Mode to) {
 
 // See the header: the image scans are copies, the rest is events; not while a new mode waits for
 // its first scan or a block transfer is under way.
+//
+// A buffer is Waiting or Active exactly while it is in its rack's queue: enable() queues it as it
+// sets Waiting, start() makes only a queue's front Active, and post(), disable() and cancel_all()
+// take it out as they set Done, Error or Idle. So the four queues answer for the 33 buffers (the
+// runtime asks after every event between repeated scans).
 bool RioScanner::passive() const {
   if (pending_mode_ || !notes_.empty() || !ready_.empty()) return false;
-  return std::none_of(bt_.begin(), bt_.end(),
-                      [](const Buffer& b) { return b.state == BtState::Waiting || b.state == BtState::Active; });
+  return std::all_of(rack_queue_.begin(), rack_queue_.end(), [](const std::deque<int>& q) { return q.empty(); });
 }
 
 void RioScanner::execute(ModuleInstructionContext& ctx) {

@@ -47,8 +47,15 @@
 // queue. So the scanner is passive unless a new Run/Test mode is waiting for the end of its first
 // scan (the output scan would then change the M0 settings in effect) or a block transfer is in
 // progress (a note or finished transfer waiting for a service tick, or a buffer Waiting or Active):
-// the transfer's progress is events too, but M1 changes with it, and being conservative costs
-// nothing because a program with BTR, BTW or an M-file operand never repeats.
+// the transfer's progress is events too, but M1 changes with it.
+//
+// M files and BTR/BTW in repeated scans (Module::program_changes): read_m is a copy of M0 or M1,
+// which change only in the link's and the block-transfer service's events and in write_m. A write
+// to M0 changes something when the word holds another value or when it is a buffer's control word
+// whose EN or TO differs from what the scanner last noted (note_control_write); both count. BTR
+// and BTW act on the scanner only through M0 writes and M1 reads
+// (block_transfer.cpp), so they are covered by the same count. m_write_changes_nothing answers
+// the same question without writing.
 #pragma once
 
 #include <array>
@@ -81,6 +88,8 @@ class RioScanner final : public Module {
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
   bool passive() const override;
+  std::optional<std::uint64_t> program_changes() const override { return program_changes_; }
+  bool m_write_changes_nothing(MFile f, int word, std::uint16_t value) const override;
   void execute(ModuleInstructionContext& ctx) override;
   bool set_field_input(int word, std::uint16_t value, std::uint16_t mask) override;
   std::optional<std::uint16_t> field_input(int word) const override;
@@ -270,6 +279,7 @@ class RioScanner final : public Module {
   VirtualTime tick_origin_ = 0;
   VirtualTime next_tick_ = -1;  // scheduled tick time, -1 = none
   VirtualTime last_tick_ = -1;
+  std::uint64_t program_changes_ = 0;  // M0 writes that changed a word or a buffer's EN/TO
 };
 
 }  // namespace softslc

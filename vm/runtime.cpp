@@ -719,15 +719,14 @@ int Runtime::scan(int n) {
 std::int64_t Runtime::run_for(Nanoseconds duration) {
   const VirtualTime end = clock_.now() + std::max<Nanoseconds>(duration, 0);
   std::int64_t n = 0;
-  while (clock_.now() < end) {
-    if (probe_due()) {
-      n += probe_and_repeat(end);
-      continue;
-    }
-    scan_once(false);
-    ++n;
-  }
+  while (clock_.now() < end) n += advance_toward(end);
   return n;
+}
+
+std::int64_t Runtime::advance_toward(VirtualTime end) {
+  if (probe_due()) return probe_and_repeat(end);
+  scan_once(false);
+  return 1;
 }
 
 bool Runtime::probe_due() {

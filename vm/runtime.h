@@ -153,6 +153,11 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // Runs whole scans until at least `duration` of virtual time has passed. Returns scans run (a scan
   // taken as a repeat of the one before counts as run: docs/semantics.md "Repeated scans").
   std::int64_t run_for(Nanoseconds duration);
+  // One step of run_for toward `end` (which must be later than now): one scan, or a probe and
+  // the scans that repeat it, none starting at or after `end`. Returns the scans taken. For a
+  // caller that looks at the runtime between steps (softslc run stops at a fault or a SUS, which
+  // only an executed scan can bring, and saves its state file at checkpoints).
+  std::int64_t advance_toward(VirtualTime end);
   // run_for may take scans that would repeat the last one without executing them (the default);
   // off, every scan executes. Results are the same either way (tests compare the two).
   void skip_repeated_scans(bool on) { skip_repeated_ = on; }

@@ -118,6 +118,30 @@ TEST(Cli, RunForAVirtualDurationTripsTheOverload) {
   EXPECT_EQ(late.out, "OL_TRIPPED = 1\nTRIP_LAMP = 1\n");
 }
 
+// `run --for` takes scans that repeat the one before without executing them (docs/semantics.md
+// "Repeated scans"), with the results of executing them: `--scans N` executes every scan, and the
+// same number of scans gives the same output byte for byte (scan count, virtual time, scan
+// times, values). The motor runs sealed in and the overload timer trips after 1 s; from then on
+// nothing changes, so the 60 s run repeats nearly all of its scans.
+TEST(Cli, RunForTakesRepeatedScansWithTheResultsOfExecutingEachOne) {
+  const std::string common = " --set START_PB=1 --set OL_CONTACT=1 --json --print MOTOR --print OL_TRIPPED "
+                             "--print T4:0.ACC --print C5:0.ACC";
+  auto timed = run("-v run " + kExample + " --for 60s" + common);
+  ASSERT_EQ(timed.exit_code, 0) << timed.out;
+  const auto log = timed.out.find("run: ");
+  ASSERT_NE(log, std::string::npos) << timed.out;
+  // "run: N scans, R of them taken as repeats of the scan before"
+  const std::string line = timed.out.substr(log, timed.out.find('\n', log) - log);
+  ASSERT_NE(line.find(", "), std::string::npos) << line;
+  const std::uint64_t scans = std::stoull(line.substr(5));
+  const std::uint64_t repeated = std::stoull(line.substr(line.find(", ") + 2));
+  EXPECT_GT(repeated, scans / 2) << timed.out;
+  const std::string json = timed.out.substr(timed.out.find('{'));
+  auto counted = run("run " + kExample + " --scans " + std::to_string(scans) + common);
+  ASSERT_EQ(counted.exit_code, 0) << counted.out;
+  EXPECT_EQ(counted.out, json);
+}
+
 TEST(Cli, RunStopsAtASusAndSaysSo) {
   // examples/ladder/sti: STOP_PB (I:1/1) makes rung 7 of file 2 execute SUS 99 (RM ch. 6: S:7 := ID,
   // S:8 := file; the processor stops in Suspend Idle). The run ends there, without a fault.

@@ -515,23 +515,39 @@ int run_run(const RunOptions& o) {
   std::signal(SIGTERM, on_interrupt);
   VirtualTime next_checkpoint = rt.now() + checkpoint;
   bool saved_ok = true;
-  auto one_scan = [&] {
-    rt.scan(1);
+  auto after_scans = [&] {
     pace();
     if (checkpoint > 0 && rt.now() >= next_checkpoint) {
       saved_ok &= save_state();
       next_checkpoint = rt.now() + checkpoint;
     }
   };
+  auto one_scan = [&] {
+    rt.scan(1);
+    after_scans();
+  };
   if (duration > 0) {
     const VirtualTime end = rt.now() + duration;
-    // A fault or a SUS (Suspend Idle) ends the run: nothing executes after either.
-    while (rt.now() < end && !rt.fault() && rt.mode() != Mode::Suspended && !g_interrupted) one_scan();
+    // A fault or a SUS (Suspend Idle) ends the run: nothing executes after either. Scans that
+    // repeat the one before are taken without executing them (docs/semantics.md "Repeated
+    // scans"), up to the next checkpoint; a repeat never faults or suspends (only an executed
+    // scan can), so the run stops where executing every scan would stop it. --realtime paces
+    // scan by scan.
+    while (rt.now() < end && !rt.fault() && rt.mode() != Mode::Suspended && !g_interrupted) {
+      if (o.realtime) {
+        one_scan();
+        continue;
+      }
+      rt.advance_toward(checkpoint > 0 ? std::min(end, next_checkpoint) : end);
+      after_scans();
+    }
   } else {
     const int n = o.scans > 0 ? o.scans : 1;
     for (int i = 0; i < n && !rt.fault() && rt.mode() != Mode::Suspended && !g_interrupted; ++i) one_scan();
   }
   const bool suspended = rt.mode() == Mode::Suspended;
+  spdlog::debug("run: {} scans, {} of them taken as repeats of the scan before", rt.stats().scans,
+                rt.stats().repeated);
   std::signal(SIGINT, SIG_DFL);
   std::signal(SIGTERM, SIG_DFL);
   saved_ok &= save_state();

@@ -1831,10 +1831,9 @@ ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds 
 
 void Interpreter::begin_pass(VirtualTime scan_start, Nanoseconds watchdog) {
   scan_start_ = scan_start;
-  faulted_ = false;
+  clear_fault();
   fault_located_ = false;
   suspended_ = false;
-  fault_ = {};
   extra_ns_ = 0;
   count_ = 0;
   w_ = table_.words();

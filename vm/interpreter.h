@@ -464,6 +464,13 @@ class Interpreter {
   bool faulted_ = false;
   std::uint64_t count_ = 0;  // instructions executed this scan
   FaultInfo fault_;
+  // Forgets the fault of the last pass. fault_ is written only after raise(), which gives it a
+  // code, so a pass that raised nothing leaves nothing to reset (resetting its string at every
+  // pass and configure step was a cost on every scan: docs/performance.md).
+  void clear_fault() {
+    faulted_ = false;
+    if (fault_.code != 0) fault_ = {};
+  }
   // The fault has been located (file, rung) and offered to the user fault routine; outer
   // routines only pass it on.
   bool fault_located_ = false;

@@ -342,8 +342,7 @@ bool Interpreter::apply_dii_config() {
 }
 
 bool Interpreter::configure_dii(bool entering_run) {
-  faulted_ = false;
-  fault_ = {};
+  clear_fault();
   w_ = table_.words();
   if (!dii_supported_) return true;
   if (entering_run) {
@@ -467,8 +466,7 @@ void Interpreter::io_interrupt_control(Op op, const std::uint32_t* o, Nanosecond
 }
 
 bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
-  faulted_ = false;
-  fault_ = {};
+  clear_fault();
   w_ = table_.words();
   if (sti_file_word_ >= 0) return configure_function_file_sti(now, entering_run);
   if (entering_run) {
@@ -483,7 +481,7 @@ bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
   // S:30/S:31 are the STI's only on the processors that have the SLC's STI (RM 11-8: 5/02 and
   // later). The MicroLogix keep their STI in a function file; a saved MicroLogix status file can
   // hold other values there (an .RSS fixture has S:30 = 300, S:31 = 13), which must not arm it.
-  if (!prog_.processor.supports(Requirement::TimedInterrupt) || file == 0 || setpoint == 0) {
+  if (file == 0 || setpoint == 0 || !prog_.processor.supports(Requirement::TimedInterrupt)) {
     // RM 11-12: "A value of zero disables the STI function" (file or setpoint).
     sti_.file = 0;
     sti_.next_period = 0;
@@ -537,6 +535,15 @@ void Interpreter::stop_interrupts() {
 
 ProgramScanResult Interpreter::service_interrupts_between(VirtualTime scan_start, Nanoseconds elapsed,
                                                           Nanoseconds watchdog) {
+  // Nothing timing or waiting (most scans): update_limit would leave the limit at the watchdog and
+  // nothing would run, so no pass is begun.
+  if (sti_.file == 0 && sti_queued_ == 0 && events_queued_ == 0 && !dii_runnable() && runnable_isr_slot() == 0) {
+    ProgramScanResult res;
+    res.elapsed = elapsed;
+    res.last_file = last_file_;
+    res.last_rung = last_rung_;
+    return res;
+  }
   begin_pass(scan_start, watchdog);
   update_limit(elapsed);
   bool ok = true;
@@ -845,8 +852,7 @@ bool Interpreter::user_fault_routine(Nanoseconds& elapsed) {
   w_[s1_] = static_cast<std::uint16_t>(w_[s1_] | status::kMajorHalt);
   const FaultInfo original = fault_;
   const SavedStatus saved = save_status();
-  faulted_ = false;
-  fault_ = {};
+  clear_fault();
   fault_located_ = false;
   in_fault_routine_ = true;
   const int outer_priority = priority_;

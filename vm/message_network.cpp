@@ -1,6 +1,7 @@
 #include "vm/message_network.h"
 
 #include <algorithm>
+#include <limits>
 
 #include "vm/runtime.h"
 
@@ -474,8 +475,7 @@ void MessageNetwork::service_channel(std::size_t station, VirtualTime at, int ch
   for (std::uint64_t serial : late)
     if (Message* m = find(station, serial)) finish(station, *m, msg::kReplyTimeout);
   // 3. The queue into free buffers, first in first out (RM 12-41: "at end of scan or SVC").
-  const std::size_t buffers = ch.queue.empty() || !ch.queue.front().in.slc502 ? msg::kBuffersPerChannel : 1;
-  while (!ch.queue.empty() && ch.buffers.size() < buffers) {
+  while (!ch.queue.empty() && ch.buffers.size() < buffer_limit(ch)) {
     ch.buffers.push_back(std::move(ch.queue.front()));
     ch.queue.erase(ch.queue.begin());
     enter_buffer(station, ch.buffers.back());
@@ -483,6 +483,32 @@ void MessageNetwork::service_channel(std::size_t station, VirtualTime at, int ch
   // 4. What the buffers hold goes out.
   for (Message& m : ch.buffers)
     if (!m.sent) send(station, at, m);
+}
+
+std::size_t MessageNetwork::buffer_limit(const Channel& ch) {
+  return ch.queue.empty() || !ch.queue.front().in.slc502 ? msg::kBuffersPerChannel : 1;
+}
+
+std::optional<VirtualTime> MessageNetwork::quiet_until(std::size_t station, VirtualTime at) const {
+  if (stations_.size() != 1) return std::nullopt;
+  const Station& st = stations_[station];
+  VirtualTime until = std::numeric_limits<VirtualTime>::max();
+  if (!st.inbox.empty()) until = st.inbox.begin()->first.first;
+  for (const Channel& ch : st.channels) {
+    if (!ch.queue.empty() && ch.buffers.size() < buffer_limit(ch)) return std::nullopt;
+    for (const Message& m : ch.buffers)
+      if (!m.sent) return std::nullopt;
+    const bool ethernet = channel_link(station, static_cast<int>(&ch - st.channels.data())) == MessageLink::Ethernet;
+    for (const auto* list : {&ch.buffers, &ch.queue})
+      for (const Message& m : *list) {
+        // service_channel's step 2: the seconds word, the message timer, Ethernet's reply timeout.
+        if (m.in.slc502) continue;
+        until = std::min(until, m.started + ((at - m.started) / kNsPerS + 1) * kNsPerS);
+        if (m.timeout > 0) until = std::min(until, m.started + m.timeout);
+        if (ethernet && m.acked) until = std::min(until, *m.acked + msg::kReplyTimeoutNs);
+      }
+  }
+  return until;
 }
 
 void MessageNetwork::service_now(std::size_t station, VirtualTime at, std::uint16_t channel_mask) {

@@ -178,6 +178,12 @@ class MessageNetwork {
   // A station finished a scan at `end`: its end-of-scan servicing is due then. For the leader this
   // also runs the lockstep up to `end` (see the header comment).
   void scanned(std::size_t station, VirtualTime end);
+  // For repeated scans (docs/semantics.md "Repeated scans"): when `station` is alone on the network
+  // and its servicing at `at` left nothing to send or to move into a buffer, the time before which
+  // no servicing would change anything (the first frame to arrive, the next whole second of a
+  // message's timer words, a timeout; the largest time when nothing is in flight). nullopt when
+  // another station is on the link (its scans could send at any time) or something waits to go out.
+  std::optional<VirtualTime> quiet_until(std::size_t station, VirtualTime at) const;
 
  private:
   struct Message {
@@ -224,6 +230,9 @@ class MessageNetwork {
     std::optional<VirtualTime> service_due;
   };
 
+  // How many messages the channel's buffers take: four, or one while the 5/02's message is at the
+  // queue's front (RM 12-41).
+  static std::size_t buffer_limit(const Channel& ch);
   void service(std::size_t station, VirtualTime at, std::uint16_t channel_mask);
   void service_channel(std::size_t station, VirtualTime at, int channel);
   void run_lockstep(VirtualTime until);

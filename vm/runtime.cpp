@@ -85,6 +85,14 @@ bool acts_on_the_table_alone(Opcode op) {
 // asks (Module::program_changes; docs/semantics.md "Repeated scans").
 bool acts_through_a_module(Opcode op) { return op == Opcode::BTR || op == Opcode::BTW || op == Opcode::DEM; }
 
+// MSG: it starts a message (setting EN) or aborts one (ER) through the network, which a probe then
+// judges when the controller is alone on it (MessageNetwork::quiet_until); otherwise it acts on its
+// control block.
+// SVC, which services the network in the middle of the scan, is left out.
+bool acts_through_the_network(Opcode op) {
+  return op == Opcode::MSG || op == Opcode::MSG_502 || op == Opcode::MSG_ML;
+}
+
 bool reads_only_program_words(const Address& a, bool file_start = false);
 
 // A CPT expression's operands are its pushed atoms, constants or addresses as the compiler reads
@@ -128,7 +136,8 @@ bool elements_repeatable(const std::vector<RungElement>& elements) {
         if (!elements_repeatable(leg)) return false;
       continue;
     }
-    if (!acts_on_the_table_alone(e.instruction.opcode) && !acts_through_a_module(e.instruction.opcode)) return false;
+    const Opcode op = e.instruction.opcode;
+    if (!acts_on_the_table_alone(op) && !acts_through_a_module(op) && !acts_through_the_network(op)) return false;
     const InstructionSpec& sp = spec(e.instruction.opcode);
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
       const OperandKind kind = i < sp.operand_count ? sp.operands[i].kind : OperandKind::Source;
@@ -143,6 +152,32 @@ bool program_scans_repeatable(const Program& program) {
     for (const Rung& r : f.rungs)
       if (!elements_repeatable(r.elements)) return false;
   return true;
+}
+
+// Whether a timer instruction among `elements` has the MicroLogix 0.001 s time base (its stamp
+// counts milliseconds, not 10 ms ticks).
+bool has_millisecond_timer(const std::vector<RungElement>& elements) {
+  for (const RungElement& e : elements) {
+    if (e.kind == RungElement::Kind::Branch) {
+      for (const auto& leg : e.legs)
+        if (has_millisecond_timer(leg)) return true;
+      continue;
+    }
+    const InstructionSpec& sp = spec(e.instruction.opcode);
+    for (std::size_t i = 0; i < e.instruction.operands.size() && i < sp.operand_count; ++i) {
+      const Operand& op = e.instruction.operands[i];
+      if (sp.operands[i].kind == OperandKind::TimeBase && op.kind == Operand::Kind::Float && op.real < 0.005)
+        return true;
+    }
+  }
+  return false;
+}
+
+Nanoseconds finest_timer_tick(const Program& program) {
+  for (const ProgramFile& f : program.files)
+    for (const Rung& r : f.rungs)
+      if (has_millisecond_timer(r.elements)) return kNsPerMs;
+  return kTick;
 }
 
 }  // namespace
@@ -195,6 +230,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
   Runtime& rt = *r.runtime;
   rt.program_repeatable_ = program_scans_repeatable(program);
+  rt.timer_tick_ns_ = finest_timer_tick(program);
   rt.process_host_ = std::make_unique<ProcessHost>(rt);
   if (make_channel) {
     rt.ascii_channel_ = make_channel();
@@ -628,18 +664,17 @@ Nanoseconds Runtime::housekeeping(Nanoseconds scan_time, bool executed) {
   if (!executed) return model_->housekeeping_cost();
   // RM B-19, B-42: S:3 low byte = this scan in 10 ms ticks; S:22 max, S:23 running average
   // (avg*7 + scan)/8, both in 10 ms units unless S:33/13 selects 1 ms; S:35 = last scan.
+  std::uint16_t* const s = data_.words() + program_->layout->status_word(0);
   const std::int64_t ticks = scan_time / kTick;
-  const std::uint16_t s3 = data_.status(status::kWatchdog);
-  data_.set_status(status::kWatchdog, static_cast<std::uint16_t>((s3 & 0xFF00) | clamp_u8(ticks)));
-  const bool ms_units = (data_.status(status::kCommBits) & status::kScanIn1ms) != 0;
+  s[status::kWatchdog] = static_cast<std::uint16_t>((s[status::kWatchdog] & 0xFF00) | clamp_u8(ticks));
+  const bool ms_units = (s[status::kCommBits] & status::kScanIn1ms) != 0;
   const std::int64_t unit = ms_units ? scan_time / kNsPerMs : ticks;
-  data_.set_status(status::kMaxScan, std::max<std::uint16_t>(data_.status(status::kMaxScan), clamp_u16(unit)));
-  const std::int64_t avg = (static_cast<std::int64_t>(data_.status(status::kAvgScan)) * 7 + unit) / 8;
-  data_.set_status(status::kAvgScan, clamp_u16(avg));
+  s[status::kMaxScan] = std::max<std::uint16_t>(s[status::kMaxScan], clamp_u16(unit));
+  s[status::kAvgScan] = clamp_u16((static_cast<std::int64_t>(s[status::kAvgScan]) * 7 + unit) / 8);
   // S:35 is the last scan in 1 ms on the SLC and in 100 us on the MicroLogix 1100-1500 (RSLogix's
   // own status page for the 1100: "Last 100 uSec Scan Time S:35"; docs/semantics.md).
   const Nanoseconds s35_unit = program_->processor.is_micrologix_1100_class() ? 100 * kNsPerUs : kNsPerMs;
-  data_.set_status(status::kLastScanMs, clamp_u16(scan_time / s35_unit));
+  s[status::kLastScanMs] = clamp_u16(scan_time / s35_unit);
   stats_.scans += 1;
   stats_.last = scan_time;
   stats_.max = std::max(stats_.max, scan_time);
@@ -731,7 +766,7 @@ std::int64_t Runtime::advance_toward(VirtualTime end) {
 
 bool Runtime::probe_due() {
   if (!program_repeatable_ || !skip_repeated_ || mode_ != Mode::Run || fault_ || first_pass_ || scan_observer_ ||
-      network_ || coverage_)
+      (network_ && network_->size() > 1) || coverage_)
     return false;
   if (probe_wait_ > 0) {
     --probe_wait_;
@@ -817,14 +852,26 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
                         sti.setpoint == sti_before.setpoint && sti.runs == sti_before.runs;
   bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti_same &&
                  interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
+  // Alone on a MSG network: its end-of-scan servicing left nothing to send, and the repeats end
+  // before the network's next change (quiet_until). A probe that started a message set its EN, one
+  // that aborted it its ER: the table shows both.
+  std::optional<VirtualTime> network_quiet;
+  if (network_) {
+    network_quiet = network_->quiet_until(station_, t);
+    repeats = repeats && network_quiet;
+  }
   const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
   for (int s : kRuntimeStatusWords) before_probe_[L.status_word(s)] = w[L.status_word(s)];
   repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);
+  // A timing timer (TT) reads the clock at its rung. The probe changed none, so each read the tick it
+  // is stamped with (or, with the 1.0 s base, less than a unit past it), and a repeat reads the same
+  // while its timer reads stay in that tick: so do the scans that end by the end of the tick the probe
+  // started in (every read of the probe was in it or in a later one).
+  bool timing = false;
   for (const FileLayout& f : L.files) {
-    if (!repeats) break;
+    if (!repeats || timing) break;
     if (!f.present || f.type != FileType::Timer) continue;
-    for (std::uint32_t e = f.base; e < f.end(); e += f.words_per_element)
-      if (w[e] & bits::kTT) repeats = false;
+    for (std::uint32_t e = f.base; e < f.end() && !timing; e += f.words_per_element) timing = (w[e] & bits::kTT) != 0;
   }
   const bool across_events = interp_->module_time_reads() == module_time_reads;
   if (repeats && events_at_last_scan_end_ != 0)
@@ -859,6 +906,13 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     stats_.repeated += static_cast<std::uint64_t>(k);
     t += k * d;
   };
+  // Every repeated scan must end before `horizon`: a timing STI's expiry falls in the middle of the
+  // scan that reaches it, a timer's tick ends (a scan may end on it: its reads come before), the MSG
+  // network's servicing at the end of a scan would find something new.
+  VirtualTime horizon = std::numeric_limits<VirtualTime>::max();
+  if (sti.file != 0) horizon = sti.due;
+  if (timing) horizon = std::min(horizon, (start / timer_tick_ns_ + 1) * timer_tick_ns_ + 1);
+  if (network_quiet) horizon = std::min(horizon, *network_quiet);
   std::int64_t taken = 0;
   for (;;) {
     // How many scans would repeat it: those that start before `end`, end before the next event,
@@ -873,10 +927,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     }
     const std::optional<VirtualTime> next = events_.next_time();
     if (next) k = std::min<std::int64_t>(k, (*next - t - 1) / d);
-    // A timing STI expires at a known time, in the middle of the scan that reaches it: the repeats
-    // end before that scan, and no repeat across events goes past it.
-    const bool sti_timing = sti.file != 0;
-    if (sti_timing) k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (sti.due - t - 1) / d));
+    if (horizon != std::numeric_limits<VirtualTime>::max())
+      k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (horizon - t - 1) / d));
     if (k > 0) {
       take(k);
       taken += k;
@@ -886,8 +938,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     // (the event runs after it), so it is taken too when the probe may repeat across events; the
     // events then run as at the end of an executed scan, and the repeats go on while they changed
     // nothing the program reads.
-    if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || (sti_timing && t + d >= sti.due))
-      break;
+    if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || t + d >= horizon) break;
     take(1);
     taken += 1;
     events_at_last_scan_end_ = events_.run_until(t);

@@ -343,6 +343,9 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // before the probe, and the time from a scan's start to its program scan (for S:4).
   bool program_repeatable_ = false;
   bool skip_repeated_ = true;
+  // The finest time base of the program's timers (1 ms with a MicroLogix 0.001 s timer, else the
+  // 10 ms tick): a timing timer changes nothing while its reads stay in the tick it is stamped with.
+  Nanoseconds timer_tick_ns_ = kTick;
   std::uint32_t probe_wait_ = 0;
   std::uint32_t probe_backoff_ = 1;
   std::vector<std::uint16_t> before_probe_;

@@ -104,26 +104,40 @@ TEST(RepeatedScans, EveryShippedExampleGivesTheSameResultsWithAndWithoutThem) {
   EXPECT_GT(repeating, 5);
 }
 
-// A TON timing in an otherwise idle program: between its 10 ms ticks every scan changes nothing,
-// so a skip that ignored the timer would jump past ticks. The timer's TT vetoes it; once DN, the
-// scans repeat again.
-TEST(RepeatedScans, ATimerTimingIsNeverSkippedOver) {
-  const std::string text =
-      "START 1747-L552\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nSLOT 2 1746-OB16 SCAN_IN 0 SCAN_OUT 1\n"
-      "LADDER 2\nSOR XIC I:1/0 TON T4:0 0.01 250 0 EOR\nSOR XIC T4:0/DN OTE O:2/0 EOR\nSOR END EOR\n";
-  Controller skipping = Controller::from_text(text);
-  Controller executing = Controller::from_text(text);
-  skipping.run_for(milliseconds(500));
-  executing.runtime().skip_repeated_scans(false);
-  executing.run_for(milliseconds(500));
-  const std::uint64_t idle = skipping.runtime().stats().repeated;
-  EXPECT_GT(idle, 0u);
-  skipping.set("I:1/0", 1);
-  executing.set("I:1/0", 1);
-  run_side_by_side(skipping, executing, 40, milliseconds(100), "TON 2.5 s");
-  EXPECT_EQ(skipping.get_int("T4:0.ACC"), 250);
-  EXPECT_TRUE(skipping.get_bit("O:2/0"));
-  EXPECT_GT(skipping.runtime().stats().repeated, idle);
+// A timer timing reads the clock at its rung: between its ticks every scan changes nothing, and a
+// repeat may stand for such a scan only while its timer reads stay in the tick the probe saw (10 ms,
+// or 1 ms for a MicroLogix 0.001 s timer; a 1.0 s timer's stamp moves in 10 ms ticks too). Observed
+// every 3 ms, off the ticks. The repeats that end after the tick's end fail this (tried: the bound
+// one tick later, ACC differs within the first slices), and so does the 10 ms bound for the 1 ms
+// timer (tried).
+TEST(RepeatedScans, ATimerTimingRepeatsOnlyWithinItsTick) {
+  struct Case {
+    const char* processor;
+    const char* base;
+    int preset;
+    int share;  // at least 1/share of the scans while timing are repeats
+  };
+  // The 1400's scan of this program is about 0.27 ms: a 1 ms tick holds three or four, and the probe
+  // and the scan that crosses the tick are executed.
+  for (const Case& c : {Case{"1747-L552", "0.01", 250, 3}, Case{"1747-L552", "1.0", 3, 3},
+                        Case{"Bul.1766", "0.001", 2500, 5}, Case{"Bul.1766", "0.01", 250, 3}}) {
+    const std::string what = std::string(c.processor) + " TON " + c.base;
+    const std::string text = std::string("START ") + c.processor + "\nLADDER 2\nSOR XIC B3:0/0 TON T4:0 " + c.base +
+                             " " + std::to_string(c.preset) + " 0 EOR\nSOR XIC T4:0/DN OTE B3:0/1 EOR\nSOR END EOR\n";
+    Controller skipping = Controller::from_text(text);
+    Controller executing = Controller::from_text(text);
+    run_side_by_side(skipping, executing, 20, milliseconds(3), what + " idle");
+    const std::uint64_t idle = skipping.runtime().stats().repeated;
+    const std::uint64_t idle_scans = skipping.runtime().stats().scans;
+    EXPECT_GT(idle, 0u) << what;
+    for (Controller* p : {&skipping, &executing}) p->set("B3:0/0", 1);
+    run_side_by_side(skipping, executing, 1000, milliseconds(3), what + " timing");
+    EXPECT_EQ(skipping.get_int("T4:0.ACC"), c.preset) << what;
+    EXPECT_TRUE(skipping.get_bit("B3:0/1")) << what;
+    // While it timed (2.5 s or 3 s), most scans were repeats.
+    EXPECT_GT(skipping.runtime().stats().repeated - idle, (skipping.runtime().stats().scans - idle_scans) / c.share)
+        << what;
+  }
 }
 
 // A program that reads the free-running clock (S:4) or the scan toggle bit (S:33/9) never has its
@@ -580,6 +594,93 @@ TEST(RepeatedScans, AnStiRoutineRunsAtTheSameTimesWithRepeats) {
     c->set("B3:0/1", 1);
   }
   run_side_by_side(skipping, executing, 20, milliseconds(17), "STI disabled (STD)");
+}
+
+// Alone on its network (as `softslc run` and sim_bench run a program), a controller's MSG waits for an
+// answer nobody gives: on DH-485 the link gives up after the frame's time (07h), and meanwhile the
+// control block's seconds word may count. The scans in between repeat until the network's next
+// change (MessageNetwork::quiet_until), observed every 7 ms for 21 s. The filler and the pump poll
+// without pause, a new read each time the NoAck of the last one arrives (every ~10 ms): a few of the
+// filler's 1 ms scans repeat in between, most of the pump's 0.3 ms ones; the writes once a second
+// keep their timers timing. The Ethernet examples alone have no IP address (their `.test` gives them one): every
+// message ends at once with D0h and starts again, so they never repeat, but they run the network's
+// path every scan. Tried: without the bound of the NoAck to arrive the filler and the pump differ
+// within 50 ms; repeats past the end of the timers' tick fail this at once too.
+TEST(RepeatedScans, AMessageAloneOnItsNetworkRepeatsUntilTheNetworkChanges) {
+  struct Case {
+    const char* program;
+    int share;  // at least 1/share of the scans are repeats (0: none need be)
+  };
+  for (const Case& c : {Case{"msg/filler.slc", 40}, Case{"micrologix/ml1100_msg_pump.slc", 2},
+                        Case{"msg_ethernet/press.slc", 0}, Case{"micrologix/ml1400_enet_filler.slc", 0}}) {
+    Controller skipping = Controller::load(example(c.program));
+    Controller executing = Controller::load(example(c.program));
+    run_side_by_side(skipping, executing, 3000, milliseconds(7), c.program);
+    if (c.share > 0) {
+      EXPECT_GT(skipping.runtime().stats().repeated, skipping.runtime().stats().scans / c.share) << c.program;
+    }
+  }
+}
+
+// An SLC 5/05 with an IP address, alone on Ethernet: its read of 192.168.1.20 waits for the channel's
+// 15 s connection timeout (D5h, 1747-UM011G p. 242) while the block's word 10 counts the seconds
+// (RM 12-53), then starts again. The scans in between repeat up to each whole second and to the
+// timeout. Tried: without the seconds bound word 10 differs from the first second on.
+TEST(RepeatedScans, AnEthernetMessageAloneRepeatsUpToEachSecondAndItsTimeout) {
+  const std::string text =
+      "START 1747-L552\nLADDER 2\nSOR XIO N9:0/15 MSG READ 500CPU LOCAL N9:0 51 1 N10:0 5 0 N7:0 20 EOR\n"
+      "SOR XIC N9:0/12 ADD N11:0 1 N11:0 EOR\n";
+  LoadResult program = load_program(text, "alone.slc");
+  ASSERT_TRUE(program.ok());
+  std::vector<std::unique_ptr<Runtime>> both;
+  for (int i = 0; i < 2; ++i) {
+    RuntimeOptions options;
+    options.ip = 0xC0A8010A;  // 192.168.1.10
+    RuntimeResult r = Runtime::create(*program.program, std::move(options));
+    ASSERT_TRUE(r.runtime) << r.render_errors();
+    // "192.168.1.20" as RM 12-34 table 12.14 stores it, the first character in the high byte.
+    const std::string ip = "192.168.1.20";
+    for (std::size_t w = 0; w * 2 < ip.size() + 1; ++w) {
+      const auto hi = static_cast<unsigned char>(ip[w * 2]);
+      const auto lo = w * 2 + 1 < ip.size() ? static_cast<unsigned char>(ip[w * 2 + 1]) : 0;
+      ASSERT_TRUE(r.runtime->set("N9:" + std::to_string(14 + w), Value::of_int(static_cast<std::int16_t>(hi << 8 | lo))));
+    }
+    ASSERT_TRUE(r.runtime->set_mode(Mode::Run));
+    both.push_back(std::move(r.runtime));
+  }
+  // 7 ms slices (each run_for ends with the scan that reaches its end) up to 14.9 s.
+  while (both[0]->now() < milliseconds(14'900)) run_side_by_side(*both[0], *both[1], 1, milliseconds(7), "Ethernet MSG alone");
+  EXPECT_EQ(both[0]->value("N9:10").as_int(), 14);
+  EXPECT_EQ(both[0]->value("N11:0").as_int(), 0);
+  run_side_by_side(*both[0], *both[1], 30, milliseconds(7), "Ethernet MSG alone, the timeout");
+  EXPECT_EQ(both[0]->value("N11:0").as_int(), 1) << "ER for one scan";
+  EXPECT_GT(both[0]->stats().repeated, both[0]->stats().scans * 8 / 10);
+}
+
+// With a peer on the link the peer's scans could send at any time: a leader with peers is never
+// repeated, although both programs here would be.
+TEST(RepeatedScans, AControllerWithPeersOnItsNetworkIsNotRepeated) {
+  const std::string text = "START 1747-L552\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n";
+  LoadResult peer_program = load_program(text, "peer.slc");
+  ASSERT_TRUE(peer_program.ok());
+  PeerController peer;
+  peer.name = "B";
+  peer.ip = 0xC0A80114;  // 192.168.1.20
+  peer.program = std::make_shared<const Program>(std::move(*peer_program.program));
+  RuntimeOptions options;
+  options.ip = 0xC0A8010A;  // 192.168.1.10
+  options.peers.push_back(std::move(peer));
+  LoadResult leader = load_program(text, "leader.slc");
+  ASSERT_TRUE(leader.ok());
+  RuntimeResult r = Runtime::create(*leader.program, std::move(options));
+  ASSERT_TRUE(r.runtime) << r.render_errors();
+  ASSERT_TRUE(r.runtime->set_mode(Mode::Run));
+  r.runtime->run_for(milliseconds(500));
+  EXPECT_GT(r.runtime->stats().scans, 100u);
+  EXPECT_EQ(r.runtime->stats().repeated, 0u);
+  Controller alone = Controller::from_text(text);
+  alone.run_for(milliseconds(500));
+  EXPECT_GT(alone.runtime().stats().repeated, 0u);
 }
 
 }  // namespace

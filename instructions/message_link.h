@@ -29,6 +29,8 @@ constexpr MessageLink message_link(ProcessorFamily family, int channel) {
     case ProcessorFamily::Slc503: return channel == 1 ? MessageLink::Dh485 : MessageLink::None;
     case ProcessorFamily::Slc504: return channel == 1 ? MessageLink::DhPlus : MessageLink::None;
     case ProcessorFamily::Slc505: return channel == 1 ? MessageLink::Ethernet : MessageLink::None;
+    // A MicroLogix's channel 0, its serial port, taken to be configured for DH-485 (network_link below).
+    case ProcessorFamily::MicroLogix: return channel == 0 ? MessageLink::Dh485 : MessageLink::None;
     default: return MessageLink::None;
   }
 }
@@ -37,7 +39,9 @@ constexpr MessageLink message_link(ProcessorFamily family, int channel) {
 // 5/03 (they all answer messages on it), DH+ for the 5/04, Ethernet for the 5/05. A MicroLogix is on
 // DH-485 through its channel 0, the serial port, configured for DH-485 (1762-RM001C p. 21-2 lists DH-485
 // among the protocols its MSG uses; decision: softslc has no channel configuration, docs/semantics.md
-// "The MicroLogix MSG"); the 1000 answers messages there and sends none in softslc.
+// "The MicroLogix MSG"); the 1000 sends its messages there too (1761-6.2 p. 15-3: DH-485 with a MicroLogix
+// 1000 "except for Series A and B discrete controllers", and with every SLC 500; docs/semantics.md "The
+// MicroLogix 1000 MSG").
 constexpr MessageLink network_link(ProcessorFamily family) {
   switch (family) {
     case ProcessorFamily::Fixed:

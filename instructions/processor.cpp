@@ -101,12 +101,15 @@ bool ProcessorModel::supports(Requirement r) const {
     case Requirement::FileBitCompare: return is_modular_503_or_later(family) && series >= 'C';
     case Requirement::MicroLogixUserInterrupt: return false;
     // MSG and SVC (RM 12-5: the 5/02, 5/03, 5/04 and 5/05 columns; the fixed controllers and the
-    // 5/01 answer messages but do not send them). The 5/02 has its own MSG form.
-    case Requirement::SlcMessage502: return family == ProcessorFamily::Slc502;
+    // 5/01 answer messages but do not send them). The 5/02 has its own MSG form, which the MicroLogix
+    // 1000 shares: read/write, target device, an integer control block of length 7 (1761-6.3 p. 13-13,
+    // "Control Block N7:50, Control Block Length 7"; docs/semantics.md "The MicroLogix 1000 MSG").
+    case Requirement::SlcMessage502:
+      return family == ProcessorFamily::Slc502 || micrologix == MicroLogixModel::ML1000;
     case Requirement::SlcMessage: return is_modular_503_or_later(family);
     // The MicroLogix MSG on an MG element: the controllers with MG files (1762-RM001C p. 21-4, 1763-RM001B
     // p. 347, 1766-RM001A p. 399). The MicroLogix 1000's MSG keeps an integer control block (1761-6.3
-    // ch. 13), a form softslc does not have.
+    // ch. 13): the SLC 5/02 form, SlcMessage502.
     case Requirement::MicroLogixMessage: return has_message_files();
     case Requirement::SlcCommService: return family == ProcessorFamily::Slc502 || is_modular_503_or_later(family);
     case Requirement::ChannelSelectService: return is_modular_503_or_later(family) || is_micrologix_1100_class();
@@ -194,6 +197,9 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
     case Requirement::SlcMessage502:
     case Requirement::SlcMessage:
     case Requirement::SlcCommService:
+      if (micrologix == MicroLogixModel::ML1000 && r == Requirement::SlcCommService)
+        return "is not available on the " + have + ": the project's sources (1761-6.3) give the MicroLogix 1000 no "
+               "SVC; its messages are serviced at the end of the scan (docs/semantics.md \"The MicroLogix 1000 MSG\")";
       if (is_micrologix() && r == Requirement::SlcCommService)
         return "takes a channel select on the " + have + " (`SVC 1` services channel 0; 1762-RM001C p. 21-26, "
                "1763-RM001B p. 344, 1766-RM001A p. 396)";
@@ -202,9 +208,9 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
                "file element (1762-RM001C p. 21-3): MSG MG11:0 READ|WRITE device LOCAL channel data size node "
                "target timeout (docs/semantics.md \"The MicroLogix MSG\"); this program's processor is " + have;
       if (is_micrologix())
-        return "is not available on the " + have + " in softslc: the MicroLogix 1000 MSG keeps an integer control "
-               "block (1761-6.3 ch. 13), a form softslc does not simulate; the MicroLogix 1100-1500 MSG on an MG "
-               "element and the SLC 5/02-5/05 MSG are supported";
+        return "with this operand list is the SLC 5/03-5/05 form; the MicroLogix 1000 MSG keeps a 7-word integer "
+               "control block (1761-6.3 p. 13-13): MSG READ|WRITE 500CPU|485CIF N7:50 7 data size node target "
+               "(docs/semantics.md \"The MicroLogix 1000 MSG\"); this program's processor is " + have;
       if (r == Requirement::SlcMessage502 && is_modular_503_or_later(family))
         return "with 8 operands is the SLC 5/02 form (7-word control block, RM 12-5); the " + display_name +
                " MSG takes 11: READ|WRITE device LOCAL|REMOTE block 14 channel data size node target timeout; "
@@ -216,9 +222,9 @@ std::string ProcessorModel::requirement_text(Requirement r) const {
              " (1747-RM001G p. 12-5)";
     case Requirement::MicroLogixMessage:
       if (family == ProcessorFamily::MicroLogix)
-        return "is not available on the " + have + " in softslc: the MicroLogix 1000 MSG keeps an integer control "
-               "block (1761-6.3 ch. 13), a form softslc does not simulate; MSG on an MG element needs " +
-               std::string(requirement_processors(r)) + " (1762-RM001C p. 21-4)";
+        return "with an MG element is the MicroLogix 1100-1500 form; the MicroLogix 1000 has no MG file: its MSG "
+               "keeps a 7-word integer control block (1761-6.3 p. 13-13): MSG READ|WRITE 500CPU|485CIF N7:50 7 data "
+               "size node target (docs/semantics.md \"The MicroLogix 1000 MSG\"); this program's processor is " + have;
       return "with an MG element is the MicroLogix 1100-1500 form (1762-RM001C p. 21-3); the " + display_name +
              " MSG takes an integer control block (1747-RM001G p. 12-5); this program's processor is " + have;
     case Requirement::ProgramChecksum:
@@ -258,7 +264,7 @@ std::string_view requirement_processors(Requirement r) {
     case Requirement::FileBitCompare: return "SLC 5/03 OS302 (Series C), SLC 5/04 OS401, SLC 5/05";
     case Requirement::MicroLogixUserInterrupt:
       return "none yet (MicroLogix 1100-1500 once their EII/HSC function files are simulated)";
-    case Requirement::SlcMessage502: return "SLC 5/02 (the 5/03-5/05 form has 11 operands)";
+    case Requirement::SlcMessage502: return "SLC 5/02, MicroLogix 1000 (the 5/03-5/05 form has 11 operands)";
     case Requirement::SlcMessage: return "SLC 5/03, 5/04, 5/05";
     case Requirement::MicroLogixMessage: return "MicroLogix 1100, 1200, 1400, 1500";
     case Requirement::SlcCommService: return "SLC 5/02, 5/03, 5/04, 5/05";

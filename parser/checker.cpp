@@ -994,7 +994,13 @@ class Checker {
                                "ASCII, 1747-RM001G p. 12-14) is not simulated by softslc; channel 1 is the " +
                                    std::string(proc.display_name) + "'s network port");
     const bool ethernet = link == MessageLink::Ethernet;
+    const bool ml1000 = proc.micrologix == MicroLogixModel::ML1000;
     const std::string dev = device.kind == Operand::Kind::Symbol ? device.spelling : "";
+    if (dev == "PLC5" && ml1000)
+      return error(device.pos, "MSG PLC5: the MicroLogix 1000's command types are SLC500/ML1000 (500CPU) and CIF "
+                               "(485CIF), and it reaches a PLC-5 only with CIF over DF1 full-duplex (1761-6.2 p. "
+                               "15-3), which softslc does not simulate (docs/semantics.md \"The MicroLogix 1000 "
+                               "MSG\")");
     if (dev == "PLC5" && link == MessageLink::Dh485)
       return error(device.pos, "MSG PLC5 on DH-485: a PLC-5 is on DH+ or Ethernet; the " + proc.display_name +
                                    "'s DH-485 channel sends 500CPU and 485CIF messages (docs/semantics.md \"MSG\")");
@@ -1012,8 +1018,9 @@ class Checker {
                        proc.display_name + ") takes a " + std::to_string(expected) + "-word control block, not " +
                        block_length.text() +
                        (ethernet ? " (1747-RM001G p. 12-34 table 12.14)"
-                                 : blen == kEthernetMessageBlockWords ? " (51 words is the SLC 5/05's Ethernet block)"
-                                                                    : " (1747-RM001G p. 12-31)"));
+                        : blen == kEthernetMessageBlockWords ? " (51 words is the SLC 5/05's Ethernet block)"
+                        : ml1000                            ? " (1761-6.3 p. 13-13: \"Control Block Length 7\")"
+                                                            : " (1747-RM001G p. 12-31)"));
     }
     if (node.kind == Operand::Kind::Integer) {
       const auto [lo, hi] = message_node_range(link);

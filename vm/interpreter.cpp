@@ -1485,14 +1485,21 @@ void Interpreter::free_running_clock(Op op, const std::uint32_t* o, Nanoseconds 
 // EN is 0: a false-to-true transition, or EN cleared by the program after DN or ER) and an abort (TO
 // set while the message is in progress, RM 12-30). EN "remains set until message transmission is
 // completed and the rung goes false" (RM 12-29).
+//
+// The MicroLogix 1000 runs the 7-word form with its own rules (1761-6.3 p. 13-6, 13-8; docs/semantics.md
+// "The MicroLogix 1000 MSG"): TO "has no effect unless the ST bit has first been set due to receiving an
+// ACK", and EW "is reset when an ACK or NAK ... is received, or on any true-to-false MSG rung transition".
 void Interpreter::message(Op op, const std::uint32_t* o, bool rung, Nanoseconds now_in_scan) {
   const bool slc502 = op == Op::MSG_502;
+  const bool ml1000 = slc502 && prog_.processor.micrologix == MicroLogixModel::ML1000;
   const std::uint32_t block = bc::payload_of(o[slc502 ? 2 : 3]);
   const std::uint16_t w0 = w_[block];
   const bool done = (w0 & (msg::kDN | msg::kER)) != 0;
+  if (ml1000 && !rung && (w0 & msg::kEW)) w_[block] = static_cast<std::uint16_t>(w_[block] & ~msg::kEW);
   if (rung && !(w0 & msg::kEN)) {
     MessageInstruction m;
     m.slc502 = slc502;
+    m.ml1000 = ml1000;
     m.write = bc::imm_of(o[0]) == 1;
     m.device = bc::imm_of(o[1]);
     m.channel = slc502 ? 0 : bc::imm_of(o[5]);
@@ -1501,10 +1508,10 @@ void Interpreter::message(Op op, const std::uint32_t* o, bool rung, Nanoseconds 
     m.at = scan_start_ + now_in_scan;
     charge_transition(op, m.write ? 1 : 0, message_words(m.data, w_[block + 2]));
     chassis_.message_start(m);
-  } else if ((w0 & msg::kTO) && (w0 & msg::kEN) && !done) {
+  } else if ((w0 & msg::kTO) && (w0 & msg::kEN) && !done && (!ml1000 || (w0 & msg::kST))) {
     chassis_.message_abort(block);
   } else if (!rung && (w0 & msg::kEN) && done) {
-    w_[block] = static_cast<std::uint16_t>(w0 & ~msg::kEN);
+    w_[block] = static_cast<std::uint16_t>(w_[block] & ~msg::kEN);
   }
 }
 

@@ -220,8 +220,12 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
       error = msg::kBadParameters;
     else if (link == MessageLink::Ethernet)
       error = in.micrologix ? check_routing_element(station, in, m) : check_ethernet_block(station, in, m);
-    else if (m.target_node > message_node_range(link).second)
+    else if (in.ml1000 && m.target_node == 255)
+      error = msg::kBroadcast;  // "Broadcast (Node Address 255) is not supported" (1761-6.3 p. 13-11)
+    else if (m.target_node > message_node_range(link).second && !in.ml1000)
       error = msg::kNodeTooHigh;
+    // The MicroLogix 1000's table (1761-6.3 p. 13-11) has no 16h: a node above 31 that no station has
+    // does not respond, 07h when the request's frame has gone (decision [U], docs/semantics.md).
   }
   if (error) {
     set_status(station, in, static_cast<std::uint16_t>(w0 | msg::kEN | msg::kER | error));
@@ -230,6 +234,14 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
 
   Channel& ch = stations_[station].channels[static_cast<std::size_t>(in.channel & 1)];
   const std::size_t buffers = in.slc502 ? 1 : msg::kBuffersPerChannel;
+  if (in.ml1000 && ch.buffers.size() >= buffers) {
+    // The MicroLogix 1000: "The EW bit is set (1) and the ST, DN, NR, and TO flags are cleared. If the
+    // transmit buffer is not available, the EN flag remains false (0). When rung conditions go true and
+    // the transmit buffer becomes available, the EN flag goes true (1)" (1761-6.3 p. 13-8). It has no
+    // queue: the rung, still true, starts the message at a later scan once the buffer is free.
+    set_status(station, in, static_cast<std::uint16_t>(w0 | msg::kEW));
+    return;
+  }
   set_status(station, in, static_cast<std::uint16_t>(w0 | msg::kEN));
   if (ch.buffers.size() < buffers) {
     ch.buffers.push_back(std::move(m));
@@ -369,6 +381,7 @@ void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
   req.from = station;
   req.serial = m.serial;
   req.write = m.in.write;
+  req.cif = m.in.device == 1;
   req.file = m.target_file;
   req.type_code = m.type_code;
   req.element = m.target_element;
@@ -389,9 +402,13 @@ void MessageNetwork::answer(std::size_t station, VirtualTime at, const Frame& re
   Frame reply;
   reply.kind = FrameKind::Reply;
   reply.serial = req.serial;
+  // A 485CIF request reaches the target's common interface file: an SLC's is the file the control block
+  // names (N9, docs/semantics.md "MSG"); a MicroLogix 1000's is N7 (1761-6.2 p. 15-3).
+  const int file = req.cif && rt.compiled().processor.micrologix == MicroLogixModel::ML1000 ? kMl1000CommonInterfaceFile
+                                                                                            : req.file;
   const FileLayout* f = nullptr;
-  if (req.file >= 0 && req.file <= 255 && layout.files[static_cast<std::size_t>(req.file)].present)
-    f = &layout.files[static_cast<std::size_t>(req.file)];
+  if (file >= 0 && file <= 255 && layout.files[static_cast<std::size_t>(file)].present)
+    f = &layout.files[static_cast<std::size_t>(file)];
   const std::optional<FileType> type = message_file_type(req.type_code);
   if (!f) {
     reply.error = msg::kNoSuchFile;

@@ -68,6 +68,8 @@ inline constexpr std::uint8_t kBadParameters = 0x04;     // "does not understand
 inline constexpr std::uint8_t kNoResponse = 0x07;        // "Target node does not respond"
 inline constexpr std::uint8_t kNoSuchFile = 0x10;        // "... or the data file specified does not exist"
 inline constexpr std::uint8_t kNodeTooHigh = 0x16;       // "Target ... address is higher than the maximum node address"
+inline constexpr std::uint8_t kBroadcast = 0x18;         // "Broadcast (Node Address 255) is not supported" (the
+                                                          // MicroLogix 1000's table, 1761-6.3 p. 13-11)
 inline constexpr std::uint8_t kTimedOut = 0x37;          // "Message timed out in local processor"
 inline constexpr std::uint8_t kAddressUnusable = 0xE6;   // "Illegal Address, address does not exist"
 inline constexpr std::uint8_t kPastEnd = 0xEA;           // "transaction size plus word address is too large"
@@ -118,8 +120,10 @@ inline constexpr Nanoseconds kReplyTimeoutNs = kEthernetReplyTimeoutSeconds * kN
 std::optional<std::uint32_t> parse_ipv4(std::string_view text);
 std::string format_ipv4(std::uint32_t ip);
 
-// The common interface file a 485CIF message reaches: N9 of an SLC (docs/semantics.md "MSG").
+// The common interface file a 485CIF message reaches: N9 of an SLC (docs/semantics.md "MSG"), N7 of a
+// MicroLogix 1000 (1761-6.2 p. 15-3: CIF messages to a MicroLogix 1000 reach N7, to an SLC 500 N9).
 inline constexpr int kCommonInterfaceFile = 9;
+inline constexpr int kMl1000CommonInterfaceFile = 7;
 
 // The file type code in control block word 4: the PCCC typed read/write code of the type (84h S,
 // 85h B, 86h T, 87h C, 88h R, 89h N, 8Ah F, 8Bh O, 8Ch I, 8Dh ST, 8Eh A); 0 for a type MSG cannot carry.
@@ -133,6 +137,10 @@ Nanoseconds message_frame_time(MessageLink link, int data_bytes);
 // its TO bit aborts one (docs/semantics.md "MSG").
 struct MessageInstruction {
   bool slc502 = false;       // the 7-word form: one buffer, no WQ, no timer
+  // The MicroLogix 1000's MSG, the 7-word form (slc502 is set too) with its own rules (1761-6.3 ch. 13,
+  // docs/semantics.md "The MicroLogix 1000 MSG"): EN only once the transmit buffer is free (no queue:
+  // EW alone meanwhile), 18h for node 255, no 16h.
+  bool ml1000 = false;
   // The MicroLogix 1100-1500 form: `block` is the MG element (control bits in word 16, status in 17, the
   // error code in 18, the setup in 8-14); its element count is the instruction's (docs/semantics.md "The
   // MicroLogix MSG").
@@ -212,6 +220,7 @@ class MessageNetwork {
     std::size_t from = 0;        // the station that sent it
     std::uint64_t serial = 0;    // the message it belongs to
     bool write = false;
+    bool cif = false;            // a 485CIF request: the target answers from its common interface file
     int file = 0;
     std::uint16_t type_code = 0;
     int element = 0;

@@ -115,8 +115,12 @@ class Predictor {
     const bool literal_first = !t.by_operand.empty() && !in.operands.empty() &&
                                in.operands[0].kind == Operand::Kind::Integer;
     const std::int64_t first = literal_first ? in.operands[0].integer : 0;
-    c.worst += (literal_first ? t.for_operand(first, true) : t.true_ns) + t.per_word_ns * (t.per_word_ns ? words : 0);
-    c.best += literal_first ? t.for_operand(first, false) : t.false_ns;
+    const Nanoseconds when_true = literal_first ? t.for_operand(first, true) : t.true_ns;
+    const Nanoseconds when_false = literal_first ? t.for_operand(first, false) : t.false_ns;
+    // The worst case takes each instruction at its longer time: a MicroLogix 1000 XIC or XIO takes longer
+    // false than true (1761-6.3 p. 6-4: 1.54 us true, 1.72 us false), so an all-true rung is not its worst.
+    c.worst += std::max(when_true, when_false) + t.per_word_ns * (t.per_word_ns ? words : 0);
+    c.best += when_false;
     if (s.role == Role::Input) has_condition = true;
     if (in.opcode == Opcode::JSR && !in.operands.empty() && in.operands[0].kind == Operand::Kind::Integer)
       c.jsr_targets.push_back(static_cast<int>(in.operands[0].integer));

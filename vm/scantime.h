@@ -1,8 +1,8 @@
 // Static scan-time prediction (`softslc scantime`): what a program costs per rung, per file and
 // per scan on a given processor, before it is downloaded anywhere.
 //
-// For each rung: worst case (every instruction executed with rung-in true, every branch leg),
-// best case (every instruction executed with rung-in false, as when the first condition of the
+// For each rung: worst case (every instruction executed with rung-in true, every branch leg, each at
+// the longer of its true and false times), best case (every instruction executed with rung-in false, as when the first condition of the
 // rung is false — the SLC still scans the rest of the rung), and the M0/M1 access part on its
 // own. Instruction times come from a TimingProfile (estimates unless a source says otherwise);
 // M0/M1 access times come from the manuals' table (instructions/mfile_access_time.h), exact.

@@ -45,11 +45,7 @@ std::string load_errors(const std::string& text) {
 }
 
 // A leader (node 1) and a peer "B" (node 2) on one DH-485 link, each a full program text.
-struct Line : MessageLine {
-  using MessageLine::MessageLine;
-  void set(std::string_view addr, std::int64_t v) { ASSERT_TRUE(a->set(addr, Value::of_int(v))); }
-  void setb(std::string_view addr, std::int64_t v) { ASSERT_TRUE(b->set(addr, Value::of_int(v))); }
-};
+using Line = MessageLine;
 
 // B's N10:0-9 exist (a rung that never runs names N10:9).
 const std::string kTarget1100 = ml_program("Bul.1763", "SOR XIC B3:0/15 CLR N10:9 EOR");
@@ -59,9 +55,12 @@ constexpr std::string_view kRead = "SOR XIC B3:0/0 MSG MG11:0 READ 500CPU LOCAL 
 TEST(MicroLogixMsg, EachControllerWithAnMgFileTakesTheForm) {
   for (const char* p : {"Bul.1763", "Bul.1762", "Bul.1766", "1764-LSP", "1764-LRP"})
     EXPECT_EQ(load_errors(ml_program(p, kRead)), "") << p;
-  // The MicroLogix 1000 has no MG file (its MSG keeps an integer control block, 1761-6.3 ch. 13).
+  // The MicroLogix 1000 has no MG file (its MSG keeps an integer control block, 1761-6.3 p. 13-13;
+  // tests/micrologix/ml1000_msg_test.cpp).
   const std::string ml1000 = load_errors(ml_program("Bul.1761", kRead));
-  EXPECT_NE(ml1000.find("MSG is not available on the MicroLogix 1000"), std::string::npos) << ml1000;
+  EXPECT_NE(ml1000.find("MSG with an MG element is the MicroLogix 1100-1500 form; the MicroLogix 1000 has no MG file"),
+            std::string::npos)
+      << ml1000;
   // The SLC form on a MicroLogix, and the MicroLogix form on an SLC, each name the other.
   const std::string slc_form =
       load_errors(ml_program("Bul.1766", "SOR XIC B3:0/0 MSG READ 500CPU LOCAL N9:0 14 1 N7:0 5 2 N10:0 5 EOR"));

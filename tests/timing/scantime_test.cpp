@@ -53,6 +53,16 @@ TEST(ScanTime, BitInstructionsMatchTheManual) {
   EXPECT_EQ(predict(ote, "1747-L542").rungs.at(0).mfile, microseconds(879));
 }
 
+// The worst case is never below the best: a MicroLogix 1000 XIC or XIO takes longer false than true
+// (1761-6.3 p. 6-4: 1.54 us true, 1.72 us false), so the worst case takes each at 1.72 us; with the
+// profile's OTE (2.17 us either way, EST) a rung XIC XIO OTE is 5.61 us at worst and at best.
+TEST(ScanTime, TheWorstCaseTakesEachInstructionsLongerTime) {
+  auto p = load("START Bul.1761\nLADDER 2\nSOR XIC B3:0/0 XIO B3:0/1 OTE O:0/0 EOR\n");
+  const auto t = predict(p, "Bul.1761");
+  EXPECT_EQ(t.rungs.at(0).worst, 1720 + 1720 + 2170);
+  EXPECT_EQ(t.rungs.at(0).best, 1720 + 1720 + 2170);
+}
+
 // The manual's 5/02 example rung examines M0:2.1/1 and M1:3.1/1 and energises M0:2.1/10:
 // three M accesses, 3 x 1930 µs on a Series B.
 TEST(ScanTime, EveryMOperandIsChargedOnce) {

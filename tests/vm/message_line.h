@@ -50,6 +50,9 @@ struct MessageLine {
   std::int64_t ai(std::string_view addr) const { return a->value(addr).as_int(); }
   std::int64_t bi(std::string_view addr) const { return b->value(addr).as_int(); }
   bool abit(std::string_view addr) const { return a->value(addr).as_bool(); }
+  // Sets a word or bit of A, or of B, as a test does between scans.
+  void set(std::string_view addr, std::int64_t v) { ASSERT_TRUE(a->set(addr, Value::of_int(v))); }
+  void setb(std::string_view addr, std::int64_t v) { ASSERT_TRUE(b->set(addr, Value::of_int(v))); }
   void run() { ASSERT_TRUE(a->set_mode(Mode::Run)); }
   bool until(std::string_view bit, Nanoseconds limit = kNsPerS) {
     return a->run_until([&](const Runtime& r) { return r.value(bit).as_bool(); }, limit);

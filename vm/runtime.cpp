@@ -85,6 +85,11 @@ bool acts_on_the_table_alone(Opcode op) {
 // asks (Module::program_changes; docs/semantics.md "Repeated scans").
 bool acts_through_a_module(Opcode op) { return op == Opcode::BTR || op == Opcode::BTW || op == Opcode::DEM; }
 
+// The SLC's PID: a function of the data table and, in timed mode, of whether its loop update is
+// due, which happens at a known time the probe records (pid::Outcome::same_until); the repeats end
+// before it (docs/semantics.md "Repeated scans").
+bool acts_on_the_table_until_a_known_time(Opcode op) { return op == Opcode::PID; }
+
 bool reads_only_program_words(const Address& a, bool file_start = false);
 
 // A direct read of the free-running clock S:4, a bit of it or the whole word: allowed, and the bits
@@ -170,7 +175,9 @@ bool elements_repeatable(const std::vector<RungElement>& elements, std::uint16_t
         if (!elements_repeatable(leg, clock_bits)) return false;
       continue;
     }
-    if (!acts_on_the_table_alone(e.instruction.opcode) && !acts_through_a_module(e.instruction.opcode)) return false;
+    if (!acts_on_the_table_alone(e.instruction.opcode) && !acts_through_a_module(e.instruction.opcode) &&
+        !acts_on_the_table_until_a_known_time(e.instruction.opcode))
+      return false;
     const InstructionSpec& sp = spec(e.instruction.opcode);
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
       const OperandSpec* os = i < sp.operand_count ? &sp.operands[i] : nullptr;
@@ -834,6 +841,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint64_t process_writes = process_writes_;
   const std::uint64_t module_time_reads = interp_->module_time_reads();
   const StiTimer sti_before = interp_->sti();
+  interp_->reset_pid_same_until();
   probing_ = true;
   probe_unsteady_ = false;
   reached_.clear();
@@ -879,6 +887,9 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     return 1;
   }
   const std::uint64_t per_scan = stats_.instructions - instructions;
+  // A timed PID falls due at a known time: the repeats end with the last scan that ends before it.
+  const VirtualTime pid_until = interp_->pid_same_until();
+  const bool pid_timing = pid_until != std::numeric_limits<VirtualTime>::max();
   const Nanoseconds scan_time = stats_.last;  // what the probe's housekeeping was given
   const std::uint16_t s33_toggle = (data_.status(status::kCommBits) ^ s33_before) & 0x0200u;
   const FileLayout& rtc = L.function_file(FunctionFile::RTC);
@@ -924,6 +935,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     // end before that scan, and no repeat across events goes past it.
     const bool sti_timing = sti.file != 0;
     if (sti_timing) k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (sti.due - t - 1) / d));
+    if (pid_timing) k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (pid_until - t) / d));
     if (k > 0) {
       take(k);
       taken += k;
@@ -934,7 +946,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     // events then run as at the end of an executed scan, and the repeats go on while they changed
     // nothing the program reads.
     if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || same_clock <= k ||
-        (sti_timing && t + d >= sti.due))
+        (sti_timing && t + d >= sti.due) || (pid_timing && t + d > pid_until))
       break;
     take(1);
     taken += 1;

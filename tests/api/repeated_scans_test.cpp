@@ -436,6 +436,31 @@ TEST(RepeatedScans, AProgramWritingTheClockIsNeverRepeated) {
   EXPECT_EQ(run_side_by_side(skipping, executing, 20, milliseconds(50), "ADD S:4 1 S:4"), 0u);
 }
 
+// ---- The SLC's PID ----------------------------------------------------------------------------------------
+
+// A timed-mode PID computes at its loop update rate (word 13, 0.01 s units, here 10 = 0.10 s;
+// 1747-RM001G p. 9-7) and sets DN on the scans that compute (table 9.23); between updates its scans
+// change nothing (the level here is held by a tool), so they repeat, and the repeats end before the
+// scan in which the update falls due. N7:5 counts the DN scans: about ten a second, at the same
+// scans as without repeats. Without the bound this fails (tried: the updates are skipped over).
+// A tool's change of the process variable reaches the loop at the next update, as without repeats.
+TEST(RepeatedScans, ATimedPidUpdatesAtTheSameScansWithRepeats) {
+  const std::string text =
+      "START 1747-L532\nLADDER 2\n"
+      "SOR PID N10:0 N7:0 N7:1 EOR\n"
+      "SOR XIC N10:0/13 ADD N7:5 1 N7:5 EOR\n"
+      "DATA N10:0\n 17 0 500 500 7 0 0 1000 0 0\n 0 100 0 10 0 0 0 0 0 0\n 0 0 0\n"
+      "DATA N7:0\n 8000 0 0 0 0 0\n";
+  Controller skipping = Controller::from_text(text);
+  Controller executing = Controller::from_text(text);
+  EXPECT_GT(run_side_by_side(skipping, executing, 20, milliseconds(100), "PID"), 0u);
+  EXPECT_GE(skipping.get_int("N7:5"), 19);
+  EXPECT_LE(skipping.get_int("N7:5"), 21);
+  for (Controller* c : {&skipping, &executing}) c->set("N7:0", 9000);
+  run_side_by_side(skipping, executing, 30, milliseconds(37), "PID after the level moved");
+  EXPECT_GT(skipping.runtime().stats().repeated, 0u);
+}
+
 // ---- M files and module instructions (Module::program_changes; docs/semantics.md) ------------------
 
 // A module with M files that keeps Module::program_changes' promise, for the rules the runtime

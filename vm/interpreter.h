@@ -43,6 +43,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -213,6 +214,10 @@ class Interpreter {
   // (ModuleInstructionContext::now): a repeated scan cannot stand for such an instruction past an
   // event (docs/semantics.md "Repeated scans").
   std::uint64_t module_time_reads() const { return module_time_reads_; }
+  // The earliest pid::Outcome::same_until of the PIDs executed since the last reset: repeated
+  // scans end before it (docs/semantics.md "Repeated scans").
+  VirtualTime pid_same_until() const { return pid_same_until_; }
+  void reset_pid_same_until() { pid_same_until_ = std::numeric_limits<VirtualTime>::max(); }
   const StiTimer& sti() const { return sti_; }
   // The MicroLogix high-speed counters (vm/ml_hsc.h); no counters on a processor without them.
   MicroLogixHsc& hsc() { return hsc_; }
@@ -506,6 +511,7 @@ class Interpreter {
   int io_requests_ = 0;                   // how many of io_requested_ are set
   std::uint64_t isr_runs_ = 0;
   std::uint64_t module_time_reads_ = 0;
+  VirtualTime pid_same_until_ = std::numeric_limits<VirtualTime>::max();
   int last_file_ = 2;
   int last_rung_ = -1;
   std::array<std::uint16_t, 64> scratch_{};  // where a faulting operand's access lands

@@ -125,14 +125,17 @@ Outcome execute(std::span<std::uint16_t, kBlockWords> b, const Execution& x) {
     if (!initial) {
       const auto elapsed = static_cast<std::uint16_t>(tick - b[kUpdateStamp]);
       if (elapsed < lu) {
+        out.same_until = (x.now / kTick + (lu - elapsed)) * kTick;
         b[kFlags] = static_cast<std::uint16_t>(flags & ~kDN);
         b[kState] = state;
         return out;
       }
+      out.same_until = (x.now / kTick + 1) * kTick;
       const bool too_fast = elapsed >= 2 * lu;
       set_bit(flags, kTF, too_fast);
       b[kUpdateStamp] = too_fast ? tick : static_cast<std::uint16_t>(b[kUpdateStamp] + lu);
     } else {
+      out.same_until = (x.now / kTick + 1) * kTick;
       b[kUpdateStamp] = tick;
     }
   } else {

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 
@@ -114,6 +115,12 @@ struct Outcome {
   std::string message;      // what was wrong, with the word, for the fault record
   bool write_cv = false;    // store `cv` into the control variable word
   std::int16_t cv = 0;
+  // The earliest time at which an execution on the same block and words could act otherwise than
+  // this one: a timed-mode PID reads the clock only to see whether its loop update is due, so
+  // until the tick at which it falls due (or, on a scan that computed, the next tick) it acts the
+  // same. Never for a rung-false or STI-mode PID, which do not read the clock (repeated scans,
+  // docs/semantics.md).
+  VirtualTime same_until = std::numeric_limits<VirtualTime>::max();
 };
 
 // Executes the instruction once over `block` (23 words). Never reads or writes outside it.

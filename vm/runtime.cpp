@@ -93,11 +93,30 @@ bool acts_through_the_network(Opcode op) {
   return op == Opcode::MSG || op == Opcode::MSG_502 || op == Opcode::MSG_ML;
 }
 
+// The SLC's PID: a function of the data table and, in timed mode, of whether its loop update is
+// due, which happens at a known time the probe records (pid::Outcome::same_until); the repeats end
+// before it (docs/semantics.md "Repeated scans").
+bool acts_on_the_table_until_a_known_time(Opcode op) { return op == Opcode::PID; }
+
 bool reads_only_program_words(const Address& a, bool file_start = false);
+
+// A direct read of the free-running clock S:4, a bit of it or the whole word: allowed, and the bits
+// read noted in `bits` (every bit for the word), because S:4 advances at known times and the repeats
+// end before the scan in which a bit the program reads would change (Runtime::
+// scans_before_the_clock_bits_change). A write to S:4, or S:4 as a file, a pointer or through an
+// index, is still refused: the probe does not compare S:4, so a write there would go unseen.
+bool clock_read(const Address& a, std::uint16_t& bits) {
+  if (a.type != FileType::Status || a.element != status::kClock || a.is_indirect() || a.indexed || a.word >= 0 ||
+      a.bit > 15)
+    return false;
+  bits = static_cast<std::uint16_t>(bits | (a.bit >= 0 ? 1u << a.bit : 0xFFFFu));
+  return true;
+}
 
 // A CPT expression's operands are its pushed atoms, constants or addresses as the compiler reads
 // them (vm/compiler.cpp expression_operand); an expression that does not parse is never repeated.
-bool expression_reads_only_program_words(const std::string& text) {
+// Every atom is read, so S:4 is allowed there as a clock read.
+bool expression_reads_only_program_words(const std::string& text, std::uint16_t& clock_bits) {
   ExpressionError err;
   const auto items = parse_expression(text, err);
   if (!items) return false;
@@ -106,51 +125,83 @@ bool expression_reads_only_program_words(const std::string& text) {
     NumberValue v;
     if (parse_number_text(it.text, v)) continue;
     const auto a = parse_address(it.text);
-    if (!a || !reads_only_program_words(*a)) return false;
+    if (!a || (!clock_read(*a, clock_bits) && !reads_only_program_words(*a))) return false;
   }
   return true;
 }
 
-// An operand a repeated scan would read the same: not resolved at run time (indirect or indexed;
-// the '#' of a file operand marks where the file starts, as the compiler reads it, and is no
-// index), not a function file, and not one of the runtime's own status words (nor a file operand
-// in S, which could span them). An M0/M1 word is allowed: the probe asks its module
-// (Runtime::reach).
-bool reads_only_program_words(const Operand& op, OperandKind kind) {
-  if (op.kind == Operand::Kind::Expression) return expression_reads_only_program_words(op.spelling);
-  return !op.is_address() ||
-         reads_only_program_words(op.address, kind == OperandKind::File || kind == OperandKind::String);
+// An operand a repeated scan would read the same: not a function file, not one of the runtime's own
+// status words (nor a file operand in S, which could span them), and, when resolved at run time
+// (indirect or indexed; the '#' of a file operand marks where the file starts, as the compiler reads
+// it, and is no index), one that resolves the same (below). An M0/M1 word is allowed: the probe asks
+// its module (Runtime::reach). A read of S:4 is allowed (clock_read).
+bool reads_only_program_words(const Operand& op, const OperandSpec* spec, std::uint16_t& clock_bits) {
+  if (op.kind == Operand::Kind::Expression) return expression_reads_only_program_words(op.spelling, clock_bits);
+  if (!op.is_address()) return true;
+  const bool file = spec && (spec->kind == OperandKind::File || spec->kind == OperandKind::String);
+  if (spec && spec->access == OperandAccess::Read && !file && clock_read(op.address, clock_bits)) return true;
+  // An operand past the instruction's table row is read like a source (none is a file).
+  return reads_only_program_words(op.address, file);
+}
+
+// A pointer of an indirect address (the N10:1 of N7:[N10:1]) is a direct word: it reads the same
+// in the next scan unless the runtime changes it (S:3, S:4 ...), or it is a function-file or M word.
+bool pointer_reads_a_program_word(const std::optional<IndirectRef>& r) {
+  if (!r) return true;
+  if (is_function_file(r->type) || is_mfile(r->type)) return false;
+  return r->type != FileType::Status ||
+         std::find(kRuntimeStatusWords.begin(), kRuntimeStatusWords.end(), r->element) == kRuntimeStatusWords.end();
+}
+
+// An indexed or indirect address is resolved at each use (Interpreter::resolve_common), but never
+// outside the file it is written in, whose type is fixed: an index, or an element, word or bit
+// pointer, stays in that file or faults, and a file pointer names a file of the same type or faults
+// (docs/semantics.md "Indexed and indirect addresses"). A scan that starts from the data table the
+// probe started from therefore resolves it to the word the probe did — S:24 and the pointers are
+// table words the probe would have shown changed — as long as neither a pointer nor the file is one
+// the runtime or a module changes: not the status file (S:3, S:4, S:22, S:23, S:33 and S:35 change
+// every scan), not a function file, not an M file. All of that is known from the address itself,
+// so nothing is checked while the program runs (decision, issue 20).
+bool dynamic_address_resolves_the_same(const Address& a) {
+  if (a.type == FileType::Status || is_function_file(a.type) || is_mfile(a.type)) return false;
+  return pointer_reads_a_program_word(a.indirect_file()) && pointer_reads_a_program_word(a.indirect_element()) &&
+         pointer_reads_a_program_word(a.indirect_word()) && pointer_reads_a_program_word(a.indirect_bit());
 }
 
 bool reads_only_program_words(const Address& a, bool file_start) {
-  if (a.is_indirect() || (a.indexed && !file_start) || is_function_file(a.type)) return false;
+  const bool dynamic = a.is_indirect() || (a.indexed && !file_start);
+  if ((dynamic && !dynamic_address_resolves_the_same(a)) || is_function_file(a.type)) return false;
   if (a.type != FileType::Status) return true;
   if (file_start) return false;
   return std::find(kRuntimeStatusWords.begin(), kRuntimeStatusWords.end(), a.element) == kRuntimeStatusWords.end();
 }
 
-bool elements_repeatable(const std::vector<RungElement>& elements) {
+bool elements_repeatable(const std::vector<RungElement>& elements, std::uint16_t& clock_bits) {
   for (const RungElement& e : elements) {
     if (e.kind == RungElement::Kind::Branch) {
       for (const auto& leg : e.legs)
-        if (!elements_repeatable(leg)) return false;
+        if (!elements_repeatable(leg, clock_bits)) return false;
       continue;
     }
     const Opcode op = e.instruction.opcode;
-    if (!acts_on_the_table_alone(op) && !acts_through_a_module(op) && !acts_through_the_network(op)) return false;
+    if (!acts_on_the_table_alone(op) && !acts_through_a_module(op) && !acts_through_the_network(op) &&
+        !acts_on_the_table_until_a_known_time(op))
+      return false;
     const InstructionSpec& sp = spec(e.instruction.opcode);
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
-      const OperandKind kind = i < sp.operand_count ? sp.operands[i].kind : OperandKind::Source;
-      if (!reads_only_program_words(e.instruction.operands[i], kind)) return false;
+      const OperandSpec* os = i < sp.operand_count ? &sp.operands[i] : nullptr;
+      if (!reads_only_program_words(e.instruction.operands[i], os, clock_bits)) return false;
     }
   }
   return true;
 }
 
-bool program_scans_repeatable(const Program& program) {
+// Whether the program's scans may repeat, and in `clock_bits` the bits of S:4 it reads.
+bool program_scans_repeatable(const Program& program, std::uint16_t& clock_bits) {
+  clock_bits = 0;
   for (const ProgramFile& f : program.files)
     for (const Rung& r : f.rungs)
-      if (!elements_repeatable(r.elements)) return false;
+      if (!elements_repeatable(r.elements, clock_bits)) return false;
   return true;
 }
 
@@ -229,7 +280,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   const std::vector<PeerController> peers = std::move(options.peers);
   r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
   Runtime& rt = *r.runtime;
-  rt.program_repeatable_ = program_scans_repeatable(program);
+  rt.program_repeatable_ = program_scans_repeatable(program, rt.clock_bits_read_);
   rt.timer_tick_ns_ = finest_timer_tick(program);
   rt.process_host_ = std::make_unique<ProcessHost>(rt);
   if (make_channel) {
@@ -825,6 +876,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint64_t process_writes = process_writes_;
   const std::uint64_t module_time_reads = interp_->module_time_reads();
   const StiTimer sti_before = interp_->sti();
+  interp_->reset_pid_same_until();
   probing_ = true;
   probe_unsteady_ = false;
   reached_.clear();
@@ -882,6 +934,9 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     return 1;
   }
   const std::uint64_t per_scan = stats_.instructions - instructions;
+  // A timed PID falls due at a known time: the repeats end with the last scan that ends before it.
+  const VirtualTime pid_until = interp_->pid_same_until();
+  const bool pid_timing = pid_until != std::numeric_limits<VirtualTime>::max();
   const Nanoseconds scan_time = stats_.last;  // what the probe's housekeeping was given
   const std::uint16_t s33_toggle = (data_.status(status::kCommBits) ^ s33_before) & 0x0200u;
   const FileLayout& rtc = L.function_file(FunctionFile::RTC);
@@ -907,10 +962,12 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     t += k * d;
   };
   // Every repeated scan must end before `horizon`: a timing STI's expiry falls in the middle of the
-  // scan that reaches it, a timer's tick ends (a scan may end on it: its reads come before), the MSG
-  // network's servicing at the end of a scan would find something new.
+  // scan that reaches it, a timer's tick ends (a scan may end on it: its reads come before), a timed
+  // PID's loop update falls due (a scan may end on it), the MSG network's servicing at the end of a
+  // scan would find something new.
   VirtualTime horizon = std::numeric_limits<VirtualTime>::max();
   if (sti.file != 0) horizon = sti.due;
+  if (pid_timing) horizon = std::min(horizon, pid_until + 1);
   if (timing) horizon = std::min(horizon, (start / timer_tick_ns_ + 1) * timer_tick_ns_ + 1);
   if (network_quiet) horizon = std::min(horizon, *network_quiet);
   std::int64_t taken = 0;
@@ -925,6 +982,9 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
       in_second = std::max<std::int64_t>(0, (next_second - t - input_scan_ns_ + d - 1) / d);
       k = std::min(k, in_second);
     }
+    // A program that reads bits of S:4: the repeats end before the scan that would see one change.
+    const std::int64_t same_clock = scans_before_the_clock_bits_change(t, d);
+    k = std::min(k, same_clock);
     const std::optional<VirtualTime> next = events_.next_time();
     if (next) k = std::min<std::int64_t>(k, (*next - t - 1) / d);
     if (horizon != std::numeric_limits<VirtualTime>::max())
@@ -938,7 +998,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     // (the event runs after it), so it is taken too when the probe may repeat across events; the
     // events then run as at the end of an executed scan, and the repeats go on while they changed
     // nothing the program reads.
-    if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || t + d >= horizon) break;
+    if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || same_clock <= k || t + d >= horizon)
+      break;
     take(1);
     taken += 1;
     events_at_last_scan_end_ = events_.run_until(t);
@@ -957,6 +1018,22 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     probe_backoff_ = 1;
   }
   return 1 + taken;
+}
+
+// S:4 counts ticks of virtual time, brought up to date at each program scan (advance_free_running_clock).
+// Of the bits the program reads, the lowest, b, is the first to change: the bits above it change
+// only when a carry passes through it, so all of them stay until S:4 reaches the next multiple of
+// 2^b (or wraps to 0, a multiple too). The scans whose program scan (at input_scan_ns_ into the
+// scan, as take() advances S:4) starts before the tick that reaches it are the ones that see the
+// same bits.
+std::int64_t Runtime::scans_before_the_clock_bits_change(VirtualTime t, Nanoseconds d) const {
+  if (clock_bits_read_ == 0) return std::numeric_limits<std::int64_t>::max();
+  const std::int64_t step = clock_bits_read_ & -static_cast<std::int64_t>(clock_bits_read_);  // 2^b
+  const std::int64_t s4 = data_.status(status::kClock);
+  const std::int64_t change_tick = s4_tick_ + (step - s4 % step);
+  const VirtualTime change_at = change_tick * program_->processor.free_running_clock_tick_ns();
+  const Nanoseconds left = change_at - t - input_scan_ns_;
+  return left <= 0 ? 0 : (left + d - 1) / d;
 }
 
 bool Runtime::run_until(const std::function<bool(const Runtime&)>& pred, Nanoseconds limit) {

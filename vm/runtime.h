@@ -269,6 +269,9 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // nothing, and every module's input image is the one its input scan gave.
   bool reached_modules_unchanged() const;
   bool probe_reads_the_same();
+  // The scans from `t` (each `d` long) whose program scans would see the bits of S:4 the program
+  // reads (clock_bits_read_) as S:4 shows them now; unbounded when it reads none.
+  std::int64_t scans_before_the_clock_bits_change(VirtualTime t, Nanoseconds d) const;
   void enter_fault(const FaultInfo& f);
   void enter_suspend();
   void apply_input_forces(std::uint32_t first, std::uint32_t count);
@@ -342,6 +345,9 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // (doubling to 64, so a busy program pays for a probe at most every 64 scans), the table saved
   // before the probe, and the time from a scan's start to its program scan (for S:4).
   bool program_repeatable_ = false;
+  // The bits of the free-running clock S:4 the program reads (every bit when it reads the word):
+  // repeats end before the scan in which one of them would change.
+  std::uint16_t clock_bits_read_ = 0;
   bool skip_repeated_ = true;
   // The finest time base of the program's timers (1 ms with a MicroLogix 0.001 s timer, else the
   // 10 ms tick): a timing timer changes nothing while its reads stay in the tick it is stamped with.

@@ -71,6 +71,16 @@ std::uint64_t run_side_by_side(Controller& skipping, Controller& executing, int 
   return run_side_by_side(skipping.runtime(), executing.runtime(), slices, slice, what);
 }
 
+// A program loaded twice, for run_side_by_side: repeats on in `skipping`, off in `executing`.
+struct SideBySide {
+  Controller skipping;
+  Controller executing;
+  std::uint64_t run(int slices, Nanoseconds slice, const std::string& what) {
+    return run_side_by_side(skipping, executing, slices, slice, what);
+  }
+};
+SideBySide side_by_side(const std::string& text) { return {Controller::from_text(text), Controller::from_text(text)}; }
+
 TEST(RepeatedScans, EveryShippedExampleGivesTheSameResultsWithAndWithoutThem) {
   const fs::path root = fs::path(SOFTSLC_SOURCE_DIR) / "examples" / "ladder";
   std::vector<fs::path> programs;
@@ -92,13 +102,19 @@ TEST(RepeatedScans, EveryShippedExampleGivesTheSameResultsWithAndWithoutThem) {
     // every scan: quiet_scans finds them quiet in 97-100% of their scans. So must one example of
     // each later rule: M0 through the AutoMax master, M0/M1 and an idle BTR through the 1747-SN
     // (across its link's events), M1 through the 1203-SM1, and a 1747-SN program whose link's
-    // events run at the end of nearly every scan.
+    // events run at the end of nearly every scan; and indexed and indirect operands
+    // (addressing_faults, and appe_drive_parameter's N21:[N14:0] on a 1747-SDN), S:4/3
+    // (ch4_m1_status) and a timed PID (pid_level, 84% in its first 10 s while its tank settles).
     const std::string name = p.parent_path().filename().string() + "/" + p.stem().string();
     for (const char* must : {"micrologix/ml1100_conveyor", "automax/fig4_3_multibus_head", "faults/mfile_faults",
-                             "1747-sn/ch5_directional", "1203-sm1/appb_messaging", "1747-sn/throughput_discrete"}) {
+                             "1747-sn/ch5_directional", "1203-sm1/appb_messaging", "1747-sn/throughput_discrete",
+                             "faults/addressing_faults", "1747-sdn/appe_drive_parameter", "1747-sn/ch4_m1_status"}) {
       if (name == must) {
         EXPECT_GT(repeated, skipping.runtime().stats().scans * 9 / 10) << p;
       }
+    }
+    if (name == "pid/pid_level") {
+      EXPECT_GT(repeated, skipping.runtime().stats().scans * 3 / 4) << p;
     }
   }
   EXPECT_GT(repeating, 5);
@@ -140,16 +156,12 @@ TEST(RepeatedScans, ATimerTimingRepeatsOnlyWithinItsTick) {
   }
 }
 
-// A program that reads the free-running clock (S:4) or the scan toggle bit (S:33/9) never has its
-// scans repeated: they differ from one scan to the next although the data table may not show it
-// until the clock reaches a value.
-TEST(RepeatedScans, AProgramReadingTheRuntimesOwnStatusWordsIsNeverRepeated) {
-  for (const char* rung : {"SOR EQU S:4 900 OTL B3:0/0 EOR\n", "SOR XIC S:33/9 OTE B3:0/1 EOR\n"}) {
-    const std::string text = std::string("START 1747-L552\nLADDER 2\n") + rung;
-    Controller skipping = Controller::from_text(text);
-    Controller executing = Controller::from_text(text);
-    EXPECT_EQ(run_side_by_side(skipping, executing, 120, milliseconds(100), rung), 0u);
-  }
+// A program that reads the scan toggle bit (S:33/9) never has its scans repeated: it differs from
+// one scan to the next although the data table may not show it. (S:4, which advances at known
+// times, has rules of its own: the tests below.)
+TEST(RepeatedScans, AProgramReadingTheScanToggleBitIsNeverRepeated) {
+  const char* rung = "SOR XIC S:33/9 OTE B3:0/1 EOR\n";
+  EXPECT_EQ(side_by_side(std::string("START 1747-L552\nLADDER 2\n") + rung).run(120, milliseconds(100), rung), 0u);
 }
 
 // An input whose change reaches the input image after the module's input delay is an event: the
@@ -327,15 +339,143 @@ TEST(RepeatedScans, DlgLogsTheSameRecordsWithRepeats) {
   EXPECT_GT(skipping.runtime().stats().repeated, 0u);
 }
 
-// A CPT whose expression reads the free-running clock, or an indexed word, is never repeated: the
-// expression's addresses are checked like any operand's.
-TEST(RepeatedScans, ACptReadingTheClockIsNeverRepeated) {
+// A CPT whose expression reads the free-running clock or an indexed word repeats under the rules
+// of those (below): its expression's addresses are checked like any operand's. N7:0 = S:4 * 2
+// changes at every 10 ms tick (a whole-word read bounds the repeats at the next tick), and the
+// indexed word's file does not move.
+TEST(RepeatedScans, ACptReadingTheClockOrAnIndexedWordRepeatsWithTheSameResults) {
   for (const char* rung : {"SOR CPT N7:0 S:4 * 2 EOR\n", "SOR CPT N7:0 #N7:1 + 1 EOR\n"}) {
-    const std::string text = std::string("START 1747-L532\nLADDER 2\n") + rung;
-    Controller skipping = Controller::from_text(text);
-    Controller executing = Controller::from_text(text);
-    EXPECT_EQ(run_side_by_side(skipping, executing, 30, milliseconds(100), rung), 0u);
+    EXPECT_GT(side_by_side(std::string("START 1747-L532\nLADDER 2\n") + rung).run(30, milliseconds(100), rung), 0u)
+        << rung;
   }
+}
+
+// ---- Indexed and indirect addresses ------------------------------------------------------------------
+
+// An indexed or indirect address resolves at run time, but never outside the file it is written in
+// (docs/semantics.md "Indexed and indirect addresses": a pointer or an index that leaves it is a
+// fault), and its pointers and S:24 are table words the probe compares: a scan that starts from the
+// probe's table resolves it as the probe did. Here the pointers move only when the inputs do (an
+// OSR counts rising edges of I:1/0 into N10:0, the element, bit and index of the others), so the
+// scans between input changes repeat, and N10:1, N10:2 and N10:20-23 follow
+// the pointers at the same scans as without repeats.
+TEST(RepeatedScans, IndirectAndIndexedAddressesRepeatAndFollowTheirPointers) {
+  const std::string text =
+      "START 1747-L552\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nLADDER 2\n"
+      "SOR XIC I:1/0 OSR B3:0/0 ADD N10:0 1 N10:0 EOR\n"
+      "SOR EQU N10:0 8 CLR N10:0 EOR\n"
+      "SOR MOV N7:[N10:0] N10:1 EOR\n"
+      "SOR MOV N10:0 S:24 MOV #N7:1 N10:2 EOR\n"
+      "SOR COP #N7:[N10:0] #N10:20 4 EOR\n"
+      "SOR XIC B3:1/[N10:0] OTE B3:2/0 EOR\n"
+      "DATA N7:0\n 5 10 15 20 25 30 35 40 45 50 55 60\n"
+      "DATA N10:0\n 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n"
+      "DATA B3:0\n 0 170\n";
+  Controller skipping = Controller::from_text(text, "io switches slot=1 input_delay=2ms\n");
+  Controller executing = Controller::from_text(text, "io switches slot=1 input_delay=2ms\n");
+  run_side_by_side(skipping, executing, 5, milliseconds(20), "idle");
+  const std::uint64_t idle = skipping.runtime().stats().repeated;
+  EXPECT_GT(idle, 0u) << "indirect and indexed operands must let scans repeat";
+  for (int i = 0; i < 11; ++i) {
+    for (Controller* c : {&skipping, &executing}) c->inject("switches", "input", {i % 2 ? "0" : "1"});
+    run_side_by_side(skipping, executing, 4, milliseconds(9), "input " + std::to_string(i));
+  }
+  // Six rising edges: N10:0 = 6, N7:6 = 35, N7:7 (indexed by S:24 = 6) = 40, B3:1/6 = 0 (170 = 0b10101010).
+  EXPECT_EQ(skipping.get_int("N10:0"), 6);
+  EXPECT_EQ(skipping.get_int("N10:1"), 35);
+  EXPECT_EQ(skipping.get_int("N10:2"), 40);
+  EXPECT_EQ(skipping.get_int("N10:23"), 50);
+  EXPECT_GT(skipping.runtime().stats().repeated, idle);
+}
+
+// An indirect address whose pointer is a word the runtime changes every scan is never repeated: the
+// probe does not compare S:4, so scans between its ticks change nothing, yet N7:[S:4] reads another
+// element at every tick. Without the pointer check this fails (N10:0 lags the clock through the
+// repeats).
+TEST(RepeatedScans, AnIndirectAddressWhosePointerIsTheClockIsNeverRepeated) {
+  std::string text = "START 1747-L552\nLADDER 2\nSOR MOV N7:[S:4] N10:0 EOR\nDATA N7:0\n";
+  for (int i = 0; i < 256; ++i) text += " " + std::to_string(i * 7);
+  text += "\nDATA N10:0\n 0\n";
+  SideBySide c = side_by_side(text);
+  // S:4 reaches N7's last element after 2.55 s (10 ms ticks): stop before.
+  EXPECT_EQ(c.run(20, milliseconds(100), "N7:[S:4]"), 0u);
+  EXPECT_NE(c.skipping.get_int("N10:0"), 0);
+}
+
+// An indirect address into the status file may land on a word the runtime changes every scan
+// (here S:[N7:0] with N7:0 = 4 is S:4): never repeated. Without that refusal this fails (N10:0 lags
+// the clock through the repeats).
+TEST(RepeatedScans, AnIndirectAddressIntoTheStatusFileIsNeverRepeated) {
+  const std::string text = "START 1747-L552\nLADDER 2\nSOR MOV S:[N7:0] N10:0 EOR\nDATA N7:0\n 4\n";
+  SideBySide c = side_by_side(text);
+  EXPECT_EQ(c.run(20, milliseconds(100), "S:[N7:0]"), 0u);
+  EXPECT_NE(c.skipping.get_int("N10:0"), 0);
+}
+
+// ---- The free-running clock S:4 ------------------------------------------------------------------------
+
+// S:4 advances one count every 10 ms on the SLC, every 100 us on the MicroLogix 1100 (1763-RM001C
+// p. 476: S:4/14 is on 1.6384 s, off 1.6384 s there, 163.84 s on an SLC): a program that reads
+// bits 3 and 5 of it changes nothing between the times one of them changes, so those scans repeat,
+// and the repeats end before the scan that sees bit 3 (the lower, every 80 ms) change. The edge counts N7:0 (rising edges of S:4/3) and N7:1
+// (S:4/5, every 320 ms) come out the same as without repeats. Without the bound this fails (tried:
+// the counts lag), and so it does with the bound taken at the higher bit (tried: N7:0 lags).
+TEST(RepeatedScans, AProgramReadingClockBitsRepeatsUntilOneOfThemChanges) {
+  for (const char* processor : {"1747-L552", "Bul.1763"}) {
+    // The one-operand one-shot is OSR on the SLC, ONS on the MicroLogix 1100 (1763-RM001 ch. "Bit
+    // Instructions").
+    const std::string once = std::string(processor) == "Bul.1763" ? "ONS" : "OSR";
+    const std::string text = std::string("START ") + processor + "\nLADDER 2\n" + "SOR XIC S:4/3 " + once +
+                             " B3:0/0 ADD N7:0 1 N7:0 EOR\n" + "SOR XIC S:4/5 " + once +
+                             " B3:0/1 ADD N7:1 1 N7:1 EOR\n" + "SOR XIO S:4/5 OTE B3:0/2 EOR\n";
+    SideBySide c = side_by_side(text);
+    EXPECT_GT(c.run(40, milliseconds(50), processor), 0u) << processor;
+    EXPECT_GT(c.skipping.get_int("N7:1"), 0) << processor;
+  }
+}
+
+// A read of the whole word bounds the repeats at the next tick: EQU S:4 90 latches B3:0/0 in the
+// scan that sees S:4 = 90 (900 ms after entering Run), the same scan with and without repeats.
+// Without the bound this fails (the latch never happens, or late).
+TEST(RepeatedScans, AProgramReadingTheClockWordRepeatsWithinATick) {
+  const std::string text =
+      "START 1747-L552\nLADDER 2\nSOR EQU S:4 90 OTL B3:0/0 EOR\nSOR XIC B3:0/0 OSR B3:0/1 ADD N7:0 1 N7:0 EOR\n";
+  SideBySide c = side_by_side(text);
+  EXPECT_GT(c.run(120, milliseconds(10), "EQU S:4 90"), 0u);
+  EXPECT_TRUE(c.skipping.get_bit("B3:0/0"));
+  EXPECT_EQ(c.skipping.get_int("N7:0"), 1);
+}
+
+// A program that writes S:4 is never repeated: the probe does not compare S:4 (the runtime changes
+// it), so a write there goes unseen. ADD S:4 1 S:4 moves S:4 by one more count in every scan, which
+// repeats would not do even within a tick. Without the refusal of writes this fails (S:4 differs;
+// tried).
+TEST(RepeatedScans, AProgramWritingTheClockIsNeverRepeated) {
+  const std::string text = "START 1747-L552\nLADDER 2\nSOR XIC S:4/0 OTE B3:0/0 EOR\nSOR ADD S:4 1 S:4 EOR\n";
+  EXPECT_EQ(side_by_side(text).run(20, milliseconds(50), "ADD S:4 1 S:4"), 0u);
+}
+
+// ---- The SLC's PID ----------------------------------------------------------------------------------------
+
+// A timed-mode PID computes at its loop update rate (word 13, 0.01 s units, here 10 = 0.10 s;
+// 1747-RM001G p. 9-7) and sets DN on the scans that compute (table 9.23); between updates its scans
+// change nothing (the level here is held by a tool), so they repeat, and the repeats end before the
+// scan in which the update falls due. N7:5 counts the DN scans: about ten a second, at the same
+// scans as without repeats. Without the bound this fails (tried: the updates are skipped over).
+// A tool's change of the process variable reaches the loop at the next update, as without repeats.
+TEST(RepeatedScans, ATimedPidUpdatesAtTheSameScansWithRepeats) {
+  const std::string text =
+      "START 1747-L532\nLADDER 2\n"
+      "SOR PID N10:0 N7:0 N7:1 EOR\n"
+      "SOR XIC N10:0/13 ADD N7:5 1 N7:5 EOR\n"
+      "DATA N10:0\n 17 0 500 500 7 0 0 1000 0 0\n 0 100 0 10 0 0 0 0 0 0\n 0 0 0\n"
+      "DATA N7:0\n 8000 0 0 0 0 0\n";
+  SideBySide c = side_by_side(text);
+  EXPECT_GT(c.run(20, milliseconds(100), "PID"), 0u);
+  EXPECT_GE(c.skipping.get_int("N7:5"), 19);
+  EXPECT_LE(c.skipping.get_int("N7:5"), 21);
+  for (Controller* p : {&c.skipping, &c.executing}) p->set("N7:0", 9000);
+  c.run(30, milliseconds(37), "PID after the level moved");
 }
 
 // ---- M files and module instructions (Module::program_changes; docs/semantics.md) ------------------

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "vm/pid.h"
@@ -174,6 +175,26 @@ TEST(PidBits, TimedModeComputesAtTheLoopUpdateRateAndDnForOneExecution) {
   }
   EXPECT_EQ(computed, 10) << "every 100 ms";
   EXPECT_FALSE(b.has(kTF));
+}
+
+TEST(PidBits, TimedModeSaysUntilWhenItActsTheSame) {
+  // Repeated scans (docs/semantics.md "The SLC's PID"): a timed PID that did not compute acts the
+  // same until its next update is due, 100 ms after the last one (RM 9-7: loop update 10 = 100 ms,
+  // on the 10 ms clock); one that computed, until the next 10 ms tick; an STI-mode (RM 9-8) or
+  // rung-false one never reads the clock.
+  Block b = valid_loop();
+  b.set(kSetpoint, 8000);
+  EXPECT_EQ(b.run(6000, ms(3)).same_until, ms(10)) << "the initial execution computes";
+  EXPECT_EQ(b.run(6000, ms(47)).same_until, ms(100)) << "due at the tick 100 ms after the first update's";
+  EXPECT_FALSE(b.has(kDN));
+  EXPECT_EQ(b.run(6000, ms(99)).same_until, ms(100));
+  const Outcome due = b.run(6000, ms(100));
+  EXPECT_TRUE(b.has(kDN)) << "computed at 100 ms";
+  EXPECT_EQ(due.same_until, ms(110));
+  EXPECT_EQ(b.run(6000, ms(101)).same_until, ms(200));
+  EXPECT_EQ(b.run(6000, ms(150), 0, false, false).same_until, std::numeric_limits<VirtualTime>::max()) << "rung false";
+  b.flag(kTM, false);
+  EXPECT_EQ(b.run(6000, ms(160)).same_until, std::numeric_limits<VirtualTime>::max()) << "STI mode";
 }
 
 TEST(PidBits, StiModeComputesEveryExecution) {

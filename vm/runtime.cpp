@@ -51,10 +51,10 @@ constexpr std::array<int, 6> kRuntimeStatusWords = {status::kWatchdog, status::k
 // processor when its rung is true (the probe is then not in Run) and does nothing otherwise; INT
 // marks an interrupt routine; STD and STE set or clear S:2/1; STS writes S:30, S:31 and S:2 and
 // restarts the SLC's STI timer, which the probe compares (a rung-true STS moves the timer's due
-// time every scan, so its probe is not repeated). Everything else —
-// I/O, modules, messages, interrupts, ASCII, PID, the clocks, function files, the MicroLogix HSC
-// (HSL, RAC) and pulse outputs (PTO, PTOX) — and any instruction added later rules repeats out
-// until it is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
+// time every scan, so its probe is not repeated). The MicroLogix function-file instructions are
+// listed apart (acts_on_a_micrologix_function_file). Everything else — I/O, modules, messages,
+// interrupts, ASCII, PID, the clocks — and any instruction added later rules repeats out until it
+// is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
 bool acts_on_the_table_alone(Opcode op) {
   switch (op) {
     case Opcode::XIC: case Opcode::XIO: case Opcode::OTE: case Opcode::OTL: case Opcode::OTU:
@@ -81,6 +81,17 @@ bool acts_on_the_table_alone(Opcode op) {
   }
 }
 
+// The MicroLogix instructions that act on a function file and the sub-system behind it, whose state
+// outside the table the probe judges (docs/semantics.md "Repeated scans", "The MicroLogix function
+// files"). STS (the MicroLogix form) restarts the STI timer, which the probe compares as the SLC
+// STS's. HSL and RAC load the high-speed counter, whose whole state the probe compares
+// (MicroLogixHsc's operator==), and nothing repeats while pulses arrive. PTO and PTOX: an idle pulse
+// train's scan is a function of its function-file words and the rung (PulseTrainOutputs::idle),
+// and nothing repeats while one runs (Interpreter::nothing_pending_between_scans).
+bool acts_on_a_micrologix_function_file(Opcode op) {
+  return op == Opcode::STS_ML || op == Opcode::HSL || op == Opcode::RAC || op == Opcode::PTO || op == Opcode::PTOX;
+}
+
 // The specialty-module instructions: they act through the module in their slot, which a probe then
 // asks (Module::program_changes; docs/semantics.md "Repeated scans").
 bool acts_through_a_module(Opcode op) { return op == Opcode::BTR || op == Opcode::BTW || op == Opcode::DEM; }
@@ -105,9 +116,12 @@ bool expression_reads_only_program_words(const std::string& text) {
 
 // An operand a repeated scan would read the same: not resolved at run time (indirect or indexed;
 // the '#' of a file operand marks where the file starts, as the compiler reads it, and is no
-// index), not a function file, and not one of the runtime's own status words (nor a file operand
-// in S, which could span them). An M0/M1 word is allowed: the probe asks its module
-// (Runtime::reach).
+// index), and not one of the runtime's own status words (nor a file operand in S, which could span
+// them). An M0/M1 word is allowed: the probe asks its module (Runtime::reach). So is a function-file
+// word (RTC, STI, EII, HSC, PTO/PTOX, DLS): they are data-table words, which the probe compares,
+// and what changes them between the program's writes is bounded or judged apart: the clock at its
+// next second, the STI at its expiry, an EII only on an input edge (an event or a tool), the HSC only
+// with pulses arriving, a PTO only while it runs.
 bool reads_only_program_words(const Operand& op, OperandKind kind) {
   if (op.kind == Operand::Kind::Expression) return expression_reads_only_program_words(op.spelling);
   return !op.is_address() ||
@@ -115,7 +129,7 @@ bool reads_only_program_words(const Operand& op, OperandKind kind) {
 }
 
 bool reads_only_program_words(const Address& a, bool file_start) {
-  if (a.is_indirect() || (a.indexed && !file_start) || is_function_file(a.type)) return false;
+  if (a.is_indirect() || (a.indexed && !file_start)) return false;
   if (a.type != FileType::Status) return true;
   if (file_start) return false;
   return std::find(kRuntimeStatusWords.begin(), kRuntimeStatusWords.end(), a.element) == kRuntimeStatusWords.end();
@@ -128,7 +142,9 @@ bool elements_repeatable(const std::vector<RungElement>& elements) {
         if (!elements_repeatable(leg)) return false;
       continue;
     }
-    if (!acts_on_the_table_alone(e.instruction.opcode) && !acts_through_a_module(e.instruction.opcode)) return false;
+    if (!acts_on_the_table_alone(e.instruction.opcode) && !acts_through_a_module(e.instruction.opcode) &&
+        !acts_on_a_micrologix_function_file(e.instruction.opcode))
+      return false;
     const InstructionSpec& sp = spec(e.instruction.opcode);
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
       const OperandKind kind = i < sp.operand_count ? sp.operands[i].kind : OperandKind::Source;
@@ -790,6 +806,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint64_t process_writes = process_writes_;
   const std::uint64_t module_time_reads = interp_->module_time_reads();
   const StiTimer sti_before = interp_->sti();
+  const MicroLogixHsc hsc_before = interp_->hsc();
   probing_ = true;
   probe_unsteady_ = false;
   reached_.clear();
@@ -815,7 +832,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const bool sti_same = sti.file == sti_before.file && sti.period == sti_before.period &&
                         sti.next_period == sti_before.next_period && sti.due == sti_before.due &&
                         sti.setpoint == sti_before.setpoint && sti.runs == sti_before.runs;
-  bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti_same &&
+  // The MicroLogix high-speed counters: no load (SP, HSL, RAC) changed the sub-system.
+  bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti_same && interp_->hsc() == hsc_before &&
                  interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
   const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
   for (int s : kRuntimeStatusWords) before_probe_[L.status_word(s)] = w[L.status_word(s)];

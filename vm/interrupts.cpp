@@ -689,8 +689,8 @@ bool Interpreter::nothing_pending_between_scans() const {
   // A timing STI is allowed, the SLC's and the MicroLogix function file's alike: its expiries are at
   // known times (sti_.due), which the runtime bounds the repeats by, and a probe that moved the timer
   // (an expiry, an STS) is not repeated; a MicroLogix expiry waiting for UIE (sti_queued_) vetoes.
-  // An HSC with no pulses arriving counts nothing, and an idle PTO's scan follows the table alone
-  // (the runtime compares the HSC sub-system's state across the probe).
+  // An HSC with no pulses arriving counts nothing (its loads by SP, HSL and RAC take the table's
+  // values, the same in every repeat), and an idle PTO's scan follows the table alone.
   const bool no_isr = std::all_of(isr_file_.begin(), isr_file_.end(), [](int f) { return f == 0; });
   return sti_queued_ == 0 && dii_.file == 0 && no_isr && events_queued_ == 0 && !hsc_.pulses_arriving() &&
          pulse_trains_.idle() && ascii_port_ == nullptr && coverage_ == nullptr;

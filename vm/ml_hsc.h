@@ -66,15 +66,8 @@ class MicroLogixHsc {
   // masks, UIE and PFN decide; vm/interrupts.cpp) and the counts start again from 0.
   struct Events {
     std::int64_t high = 0, overflow = 0;
-    friend bool operator==(const Events&, const Events&) = default;
   };
   Events take_events(int counter);
-
-  // Two sub-systems in the same state: every counter's loaded configuration, accumulator, pulses
-  // seen, SP level, untaken events and pulse source. The runtime compares the state before and after
-  // a probe scan: a scan that left both the data table and this unchanged is followed by the same
-  // scan (docs/semantics.md "Repeated scans").
-  friend bool operator==(const MicroLogixHsc&, const MicroLogixHsc&) = default;
 
  private:
   struct Config {
@@ -82,13 +75,11 @@ class MicroLogixHsc {
     int mode = 0;
     std::int64_t high = 0, low = 0, overflow = 0, underflow = 0;
     std::uint16_t mask = 0, high_out = 0, low_out = 0;
-    friend bool operator==(const Config&, const Config&) = default;
   };
   struct PulseSource {
     std::int64_t rate = 0;         // pulses a second; 0 = none
     std::int64_t start = 0;        // virtual time the rate was set
     std::int64_t before = 0;       // pulses delivered before `start`
-    friend bool operator==(const PulseSource&, const PulseSource&) = default;
   };
   struct Counter {
     Config config;
@@ -97,7 +88,6 @@ class MicroLogixHsc {
     bool set_parameters = false;   // SP at the last update (for its rising edge)
     Events events;                 // not yet taken by the interpreter
     PulseSource source;
-    friend bool operator==(const Counter&, const Counter&) = default;
   };
 
   std::uint32_t base(int counter) const { return base_ + static_cast<std::uint32_t>(counter) * static_cast<std::uint32_t>(hsc::kWords); }

@@ -84,8 +84,9 @@ bool acts_on_the_table_alone(Opcode op) {
 // The MicroLogix instructions that act on a function file and the sub-system behind it, whose state
 // outside the table the probe judges (docs/semantics.md "Repeated scans", "The MicroLogix function
 // files"). STS (the MicroLogix form) restarts the STI timer, which the probe compares as the SLC
-// STS's. HSL and RAC load the high-speed counter, whose whole state the probe compares
-// (MicroLogixHsc's operator==), and nothing repeats while pulses arrive. PTO and PTOX: an idle pulse
+// STS's. HSL and RAC load the high-speed counter from their operands, which a repeat reads the same,
+// so a scan after one that loaded loads the same again; nothing repeats while pulses arrive (the
+// counter then moves with time; Interpreter::nothing_pending_between_scans). PTO and PTOX: an idle pulse
 // train's scan is a function of its function-file words and the rung (PulseTrainOutputs::idle),
 // and nothing repeats while one runs (Interpreter::nothing_pending_between_scans).
 bool acts_on_a_micrologix_function_file(Opcode op) {
@@ -806,7 +807,6 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint64_t process_writes = process_writes_;
   const std::uint64_t module_time_reads = interp_->module_time_reads();
   const StiTimer sti_before = interp_->sti();
-  const MicroLogixHsc hsc_before = interp_->hsc();
   probing_ = true;
   probe_unsteady_ = false;
   reached_.clear();
@@ -832,8 +832,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const bool sti_same = sti.file == sti_before.file && sti.period == sti_before.period &&
                         sti.next_period == sti_before.next_period && sti.due == sti_before.due &&
                         sti.setpoint == sti_before.setpoint && sti.runs == sti_before.runs;
-  // The MicroLogix high-speed counters: no load (SP, HSL, RAC) changed the sub-system.
-  bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti_same && interp_->hsc() == hsc_before &&
+  bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti_same &&
                  interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
   const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
   for (int s : kRuntimeStatusWords) before_probe_[L.status_word(s)] = w[L.status_word(s)];

@@ -95,8 +95,8 @@ TEST(RepeatedScans, EveryShippedExampleGivesTheSameResultsWithAndWithoutThem) {
     // events run at the end of nearly every scan.
     const std::string name = p.parent_path().filename().string() + "/" + p.stem().string();
     // So must the MicroLogix function-file examples (no pulses, no inputs, as sim_bench runs them),
-    // and ml1100_sti between its 10 ms expiries (three executed scans in about 36: the one its
-    // expiry falls in, one while the probe waits, the probe).
+    // and ml1100_sti between its 10 ms expiries (two executed scans in about 36: the one its expiry
+    // falls in, then the probe).
     for (const char* must : {"micrologix/ml1100_conveyor", "automax/fig4_3_multibus_head", "faults/mfile_faults",
                              "1747-sn/ch5_directional", "1203-sm1/appb_messaging", "1747-sn/throughput_discrete",
                              "micrologix/ml1100_eii", "micrologix/ml1100_hsc", "micrologix/ml1100_pto",

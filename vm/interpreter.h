@@ -222,10 +222,10 @@ class Interpreter {
   // The MicroLogix high-speed counters (vm/ml_hsc.h); no counters on a processor without them.
   MicroLogixHsc& hsc() { return hsc_; }
   const MicroLogixHsc& hsc() const { return hsc_; }
-  // No interrupt can run or become due between scans and at the next rung starts: no STI timing
-  // or waiting, no DII, ISR, EII, HSC, PTO or ASCII port, nothing queued. One of the conditions
-  // under which the runtime may skip scans that repeat the last one (docs/semantics.md "Repeated
-  // scans").
+  // Nothing can run or become due between scans and at the next rung starts but an STI expiry at
+  // its known time (sti().due): no STI expiry waiting, no DII, ISR or ASCII port, no EII or HSC
+  // interrupt queued, no HSC pulses arriving, no PTO running. One of the conditions under which the
+  // runtime may skip scans that repeat the last one (docs/semantics.md "Repeated scans").
   bool nothing_pending_between_scans() const;
   // The fault configure_sti raised.
   const FaultInfo& last_fault() const { return fault_; }

@@ -693,12 +693,14 @@ void Interpreter::locate_event_interrupts() {
 bool Interpreter::nothing_pending_between_scans() const {
   // An EII fires only on an input edge, which a repeated scan cannot bring (inputs change through
   // tools between runs, or through module events, which bound the skip); one already queued vetoes.
-  // The SLC's STI timing is allowed: its expiries are at known times (sti_.due), which the runtime
-  // bounds the repeats by, and a probe that moved the timer (an expiry, an STS) is not repeated.
-  // The MicroLogix STI function file is not judged yet.
+  // A timing STI is allowed, the SLC's and the MicroLogix function file's alike: its expiries are at
+  // known times (sti_.due), which the runtime bounds the repeats by, and a probe that moved the timer
+  // (an expiry, an STS) is not repeated; a MicroLogix expiry waiting for UIE (sti_queued_) vetoes.
+  // An HSC with no pulses arriving counts nothing (its loads by SP, HSL and RAC take the table's
+  // values, the same in every repeat), and an idle PTO's scan follows the table alone.
   const bool no_isr = std::all_of(isr_file_.begin(), isr_file_.end(), [](int f) { return f == 0; });
-  return (sti_.file == 0 || sti_file_word_ < 0) && sti_queued_ == 0 && dii_.file == 0 && no_isr && events_queued_ == 0 &&
-         !hsc_.pulses_arriving() && ascii_port_ == nullptr && coverage_ == nullptr;
+  return sti_queued_ == 0 && dii_.file == 0 && no_isr && events_queued_ == 0 && !hsc_.pulses_arriving() &&
+         pulse_trains_.idle() && ascii_port_ == nullptr && coverage_ == nullptr;
 }
 
 const EventInterrupt* Interpreter::event_interrupt(bool counter, int number) const {

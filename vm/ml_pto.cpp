@@ -90,6 +90,12 @@ void PulseTrainOutputs::stop(std::uint16_t* e, Element& s, std::uint16_t* w) {
   write(e, layout_.frequency_status, layout_.long_frequencies, 0);
 }
 
+bool PulseTrainOutputs::idle() const {
+  for (int n = 0; n < elements_; ++n)
+    if (state_[static_cast<std::size_t>(n)].running) return false;
+  return true;
+}
+
 void PulseTrainOutputs::scan(int n, bool rung, VirtualTime now, std::uint16_t* w) {
   if (file_ < 0 || n < 0 || n >= elements_) return;
   Element& s = state_[static_cast<std::size_t>(n)];

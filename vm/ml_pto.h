@@ -38,6 +38,10 @@ class PulseTrainOutputs {
   void enter_run(std::uint16_t* w);
   // A scan of PTO n (PTOX n) with rung condition `rung` at virtual time `now`.
   void scan(int n, bool rung, VirtualTime now, std::uint16_t* w);
+  // No element is producing pulses. An idle element's scan is a function of its function-file
+  // words and the rung alone (a running one's status and output follow virtual time), which lets
+  // the runtime repeat scans of a program with a PTO (docs/semantics.md "Repeated scans").
+  bool idle() const;
 
   // Error codes in PTO:n.ER (docs/semantics.md "The PTO function file": the manual's error table was
   // not reached; these numbers are softslc's [U]).

@@ -51,10 +51,10 @@ constexpr std::array<int, 6> kRuntimeStatusWords = {status::kWatchdog, status::k
 // processor when its rung is true (the probe is then not in Run) and does nothing otherwise; INT
 // marks an interrupt routine; STD and STE set or clear S:2/1; STS writes S:30, S:31 and S:2 and
 // restarts the SLC's STI timer, which the probe compares (a rung-true STS moves the timer's due
-// time every scan, so its probe is not repeated). Everything else —
-// I/O, modules, messages, interrupts, ASCII, PID, the clocks, function files, the MicroLogix HSC
-// (HSL, RAC) and pulse outputs (PTO, PTOX) — and any instruction added later rules repeats out
-// until it is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
+// time every scan, so its probe is not repeated). The MicroLogix function-file instructions are
+// listed apart (acts_on_a_micrologix_function_file). Everything else — I/O, modules, messages,
+// interrupts, ASCII, PID, the clocks — and any instruction added later rules repeats out until it
+// is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
 bool acts_on_the_table_alone(Opcode op) {
   switch (op) {
     case Opcode::XIC: case Opcode::XIO: case Opcode::OTE: case Opcode::OTL: case Opcode::OTU:
@@ -79,6 +79,18 @@ bool acts_on_the_table_alone(Opcode op) {
     default:
       return false;
   }
+}
+
+// The MicroLogix instructions that act on a function file and the sub-system behind it, whose state
+// outside the table the probe judges (docs/semantics.md "Repeated scans", "The MicroLogix function
+// files"). STS (the MicroLogix form) restarts the STI timer, which the probe compares as the SLC
+// STS's. HSL and RAC load the high-speed counter from their operands, which a repeat reads the same,
+// so a scan after one that loaded loads the same again; nothing repeats while pulses arrive (the
+// counter then moves with time; Interpreter::nothing_pending_between_scans). PTO and PTOX: an idle pulse
+// train's scan is a function of its function-file words and the rung (PulseTrainOutputs::idle),
+// and nothing repeats while one runs (Interpreter::nothing_pending_between_scans).
+bool acts_on_a_micrologix_function_file(Opcode op) {
+  return op == Opcode::STS_ML || op == Opcode::HSL || op == Opcode::RAC || op == Opcode::PTO || op == Opcode::PTOX;
 }
 
 // The specialty-module instructions: they act through the module in their slot, which a probe then
@@ -130,11 +142,15 @@ bool expression_reads_only_program_words(const std::string& text, std::uint16_t&
   return true;
 }
 
-// An operand a repeated scan would read the same: not a function file, not one of the runtime's own
-// status words (nor a file operand in S, which could span them), and, when resolved at run time
-// (indirect or indexed; the '#' of a file operand marks where the file starts, as the compiler reads
-// it, and is no index), one that resolves the same (below). An M0/M1 word is allowed: the probe asks
-// its module (Runtime::reach). A read of S:4 is allowed (clock_read).
+// An operand a repeated scan would read the same: not one of the runtime's own status words (nor a
+// file operand in S, which could span them), and, when resolved at run time (indirect or indexed;
+// the '#' of a file operand marks where the file starts, as the compiler reads it, and is no index),
+// one that resolves the same (below). An M0/M1 word is allowed: the probe asks its module
+// (Runtime::reach). A read of S:4 is allowed (clock_read). So is a function-file word (RTC, STI,
+// EII, HSC, PTO/PTOX, DLS): they are data-table words, which the probe compares, and what changes
+// them between the program's writes is bounded or judged apart: the clock at its next second, the
+// STI at its expiry, an EII only on an input edge (an event or a tool), the HSC only with pulses
+// arriving, a PTO only while it runs.
 bool reads_only_program_words(const Operand& op, const OperandSpec* spec, std::uint16_t& clock_bits) {
   if (op.kind == Operand::Kind::Expression) return expression_reads_only_program_words(op.spelling, clock_bits);
   if (!op.is_address()) return true;
@@ -170,7 +186,7 @@ bool dynamic_address_resolves_the_same(const Address& a) {
 
 bool reads_only_program_words(const Address& a, bool file_start) {
   const bool dynamic = a.is_indirect() || (a.indexed && !file_start);
-  if ((dynamic && !dynamic_address_resolves_the_same(a)) || is_function_file(a.type)) return false;
+  if (dynamic && !dynamic_address_resolves_the_same(a)) return false;
   if (a.type != FileType::Status) return true;
   if (file_start) return false;
   return std::find(kRuntimeStatusWords.begin(), kRuntimeStatusWords.end(), a.element) == kRuntimeStatusWords.end();
@@ -185,7 +201,7 @@ bool elements_repeatable(const std::vector<RungElement>& elements, std::uint16_t
     }
     const Opcode op = e.instruction.opcode;
     if (!acts_on_the_table_alone(op) && !acts_through_a_module(op) && !acts_through_the_network(op) &&
-        !acts_on_the_table_until_a_known_time(op))
+        !acts_on_the_table_until_a_known_time(op) && !acts_on_a_micrologix_function_file(op))
       return false;
     const InstructionSpec& sp = spec(e.instruction.opcode);
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
@@ -1017,6 +1033,11 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   } else {
     probe_backoff_ = 1;
   }
+  // The repeats ended because an STI expiry falls in the next scan: that scan runs the routine (its
+  // timer moves), so a probe of it would only find the change and make the next probe wait. It is
+  // executed without a probe, and the scan after it probes (ml1100_sti: two executed scans in each
+  // 10 ms period instead of three).
+  if (sti.file != 0 && t < end && t + d >= sti.due) probe_wait_ = std::max<std::uint32_t>(probe_wait_, 1);
   return 1 + taken;
 }
 

@@ -106,15 +106,23 @@ TEST(RepeatedScans, EveryShippedExampleGivesTheSameResultsWithAndWithoutThem) {
     // (addressing_faults, and appe_drive_parameter's N21:[N14:0] on a 1747-SDN), S:4/3
     // (ch4_m1_status) and a timed PID (pid_level, 84% in its first 10 s while its tank settles).
     const std::string name = p.parent_path().filename().string() + "/" + p.stem().string();
+    // So must the MicroLogix function-file examples (no pulses, no inputs, as sim_bench runs them),
+    // and ml1100_sti between its 10 ms expiries (two executed scans in about 36: the one its expiry
+    // falls in, then the probe).
     for (const char* must : {"micrologix/ml1100_conveyor", "automax/fig4_3_multibus_head", "faults/mfile_faults",
                              "1747-sn/ch5_directional", "1203-sm1/appb_messaging", "1747-sn/throughput_discrete",
-                             "faults/addressing_faults", "1747-sdn/appe_drive_parameter", "1747-sn/ch4_m1_status"}) {
+                             "faults/addressing_faults", "1747-sdn/appe_drive_parameter", "1747-sn/ch4_m1_status",
+                             "micrologix/ml1100_eii", "micrologix/ml1100_hsc", "micrologix/ml1100_pto",
+                             "micrologix/ml1100_datalog"}) {
       if (name == must) {
         EXPECT_GT(repeated, skipping.runtime().stats().scans * 9 / 10) << p;
       }
     }
     if (name == "pid/pid_level") {
       EXPECT_GT(repeated, skipping.runtime().stats().scans * 3 / 4) << p;
+    }
+    if (name == "micrologix/ml1100_sti") {
+      EXPECT_GT(repeated, skipping.runtime().stats().scans * 4 / 5) << p;
     }
   }
   EXPECT_GT(repeating, 5);
@@ -716,19 +724,26 @@ TEST(RepeatedScans, AnSnM0WriteOfANewValueIsNotRepeated) {
 // bound this fails (tried: the count lags). A rung-true STS restarts the timer every scan (RM
 // 11-16), so the STI never expires while B3:0/0 is set: the probe compares the timer, and without
 // that comparison this fails too (tried: the routine runs in the repeats' place).
+// The two STI tests' first phases: 50 slices of 17 ms with the STI timing (the routine counts its
+// runs in N7:0), then 20 with B3:0/0's rung-true STS restarting the timer every scan. Returns the
+// runs counted in the first phase.
+std::int64_t sti_timing_then_sts_every_scan(Controller& skipping, Controller& executing, const std::string& what) {
+  run_side_by_side(skipping, executing, 50, milliseconds(17), what + " timing");
+  const std::int64_t runs = skipping.get_int("N7:0");
+  EXPECT_GT(skipping.runtime().stats().repeated, skipping.runtime().stats().scans / 2) << what;
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
+  run_side_by_side(skipping, executing, 20, milliseconds(17), what + " STS every scan");
+  EXPECT_LE(skipping.get_int("N7:0"), runs + 1) << what << ": restarted every scan, the STI does not expire";
+  return runs;
+}
+
 TEST(RepeatedScans, AnStiRoutineRunsAtTheSameTimesWithRepeats) {
   const std::string text =
       "START 1747-L532\nLADDER 2\nSOR XIC S:1/15 STS 3 1 EOR\nSOR XIC B3:0/0 STS 3 1 EOR\nSOR XIC B3:0/1 STD EOR\n"
       "SOR XIO B3:0/1 STE EOR\nLADDER 3\nSOR INT ADD N7:0 1 N7:0 EOR\n";
   Controller skipping = Controller::from_text(text);
   Controller executing = Controller::from_text(text);
-  run_side_by_side(skipping, executing, 50, milliseconds(17), "STI timing");
-  const std::int64_t runs = skipping.get_int("N7:0");
-  EXPECT_GE(runs, 80);
-  EXPECT_GT(skipping.runtime().stats().repeated, skipping.runtime().stats().scans / 2);
-  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
-  run_side_by_side(skipping, executing, 20, milliseconds(17), "STS every scan");
-  EXPECT_LE(skipping.get_int("N7:0"), runs + 1) << "restarted every scan, the STI does not expire";
+  EXPECT_GE(sti_timing_then_sts_every_scan(skipping, executing, "STI"), 80);
   for (Controller* c : {&skipping, &executing}) {
     c->set("B3:0/0", 0);
     c->set("B3:0/1", 1);
@@ -821,6 +836,175 @@ TEST(RepeatedScans, AControllerWithPeersOnItsNetworkIsNotRepeated) {
   Controller alone = Controller::from_text(text);
   alone.run_for(milliseconds(500));
   EXPECT_GT(alone.runtime().stats().repeated, 0u);
+}
+
+// ---- The MicroLogix function files (docs/semantics.md "Repeated scans") ------------------------------
+
+// The MicroLogix STI (its function file, STI:0 .PFN 3, UIE and AS, .SPM 7 ms; 1763-RM001C p. 272:
+// "the PFN file is scanned at that interval") expires at known times like the SLC's: the scans
+// between its expiries repeat, the repeats end before the scan an expiry falls in, and the routine
+// counts the same runs with and without them (N7:0). Without that bound this fails (tried: the
+// count lags). A rung-true STS (B3:0/0, the MicroLogix form) restarts the timer every scan, so the
+// STI never expires while it holds: the probe compares the timer, and without that comparison this
+// fails (tried: the repeats leave the timer at the probe's restart, so once STS stops holding it the
+// expiries come earlier than without repeats, and the count differs when the held runs are
+// released). With UIE clear (B3:0/1) two expiries wait (UIP) and the third sets UIL (p. 270); the
+// routine runs both when UIE is set again.
+TEST(RepeatedScans, AMicroLogixStiRoutineRunsAtTheSameTimesWithRepeats) {
+  const std::string text =
+      "START Bul.1763\nLADDER 2\n"
+      "SOR XIC B3:0/0 STS 7 EOR\n"
+      "SOR XIC B3:0/1 OTU STI:0/UIE EOR\n"
+      "SOR XIO B3:0/1 OTL STI:0/UIE EOR\n"
+      "SOR XIC STI:0/UIL OTE B3:0/2 EOR\n"
+      "LADDER 3\nSOR ADD N7:0 1 N7:0 EOR\n"
+      "DATA STI:0\n     3      0 0X0022      7\n";
+  Controller skipping = Controller::from_text(text);
+  Controller executing = Controller::from_text(text);
+  // 850 ms at one run every 7 ms from entering Run: 121 runs.
+  EXPECT_EQ(sti_timing_then_sts_every_scan(skipping, executing, "ML STI"), 121);
+  for (Controller* c : {&skipping, &executing}) {
+    c->set("B3:0/0", 0);
+    c->set("B3:0/1", 1);
+  }
+  run_side_by_side(skipping, executing, 20, milliseconds(17), "ML STI held by UIE");
+  EXPECT_TRUE(skipping.get_bit("STI:0/UIP"));
+  EXPECT_TRUE(skipping.get_bit("B3:0/2")) << "a third expiry found two waiting: UIL";
+  const std::int64_t held = skipping.get_int("N7:0");
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/1", 0);
+  run_side_by_side(skipping, executing, 20, milliseconds(17), "ML STI released");
+  EXPECT_GE(skipping.get_int("N7:0"), held + 2) << "the two waiting runs, then the timed ones";
+}
+
+// The real-time clock's words (RTC:0.SEC) are read like any data-table word; they change only at a
+// whole second of virtual time (docs/semantics.md "Real-time clock"), and the repeats end before the
+// scan whose program scan starts in the next second. The program counts the second's changes
+// (N7:1) and copies the second (N7:0): one change a second, seen at the same scan with and without
+// repeats. Without that bound this fails (tried: N7:0 lags the clock at the end of a slice).
+TEST(RepeatedScans, ARealTimeClockReadSeesEverySecondWithRepeats) {
+  const std::string text =
+      "START Bul.1763\nLADDER 2\n"
+      "SOR NEQ RTC:0.SEC N7:0 BST MOV RTC:0.SEC N7:0 NXB ADD N7:1 1 N7:1 BND EOR\n"
+      "SOR EQU RTC:0.SEC 7 OTE B3:0/0 EOR\n";
+  Controller skipping = Controller::from_text(text);
+  Controller executing = Controller::from_text(text);
+  run_side_by_side(skipping, executing, 100, milliseconds(137), "RTC seconds");
+  // 13.7 s from 00:00:00 (softslc's power-up date): the clock shows 13, reached by 13 changes.
+  EXPECT_EQ(skipping.get_int("N7:0"), 13);
+  EXPECT_EQ(skipping.get_int("N7:1"), 13);
+  EXPECT_GT(skipping.runtime().stats().repeated, skipping.runtime().stats().scans * 9 / 10);
+}
+
+// An EII (EII:0: rising edge of I:0/0, UIE and AS, PFN 3) fires on an input edge, which reaches the
+// controller as an event (the input filter delay of `io ... input_delay`): a part shorter than a scan
+// rises and falls in the events between two scans, so the input image is the probe's again, but the
+// routine waits (1763-RM001C p. 275). The queued run stops the repeats; without that check this
+// fails (tried: the part is counted at the next probe, slices later).
+TEST(RepeatedScans, AnEiiEdgeArrivingBetweenRepeatsRunsItsRoutineAtTheSameScan) {
+  const std::string text =
+      "START Bul.1763\nLADDER 2\n"
+      "SOR MOV N7:0 N7:1 EOR\n"
+      "SOR XIC EII:0/UIL OTE B3:0/0 EOR\n"
+      "LADDER 3\nSOR ADD N7:0 1 N7:0 EOR\n"
+      "DATA EII0:0\n     3      0 0X4022      0\n";
+  const std::string bench = "io EYE slot=0 input_delay=3ms\n";
+  Controller skipping = Controller::from_text(text, bench);
+  Controller executing = Controller::from_text(text, bench);
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "EII idle");
+  const std::uint64_t idle = skipping.runtime().stats().repeated;
+  EXPECT_GT(idle, 0u);
+  for (int i = 0; i < 6; ++i) {
+    for (Controller* c : {&skipping, &executing}) {
+      c->inject("EYE", "input", {"1"});
+      c->inject("EYE", "input", {"0"});
+    }
+    run_side_by_side(skipping, executing, 4, milliseconds(11 + 2 * i), "EII short part " + std::to_string(i));
+  }
+  EXPECT_EQ(skipping.get_int("N7:0"), 6);
+  EXPECT_GT(skipping.runtime().stats().repeated, idle);
+}
+
+
+// The MicroLogix high-speed counter HSC:0 (mode 0, high preset 100, its interrupt file 3): with no
+// pulses arriving it counts nothing, and its program (FE, MD, SP, HSL, RAC, HSC:0.ACC) repeats; while
+// a pulse source runs (`device HSC0 pulses N`) the accumulator moves with virtual time, counted at
+// the start of each program scan (vm/ml_hsc.h), so nothing repeats, and the batches, the interrupt's
+// runs and the accumulator agree with executing every scan. Without the pulse check this fails
+// (tried: HSC:0.ACC lags, the scans between pulses repeat past the next ones). HSL (its presets
+// from N7:0/N7:1) and RAC (L9:0) held true load the same values every scan: they repeat once the
+// load is done, and counting on from them agrees.
+TEST(RepeatedScans, AMicroLogixHscCountsTheSamePulsesWithRepeats) {
+  const std::string text =
+      "START Bul.1763\nLADDER 2\n"
+      "SOR XIC B3:0/0 OTE HSC:0/FE EOR\n"
+      "SOR XIC HSC:0/MD BST ADD N7:2 1 N7:2 NXB OTU HSC:0/MD BND EOR\n"
+      "SOR XIC B3:0/1 HSL HSC0 N7:0 N7:1 1 0 EOR\n"
+      "SOR XIC B3:0/2 RAC HSC0 L9:0 EOR\n"
+      "SOR XIC B3:0/3 OTE HSC:0/SP EOR\n"
+      "SOR MOV HSC:0.ACC L9:1 EOR\n"
+      "LADDER 3\nSOR ADD N7:3 1 N7:3 EOR\n"
+      "DATA HSC:0\n     3      0 0X0002 0X000F      0\n"
+      "            0          100            0   2147483647  -2147483648\n     1      1      0\n"
+      "DATA N7:0\n 50 0\nDATA L9:0\n 7 0\n";
+  Controller skipping = Controller::from_text(text);
+  Controller executing = Controller::from_text(text);
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "HSC without pulses");
+  const std::uint64_t idle = skipping.runtime().stats().repeated;
+  EXPECT_GT(idle, skipping.runtime().stats().scans / 2);
+  for (Controller* c : {&skipping, &executing}) c->inject("HSC0", "pulses", {"1000"});
+  run_side_by_side(skipping, executing, 20, milliseconds(23), "HSC counting");
+  EXPECT_EQ(skipping.runtime().stats().repeated, idle) << "nothing repeats while pulses arrive";
+  // 460 ms at 1000 pulses a second (pulse k at k ms from the device step): 460 pulses, four high
+  // presets of 100 (mode 0 clears the accumulator there), counted at the start of the scan after each.
+  EXPECT_EQ(skipping.get_int("N7:2"), 4);
+  EXPECT_EQ(skipping.get_int("N7:3"), 4);
+  for (Controller* c : {&skipping, &executing}) c->inject("HSC0", "pulses", {"0"});
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "HSC stopped");
+  EXPECT_GT(skipping.runtime().stats().repeated, idle) << "stopped, the counter counts nothing";
+  for (Controller* c : {&skipping, &executing}) {
+    c->set("B3:0/1", 1);
+    c->set("B3:0/2", 1);
+  }
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "HSL and RAC held");
+  EXPECT_EQ(skipping.get_int("HSC:0.HIP"), 50);
+  EXPECT_EQ(skipping.get_int("L9:1"), 7);
+  for (Controller* c : {&skipping, &executing}) {
+    c->set("B3:0/2", 0);
+    c->inject("HSC0", "pulses", {"300"});
+  }
+  run_side_by_side(skipping, executing, 20, milliseconds(31), "HSC counting from RAC's 7 to HSL's 50");
+  // 620 ms at 300 a second: 186 pulses from 7, high presets at 43 and every 50 after: 3.
+  EXPECT_EQ(skipping.get_int("N7:2"), 4 + 3);
+}
+
+// A pulse train output (PTO:0: OUT 2, OF 20 Hz, TOP 30 pulses) runs in parallel with the scan: while
+// it runs, its scan brings OPP and the output level up to virtual time (1763-RM001C p. 129), so the
+// scans between two pulses differ although one changes nothing; idle, its scan follows its
+// function file and the rung alone. A move of 30 pulses at 20 Hz takes 1.5 s (1762-RM001C p. 6-12:
+// "an exact number of pulses"); the scans repeat before and after it and not during it. Without the
+// idle check this fails (tried: OPP lags through the repeats).
+TEST(RepeatedScans, AMicroLogixPtoMoveIsNeverSkippedOver) {
+  const std::string text =
+      "START Bul.1763\nLADDER 2\n"
+      "SOR XIC B3:0/0 PTO 0 EOR\n"
+      "SOR XIC B3:0/1 OTE PTO:0/CS EOR\n"
+      "SOR MOV PTO:0.OPP N7:0 EOR\n"
+      "SOR XIC PTO:0/DN OTE B3:0/2 EOR\n"
+      "DATA PTO0:0\n 2 0X0000 0 20 0 0 30 0 0\n";
+  Controller skipping = Controller::from_text(text);
+  Controller executing = Controller::from_text(text);
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "PTO idle");
+  const std::uint64_t idle = skipping.runtime().stats().repeated;
+  EXPECT_GT(idle, skipping.runtime().stats().scans / 2);
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
+  run_side_by_side(skipping, executing, 20, milliseconds(70), "PTO moving");
+  EXPECT_EQ(skipping.runtime().stats().repeated, idle) << "nothing repeats while the PTO runs";
+  EXPECT_TRUE(skipping.get_bit("PTO:0/RS"));
+  run_side_by_side(skipping, executing, 20, milliseconds(70), "PTO done");
+  EXPECT_EQ(skipping.get_int("N7:0"), 30);
+  EXPECT_TRUE(skipping.get_bit("B3:0/2"));
+  EXPECT_GT(skipping.runtime().stats().repeated, idle) << "done and idle, the scans repeat again";
 }
 
 }  // namespace

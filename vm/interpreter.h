@@ -214,6 +214,10 @@ class Interpreter {
   // (ModuleInstructionContext::now): a repeated scan cannot stand for such an instruction past an
   // event (docs/semantics.md "Repeated scans").
   std::uint64_t module_time_reads() const { return module_time_reads_; }
+  // How many times an event between scans changed a data-table word through the interpreter (an
+  // EII whose IS names no input sets ED and ER at an input edge): the repeats across events stop
+  // there, as they do for a field process's write (docs/semantics.md "Repeated scans").
+  std::uint64_t between_scan_writes() const { return between_scan_writes_; }
   // The earliest pid::Outcome::same_until of the PIDs executed since the last reset: repeated
   // scans end before it (docs/semantics.md "Repeated scans").
   VirtualTime pid_same_until() const { return pid_same_until_; }
@@ -511,6 +515,7 @@ class Interpreter {
   int io_requests_ = 0;                   // how many of io_requested_ are set
   std::uint64_t isr_runs_ = 0;
   std::uint64_t module_time_reads_ = 0;
+  std::uint64_t between_scan_writes_ = 0;
   VirtualTime pid_same_until_ = std::numeric_limits<VirtualTime>::max();
   int last_file_ = 2;
   int last_rung_ = -1;

@@ -761,7 +761,9 @@ void Interpreter::event_input(int slot, int word, std::uint16_t before, std::uin
     if (!((fn[eii::kBits] >> eii::kEventEnableBit) & 1u)) continue;
     const int input = static_cast<std::int16_t>(fn[eii::kInputSelect]);
     if (input < 0 || input > eii::kMaxInput) {
-      w_[e.element + eii::kBits] = static_cast<std::uint16_t>(fn[eii::kBits] | (1u << eii::kErrorBit));
+      const auto bits = static_cast<std::uint16_t>(fn[eii::kBits] | (1u << eii::kErrorBit));
+      if (fn[eii::kBits] != bits || fn[eii::kErrorCode] != eii::kErrorInvalidInput) ++between_scan_writes_;
+      w_[e.element + eii::kBits] = bits;
       w_[e.element + eii::kErrorCode] = eii::kErrorInvalidInput;
       continue;
     }

@@ -891,6 +891,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint64_t instructions = stats_.instructions;
   const std::uint64_t process_writes = process_writes_;
   const std::uint64_t module_time_reads = interp_->module_time_reads();
+  const std::uint64_t between_scan_writes = interp_->between_scan_writes();
   const StiTimer sti_before = interp_->sti();
   interp_->reset_pid_same_until();
   probing_ = true;
@@ -1020,7 +1021,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     taken += 1;
     events_at_last_scan_end_ = events_.run_until(t);
     if (mode_ != Mode::Run || fault_ || !interp_->nothing_pending_between_scans() || !modules_passive() ||
-        process_writes_ != process_writes || !probe_reads_the_same())
+        process_writes_ != process_writes || interp_->between_scan_writes() != between_scan_writes ||
+        !probe_reads_the_same())
       break;
   }
   // A probe that could take no scan (the next event or the STI was due within one) was an executed

@@ -924,6 +924,35 @@ TEST(RepeatedScans, AnEiiEdgeArrivingBetweenRepeatsRunsItsRoutineAtTheSameScan) 
   EXPECT_GT(skipping.runtime().stats().repeated, idle);
 }
 
+// An EII whose IS a tool has set to no embedded input (check refuses it in a program) meets an input
+// edge in the events between two repeats: the interpreter sets ED and ER 2 there, with no routine
+// queued and no input image changed (the part rises and falls between two scans). The repeats stop
+// at that write; without the check this fails (tried: N7:5, which counts the scans that see ED,
+// lags by the rest of the repeats).
+TEST(RepeatedScans, AnEiiErrorSetBetweenRepeatsStopsThem) {
+  const std::string text =
+      "START Bul.1763\nLADDER 2\n"
+      "SOR XIC EII:0/ED ADD N7:5 1 N7:5 EOR\n"
+      "LADDER 3\nSOR ADD N7:0 1 N7:0 EOR\n"
+      "DATA EII0:0\n     3      0 0X4022      0\n";
+  const std::string bench = "io EYE slot=0 input_delay=3ms\n";
+  Controller skipping = Controller::from_text(text, bench);
+  Controller executing = Controller::from_text(text, bench);
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "EII idle");
+  for (Controller* c : {&skipping, &executing}) c->set("EII:0.IS", 99);
+  run_side_by_side(skipping, executing, 5, milliseconds(100), "EII with a bad IS, idle");
+  const std::uint64_t idle = skipping.runtime().stats().repeated;
+  EXPECT_GT(idle, 0u);
+  for (Controller* c : {&skipping, &executing}) {
+    c->inject("EYE", "input", {"1"});
+    c->inject("EYE", "input", {"0"});
+  }
+  run_side_by_side(skipping, executing, 10, milliseconds(13), "EII error at the edge");
+  EXPECT_EQ(skipping.get_int("EII:0.ER"), 2);
+  EXPECT_GT(skipping.get_int("N7:5"), 0);
+  EXPECT_EQ(skipping.get_int("N7:0"), 0) << "no routine runs";
+}
+
 
 // The MicroLogix high-speed counter HSC:0 (mode 0, high preset 100, its interrupt file 3): with no
 // pulses arriving it counts nothing, and its program (FE, MD, SP, HSL, RAC, HSC:0.ACC) repeats; while

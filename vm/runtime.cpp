@@ -951,7 +951,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     return 1;
   }
   const std::uint64_t per_scan = stats_.instructions - instructions;
-  // A timed PID falls due at a known time: the repeats end with the last scan that ends before it.
+  // A timed PID falls due at a known time: the repeats end with the last scan that ends by it.
   const VirtualTime pid_until = interp_->pid_same_until();
   const bool pid_timing = pid_until != std::numeric_limits<VirtualTime>::max();
   const Nanoseconds scan_time = stats_.last;  // what the probe's housekeeping was given

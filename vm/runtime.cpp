@@ -192,11 +192,19 @@ bool reads_only_program_words(const Address& a, bool file_start) {
   return std::find(kRuntimeStatusWords.begin(), kRuntimeStatusWords.end(), a.element) == kRuntimeStatusWords.end();
 }
 
-bool elements_repeatable(const std::vector<RungElement>& elements, std::uint16_t& clock_bits) {
+// What the repeats need to know of the program besides whether it may repeat: the bits of S:4 it
+// reads (every bit when it reads the word), and the finest time base of its timers (1 ms when one
+// has the MicroLogix 0.001 s base: its stamp counts milliseconds; else the 10 ms tick).
+struct RepeatFacts {
+  std::uint16_t clock_bits = 0;
+  Nanoseconds timer_tick = kTick;
+};
+
+bool elements_repeatable(const std::vector<RungElement>& elements, RepeatFacts& facts) {
   for (const RungElement& e : elements) {
     if (e.kind == RungElement::Kind::Branch) {
       for (const auto& leg : e.legs)
-        if (!elements_repeatable(leg, clock_bits)) return false;
+        if (!elements_repeatable(leg, facts)) return false;
       continue;
     }
     const Opcode op = e.instruction.opcode;
@@ -205,46 +213,23 @@ bool elements_repeatable(const std::vector<RungElement>& elements, std::uint16_t
       return false;
     const InstructionSpec& sp = spec(e.instruction.opcode);
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
+      const Operand& operand = e.instruction.operands[i];
       const OperandSpec* os = i < sp.operand_count ? &sp.operands[i] : nullptr;
-      if (!reads_only_program_words(e.instruction.operands[i], os, clock_bits)) return false;
+      if (!reads_only_program_words(operand, os, facts.clock_bits)) return false;
+      if (os && os->kind == OperandKind::TimeBase && operand.kind == Operand::Kind::Float && operand.real < 0.005)
+        facts.timer_tick = kNsPerMs;
     }
   }
   return true;
 }
 
-// Whether the program's scans may repeat, and in `clock_bits` the bits of S:4 it reads.
-bool program_scans_repeatable(const Program& program, std::uint16_t& clock_bits) {
-  clock_bits = 0;
+// Whether the program's scans may repeat, and what `facts` the repeats need.
+bool program_scans_repeatable(const Program& program, RepeatFacts& facts) {
+  facts = {};
   for (const ProgramFile& f : program.files)
     for (const Rung& r : f.rungs)
-      if (!elements_repeatable(r.elements, clock_bits)) return false;
+      if (!elements_repeatable(r.elements, facts)) return false;
   return true;
-}
-
-// Whether a timer instruction among `elements` has the MicroLogix 0.001 s time base (its stamp
-// counts milliseconds, not 10 ms ticks).
-bool has_millisecond_timer(const std::vector<RungElement>& elements) {
-  for (const RungElement& e : elements) {
-    if (e.kind == RungElement::Kind::Branch) {
-      for (const auto& leg : e.legs)
-        if (has_millisecond_timer(leg)) return true;
-      continue;
-    }
-    const InstructionSpec& sp = spec(e.instruction.opcode);
-    for (std::size_t i = 0; i < e.instruction.operands.size() && i < sp.operand_count; ++i) {
-      const Operand& op = e.instruction.operands[i];
-      if (sp.operands[i].kind == OperandKind::TimeBase && op.kind == Operand::Kind::Float && op.real < 0.005)
-        return true;
-    }
-  }
-  return false;
-}
-
-Nanoseconds finest_timer_tick(const Program& program) {
-  for (const ProgramFile& f : program.files)
-    for (const Rung& r : f.rungs)
-      if (has_millisecond_timer(r.elements)) return kNsPerMs;
-  return kTick;
 }
 
 }  // namespace
@@ -296,8 +281,10 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   const std::vector<PeerController> peers = std::move(options.peers);
   r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
   Runtime& rt = *r.runtime;
-  rt.program_repeatable_ = program_scans_repeatable(program, rt.clock_bits_read_);
-  rt.timer_tick_ns_ = finest_timer_tick(program);
+  RepeatFacts facts;
+  rt.program_repeatable_ = program_scans_repeatable(program, facts);
+  rt.clock_bits_read_ = facts.clock_bits;
+  rt.timer_tick_ns_ = facts.timer_tick;
   rt.process_host_ = std::make_unique<ProcessHost>(rt);
   if (make_channel) {
     rt.ascii_channel_ = make_channel();

@@ -385,6 +385,15 @@ std::string function_file_hint(int id) {
   return " (" + std::string(function_file_name(id)) + " has " + function_sub_element_names(id) + ")";
 }
 
+// When a name written as a word (T4:0.DN) is one of the element's bits: how to write it instead.
+std::string bit_written_as_word_hint(const Address& a, std::string_view name) {
+  int word = 0, bit = 0;
+  const bool is_bit = is_function_file(a.type)  ? function_bit_number(a.file, name, word, bit)
+                      : is_message_file(a.type) ? message_bit_number(name, word, bit)
+                                                : structured_bit_number(a.type, name) >= 0;
+  return is_bit ? "; " + std::string(name) + " is a bit, written after '/' (T4:0/DN), not '.'" : "";
+}
+
 template <> struct action<word_name> {
   template <typename Input>
   static void apply(const Input& in, AddressBuilder& b) {
@@ -393,8 +402,8 @@ template <> struct action<word_name> {
       int w = function_word_number(id, in.string_view());
       if (w < 0)
         throw pegtl::parse_error("unknown sub-element '" + in.string() + "' of function file " +
-                                     std::string(function_file_name(id)) +
-                                     function_file_hint(id),
+                                     std::string(function_file_name(id)) + function_file_hint(id) +
+                                     bit_written_as_word_hint(b.a, in.string_view()),
                                  in);
       b.a.word = w;
       return;
@@ -402,7 +411,8 @@ template <> struct action<word_name> {
     if (is_message_file(b.a.type)) {
       const int w = message_word_number(in.string_view());
       if (w < 0)
-        throw pegtl::parse_error("unknown sub-element '" + in.string() + "' of an MG element (" + kMessageNames + ")",
+        throw pegtl::parse_error("unknown sub-element '" + in.string() + "' of an MG element (" + kMessageNames + ")" +
+                                     bit_written_as_word_hint(b.a, in.string_view()),
                                  in);
       b.a.word = w;
       return;
@@ -413,7 +423,7 @@ template <> struct action<word_name> {
       if (b.a.type == FileType::Timer || b.a.type == FileType::Counter) msg += " (timers and counters have PRE and ACC)";
       else if (b.a.type == FileType::Control) msg += " (control elements have LEN and POS)";
       else msg += " (named sub-elements exist only in T, C and R files)";
-      throw pegtl::parse_error(msg, in);
+      throw pegtl::parse_error(msg + bit_written_as_word_hint(b.a, in.string_view()), in);
     }
     b.a.word = w;
   }

@@ -117,6 +117,8 @@ struct StiTimer {
   VirtualTime due = 0;           // the next expiry, when file != 0
   std::uint16_t setpoint = 0;    // the S:30 (or .SPM) value the period was made from
   std::uint64_t runs = 0;        // STI routine executions since the runtime was created
+
+  bool operator==(const StiTimer&) const = default;
 };
 
 // The discrete input interrupt as the interpreter keeps it (RM 11-18 .. 11-26): the

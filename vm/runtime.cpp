@@ -903,9 +903,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // read, and would take every M0/M1 write it made without a change.
   // The STI timer: no expiry, no routine run, no STS restart during the probe.
   const StiTimer& sti = interp_->sti();
-  const bool sti_same = sti.file == sti_before.file && sti.period == sti_before.period &&
-                        sti.next_period == sti_before.next_period && sti.due == sti_before.due &&
-                        sti.setpoint == sti_before.setpoint && sti.runs == sti_before.runs;
+  const bool sti_same = sti == sti_before;
   bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti_same &&
                  interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
   // Alone on a MSG network: its end-of-scan servicing left nothing to send, and the repeats end

@@ -908,7 +908,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
                  interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
   // Alone on a MSG network: its end-of-scan servicing left nothing to send, and the repeats end
   // before the network's next change (quiet_until). A probe that started a message set its EN, one
-  // that aborted it its ER: the table shows both.
+  // that aborted it its ER: the table shows both. A MicroLogix 1000 MSG whose transmit buffer is busy
+  // only sets EW and leaves the network as it was, so its next scan does the same.
   std::optional<VirtualTime> network_quiet;
   if (network_) {
     network_quiet = network_->quiet_until(station_, t);

@@ -107,6 +107,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "vm/bytecode.h"
@@ -144,13 +145,17 @@ FusedRule fused_rule(Opcode op);
 
 // A subroutine call a run took itself and that had not returned when the run stopped (vm/fused.h,
 // "Calls"): the interpreter pushes a call frame for it, as its JSR handler would have.
+// No member initializers: run_routine holds a FusedCalls on its stack for every routine it runs,
+// and zeroing its sixteen calls cost about a hundred instructions a scan; a call is written whole
+// (execute's `calls.call[depth++] = {...}`) before it is read, and only call[0, depth) is read.
 struct FusedCall {
-  std::uint32_t ret = 0;      // code offset of the SOR (or EOF) after the JSR's rung
-  std::uint32_t file = 0;     // the calling file
-  std::uint32_t rung = 0;     // the JSR's rung number
-  std::int32_t ret_run = -1;  // the run starting at ret, or -1
-  std::uint32_t ret_words = 0;  // FusedProgram's: that run's first word-rung record, or kNoWordEntry
+  std::uint32_t ret;        // code offset of the SOR (or EOF) after the JSR's rung
+  std::uint32_t file;       // the calling file
+  std::uint32_t rung;       // the JSR's rung number
+  std::int32_t ret_run;     // the run starting at ret, or -1
+  std::uint32_t ret_words;  // FusedProgram's: that run's first word-rung record, or kNoWordEntry
 };
+static_assert(std::is_trivially_default_constructible_v<FusedCall>);
 // The call state a run shares with the interpreter's run_routine.
 struct FusedCalls {
   static constexpr unsigned kCapacity = 16;  // at least kMaxCallDepth (vm/interpreter.cpp checks)

@@ -872,6 +872,18 @@ bool Runtime::probe_reads_the_same() {
   return inputs_scratch_ == probe_inputs_;
 }
 
+// After a probe that repeated nothing. A change the program makes itself — a message started, its
+// reply taken, its EN cleared — often lasts a few scans in a row and then settles, so the next
+// probes follow at once until kProbesBeforeBackoff have failed in a row (a probe costs the saving and
+// comparing of the table, a few hundred instructions beside an executed scan's thousands). After
+// that the wait doubles with each failure, to 64 scans: a program that changes its table every
+// scan, or whose network has an event at the end of most scans, pays for a probe at most every 64.
+void Runtime::probe_failed() {
+  if (++probe_failures_ < kProbesBeforeBackoff) return;
+  probe_wait_ = probe_backoff_;
+  probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
+}
+
 std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   before_probe_.assign(data_.words(), data_.words() + data_.size());
   const VirtualTime start = clock_.now();
@@ -932,8 +944,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   if (repeats && events_at_last_scan_end_ != 0)
     repeats = across_events && process_writes_ == process_writes && probe_reads_the_same();
   if (!repeats) {
-    probe_wait_ = probe_backoff_;
-    probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
+    probe_failed();
     return 1;
   }
   const std::uint64_t per_scan = stats_.instructions - instructions;
@@ -1011,14 +1022,16 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
         !probe_reads_the_same())
       break;
   }
-  // A probe that could take no scan (the next event or the STI was due within one) was an executed
-  // scan like any other, but its saving and comparing of the table was wasted: the wait before the
-  // next probe grows as after a change (a 1747-SDN program with a DEM, whose network has an event
-  // at the end of most scans, probes much less often).
+  // A probe that could take no scan (the next event, a timer's tick or the STI was due within one)
+  // was an executed scan like any other, but its saving and comparing of the table was wasted: it
+  // counts as a failure (a 1747-SDN program with a DEM, whose network has an event at the end of
+  // most scans, probes much less often), and the next scan, the one that reaches the event, is
+  // executed without a probe.
   if (taken == 0) {
-    probe_wait_ = probe_backoff_;
-    probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
+    probe_failed();
+    probe_wait_ = std::max<std::uint32_t>(probe_wait_, 1);
   } else {
+    probe_failures_ = 0;
     probe_backoff_ = 1;
   }
   // The repeats ended because an STI expiry falls in the next scan: that scan runs the routine (its

@@ -260,6 +260,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // due) are taken without executing them. Returns the scans run and taken.
   bool probe_due();
   std::int64_t probe_and_repeat(VirtualTime end);
+  void probe_failed();
   // Every scanned module says it is passive (Module::passive).
   bool modules_passive() const;
   // During a probe: notes a module the program reaches (its count before the first access).
@@ -342,7 +343,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::int64_t s4_tick_ = 0;  // tick count when S:4 was last advanced
   // Repeated scans: the program allows them (every instruction and operand, set by create), tools
   // allow them, scans left before the next probe and the wait after a probe that found a change
-  // (doubling to 64, so a busy program pays for a probe at most every 64 scans), the table saved
+  // (none for the first three failures in a row, then doubling to 64, so a busy program pays for a
+  // probe at most every 64 scans: probe_failed), the table saved
   // before the probe, and the time from a scan's start to its program scan (for S:4).
   bool program_repeatable_ = false;
   // The bits of the free-running clock S:4 the program reads (every bit when it reads the word):
@@ -354,6 +356,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   Nanoseconds timer_tick_ns_ = kTick;
   std::uint32_t probe_wait_ = 0;
   std::uint32_t probe_backoff_ = 1;
+  std::uint32_t probe_failures_ = 0;  // probes in a row that repeated nothing (probe_failed)
+  static constexpr std::uint32_t kProbesBeforeBackoff = 4;
   std::vector<std::uint16_t> before_probe_;
   Nanoseconds input_scan_ns_ = 0;
   std::size_t events_at_last_scan_end_ = 0;  // events the last scan cycle ran at its end

@@ -229,9 +229,10 @@ class Interpreter {
   MicroLogixHsc& hsc() { return hsc_; }
   const MicroLogixHsc& hsc() const { return hsc_; }
   // Nothing can run or become due between scans and at the next rung starts but an STI expiry at
-  // its known time (sti().due): no STI expiry waiting, no DII, ISR or ASCII port, no EII or HSC
-  // interrupt queued, no HSC pulses arriving, no PTO running. One of the conditions under which the
-  // runtime may skip scans that repeat the last one (docs/semantics.md "Repeated scans").
+  // its known time (sti().due): no STI expiry waiting, no DII or ISR, no EII or HSC interrupt
+  // queued, no HSC pulses arriving, no PTO running (an ASCII port acts in its events). One of the
+  // conditions under which the runtime may skip scans that repeat the last one (docs/semantics.md
+  // "Repeated scans").
   bool nothing_pending_between_scans() const;
   // The fault configure_sti raised.
   const FaultInfo& last_fault() const { return fault_; }

@@ -697,10 +697,11 @@ bool Interpreter::nothing_pending_between_scans() const {
   // known times (sti_.due), which the runtime bounds the repeats by, and a probe that moved the timer
   // (an expiry, an STS) is not repeated; a MicroLogix expiry waiting for UIE (sti_queued_) vetoes.
   // An HSC with no pulses arriving counts nothing (its loads by SP, HSL and RAC take the table's
-  // values, the same in every repeat), and an idle PTO's scan follows the table alone.
+  // values, the same in every repeat), and an idle PTO's scan follows the table alone. An ASCII
+  // port acts between scans only in its events (vm/runtime.cpp acts_through_the_ascii_port).
   const bool no_isr = std::all_of(isr_file_.begin(), isr_file_.end(), [](int f) { return f == 0; });
   return sti_queued_ == 0 && dii_.file == 0 && no_isr && events_queued_ == 0 && !hsc_.pulses_arriving() &&
-         pulse_trains_.idle() && ascii_port_ == nullptr && coverage_ == nullptr;
+         pulse_trains_.idle() && coverage_ == nullptr;
 }
 
 const EventInterrupt* Interpreter::event_interrupt(bool counter, int number) const {

@@ -51,10 +51,11 @@ constexpr std::array<int, 6> kRuntimeStatusWords = {status::kWatchdog, status::k
 // processor when its rung is true (the probe is then not in Run) and does nothing otherwise; INT
 // marks an interrupt routine; STD and STE set or clear S:2/1; STS writes S:30, S:31 and S:2 and
 // restarts the SLC's STI timer, which the probe compares (a rung-true STS moves the timer's due
-// time every scan, so its probe is not repeated). The MicroLogix function-file instructions are
-// listed apart (acts_on_a_micrologix_function_file). Everything else — I/O, modules, messages,
-// interrupts, ASCII, PID, the clocks — and any instruction added later rules repeats out until it
-// is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
+// time every scan, so its probe is not repeated). The string instructions (ACI ACN AEX AIC ASC
+// ASR) read and write strings in the table and S:5/15. The MicroLogix function-file instructions
+// and the ASCII channel instructions are listed apart (acts_on_a_micrologix_function_file,
+// acts_through_the_ascii_port). Everything else — I/O, modules, messages, interrupts, ACL, PID, the
+// clocks — and any instruction added later rules repeats out until it is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
 bool acts_on_the_table_alone(Opcode op) {
   switch (op) {
     case Opcode::XIC: case Opcode::XIO: case Opcode::OTE: case Opcode::OTL: case Opcode::OTU:
@@ -75,6 +76,7 @@ bool acts_on_the_table_alone(Opcode op) {
     case Opcode::END: case Opcode::TND: case Opcode::MCR:
     case Opcode::CPT: case Opcode::RPC: case Opcode::DLG:
     case Opcode::SUS: case Opcode::INT: case Opcode::STD: case Opcode::STE: case Opcode::STS:
+    case Opcode::ACI: case Opcode::ACN: case Opcode::AEX: case Opcode::AIC: case Opcode::ASC: case Opcode::ASR:
       return true;
     default:
       return false;
@@ -91,6 +93,24 @@ bool acts_on_the_table_alone(Opcode op) {
 // and nothing repeats while one runs (Interpreter::nothing_pending_between_scans).
 bool acts_on_a_micrologix_function_file(Opcode op) {
   return op == Opcode::STS_ML || op == Opcode::HSL || op == Opcode::RAC || op == Opcode::PTO || op == Opcode::PTOX;
+}
+
+// The channel instructions but ACL: they act on their control element and, on a scan that finds
+// their rung true and EN clear (or EN set and nothing queued: the queue was full), queue a job on
+// the ASCII port; the control element then changes (EN, EU or IN, DN or ER), so a probe that queued
+// one is not repeated. What the port does later — characters sent and received, a job finished —
+// happens in its events and writes the table through the process host, which the repeats stop at
+// (docs/semantics.md "Repeated scans"). ACL is left out: a true ACL empties the receive buffer at
+// every scan without a change in the table, so characters arriving between repeats would stay
+// where executed scans would have removed them.
+bool acts_through_the_ascii_port(Opcode op) {
+  switch (op) {
+    case Opcode::ABL: case Opcode::ACB: case Opcode::AHL: case Opcode::ARD: case Opcode::ARL: case Opcode::AWA:
+    case Opcode::AWT:
+      return true;
+    default:
+      return false;
+  }
 }
 
 // The specialty-module instructions: they act through the module in their slot, which a probe then
@@ -209,7 +229,8 @@ bool elements_repeatable(const std::vector<RungElement>& elements, RepeatFacts& 
     }
     const Opcode op = e.instruction.opcode;
     if (!acts_on_the_table_alone(op) && !acts_through_a_module(op) && !acts_through_the_network(op) &&
-        !acts_on_the_table_until_a_known_time(op) && !acts_on_a_micrologix_function_file(op))
+        !acts_on_the_table_until_a_known_time(op) && !acts_on_a_micrologix_function_file(op) &&
+        !acts_through_the_ascii_port(op))
       return false;
     const InstructionSpec& sp = spec(e.instruction.opcode);
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {

@@ -192,6 +192,51 @@ TEST(RepeatedScans, ProbesFollowAtOnceAfterAFewChangingScans) {
   EXPECT_EQ((after.scans - before.scans) - (after.repeated - before.repeated), 4u);
 }
 
+// The ASCII port (vm/ascii_channel.h) acts between scans only in its events: an ARL waiting for its
+// line lets the scans repeat, and the characters arriving one by one, its POS "continuously
+// updated" and its DN stop them where executed scans would see each change.
+TEST(RepeatedScans, AnAsciiReadWaitingForItsLineRepeatsUntilTheCharactersArrive) {
+  const std::string text =
+      "START 1747-L532\nLADDER 2\nSOR XIC B3:0/0 ARL 0 ST10:0 R6:0 82 0 EOR\n"
+      "SOR XIC R6:0/DN ACI ST10:0 N7:0 EOR\nDATA ST10:0\n";
+  const std::string bench = "serial SCALE baud=9600 termination=CR append=CRLF eol=CR\n";
+  Controller skipping = Controller::from_text(text, bench);
+  Controller executing = Controller::from_text(text, bench);
+  run_side_by_side(skipping, executing, 5, milliseconds(10), "port idle");
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
+  run_side_by_side(skipping, executing, 10, milliseconds(10), "ARL waiting");
+  const std::uint64_t waiting = skipping.runtime().stats().repeated;
+  EXPECT_GT(waiting, skipping.runtime().stats().scans / 2);
+  for (Controller* c : {&skipping, &executing}) c->inject("SCALE", "send", {"W", "00125"});
+  run_side_by_side(skipping, executing, 10, milliseconds(3), "line arriving");
+  EXPECT_EQ(skipping.get_int("N7:0"), 125);
+  EXPECT_EQ(skipping.get_int("R6:0.POS"), 8);
+}
+
+// A true ACL empties the receive buffer at every scan without a change in the table: characters
+// arriving between repeats would stay in the buffer where executed scans remove them, so a program
+// with ACL is never repeated. Here "HELLO" CR arrives while ACL clears the buffer at every scan;
+// then the ARL rung (before the ACL rung) is made true and reads what the buffer holds: nothing,
+// so it waits for a line. With ACL among the port's instructions this fails (tried: the line
+// arrives between repeats and the ARL reads it, DN and POS 6, only with repeats).
+TEST(RepeatedScans, AProgramWithAclIsNeverRepeated) {
+  const std::string text =
+      "START 1747-L532\nLADDER 2\nSOR XIC B3:0/1 ARL 0 ST10:0 R6:0 82 0 EOR\n"
+      "SOR XIC B3:0/0 ACL 0 0 1 EOR\nDATA ST10:0\n";
+  const std::string bench = "serial SCALE baud=9600 termination=CR append=CRLF eol=CR\n";
+  Controller skipping = Controller::from_text(text, bench);
+  Controller executing = Controller::from_text(text, bench);
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
+  run_side_by_side(skipping, executing, 2, milliseconds(5), "ACL clearing");
+  for (Controller* c : {&skipping, &executing}) c->inject("SCALE", "send", {"HELLO"});
+  run_side_by_side(skipping, executing, 1, milliseconds(10), "characters arriving, cleared");
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/1", 1);
+  run_side_by_side(skipping, executing, 2, milliseconds(5), "ARL");
+  EXPECT_EQ(skipping.get_int("R6:0.POS"), 0) << "the buffer was cleared";
+  EXPECT_FALSE(skipping.get_bit("R6:0/DN"));
+  EXPECT_EQ(skipping.runtime().stats().repeated, 0u);
+}
+
 // An input whose change reaches the input image after the module's input delay is an event: the
 // skip stops before it, and the program sees the input at the same scan as without the skip.
 TEST(RepeatedScans, AnInputArrivingAfterItsDelayStopsTheRepeats) {

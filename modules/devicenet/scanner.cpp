@@ -174,15 +174,20 @@ const ScanlistEntry& Scanner::entry(int node) const {
 
 // ---- events -----------------------------------------------------------------------------------------
 
-void Scanner::at(VirtualTime t, std::function<void()> fn) {
-  net_.timeline().schedule_at(t, [fn = std::move(fn)](VirtualTime) { fn(); },
+template <class F>
+void Scanner::at(VirtualTime t, F&& fn) {
+  net_.timeline().schedule_at(t, [fn = std::forward<F>(fn)](VirtualTime) mutable { fn(); },
                               reinterpret_cast<Timeline::Owner>(this));
 }
 
-void Scanner::at_running(VirtualTime t, std::uint64_t gen, std::function<void()> fn) {
-  at(t, [this, gen, fn = std::move(fn)] {
-    if (gen == generation_ && port_ == Port::Running) fn();
-  });
+template <class F>
+void Scanner::at_running(VirtualTime t, std::uint64_t gen, F&& fn) {
+  net_.timeline().schedule_at(
+      t,
+      [this, gen, fn = std::forward<F>(fn)](VirtualTime) mutable {
+        if (gen == generation_ && port_ == Port::Running) fn();
+      },
+      reinterpret_cast<Timeline::Owner>(this));
 }
 
 void Scanner::trace(const std::string& what) {
@@ -390,7 +395,7 @@ void Scanner::cycle(std::uint64_t gen) {
     cursor += io_message_time(baud, static_cast<int>(message.size()));
     const VirtualTime request_end = cursor;
     last_request = request_end;
-    at_running(request_end, gen, [this, bits] {
+    at_running(request_end, gen, [this, bits = std::move(bits)] {
       for (const auto& [n, b] : bits) deliver(n, IoType::Strobe, b);
     });
     for (int n : strobed) {
@@ -607,7 +612,7 @@ void Scanner::on_input_changed(int node) {
   });
 }
 
-void Scanner::deliver(int node, IoType t, Bytes data) {
+void Scanner::deliver(int node, IoType t, const Bytes& data) {
   NodeState& s = nodes_[static_cast<std::size_t>(node)];
   if (s.phase != Phase::Connected) return;
   if (SimDevice* d = net_.device(node)) d->consume(t, data);

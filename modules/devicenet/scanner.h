@@ -210,7 +210,7 @@ class Scanner : public NetworkObserver {
   void begin_connect(int node);
   void finish_connect(int node);
   void receive(int node, IoType t);
-  void deliver(int node, IoType t, Bytes data);
+  void deliver(int node, IoType t, const Bytes& data);
   void fail_node(int node, int code, bool autoverify);
   void schedule_watchdog(int node);
   void schedule_periodic(int node, IoType t);
@@ -240,9 +240,13 @@ class Scanner : public NetworkObserver {
   void set_autoscan(bool enabled);
 
   // Events. at() schedules on the network's timeline under this scanner's owner tag; at_running()
-  // also drops the work if the port has stopped (or restarted) since it was scheduled.
-  void at(VirtualTime t, std::function<void()> fn);
-  void at_running(VirtualTime t, std::uint64_t gen, std::function<void()> fn);
+  // also drops the work if the port has stopped (or restarted) since it was scheduled. Templates
+  // (defined in scanner.cpp, their only user) so that `fn` lands in the timeline's callback as it
+  // is, without a std::function around it.
+  template <class F>
+  void at(VirtualTime t, F&& fn);
+  template <class F>
+  void at_running(VirtualTime t, std::uint64_t gen, F&& fn);
   VirtualTime now() const { return net_.now(); }
   void flush_();
   void reboot();

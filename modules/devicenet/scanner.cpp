@@ -1,6 +1,7 @@
 #include "modules/devicenet/scanner.h"
 
 #include <algorithm>
+#include <bit>
 
 namespace softslc::devicenet {
 
@@ -146,6 +147,7 @@ void Scanner::release_nodes() {
     s.connections = connections;
     s.explicit_in_flight = in_flight;  // its attempt events still complete it
   }
+  listed_ = 0;
 }
 
 void Scanner::rebuild_nodes() {
@@ -166,6 +168,13 @@ void Scanner::rebuild_nodes() {
     s.phase = Phase::Illegal;
     s.code = static_cast<int>(SdnCode::IllegalScanlistData);
   }
+  refresh_listed();
+}
+
+void Scanner::refresh_listed() {
+  listed_ = 0;
+  for (int n = 0; n < kNodeCount; ++n)
+    if (nodes_[static_cast<std::size_t>(n)].phase != Phase::Unlisted) listed_ |= std::uint64_t{1} << n;
 }
 
 const ScanlistEntry& Scanner::entry(int node) const {
@@ -349,9 +358,9 @@ void Scanner::cycle(std::uint64_t gen) {
   const Baud baud = config_.baud;
 
   // 1. Connection timeouts: no packet for 4 x EPR.
-  for (int n = 0; n < kNodeCount; ++n) {
+  for_listed([&](int n) {
     NodeState& s = nodes_[static_cast<std::size_t>(n)];
-    if (s.phase != Phase::Connected) continue;
+    if (s.phase != Phase::Connected) return;
     const ScanlistEntry& e = entry(n);
     for (IoType t : kIoTypes) {
       const ConnectionConfig& c = e.conn(t);
@@ -360,12 +369,12 @@ void Scanner::cycle(std::uint64_t gen) {
         break;
       }
     }
-  }
+  });
   // 2. Connection attempts.
-  for (int n = 0; n < kNodeCount; ++n) {
+  for_listed([&](int n) {
     const NodeState& s = nodes_[static_cast<std::size_t>(n)];
     if (s.phase == Phase::Waiting && s.retry_at <= t0) begin_connect(n);
-  }
+  });
   // 3. AutoScan.
   if (autoscan_active() && !probe_busy_) autoscan_probe(gen);
 
@@ -374,68 +383,67 @@ void Scanner::cycle(std::uint64_t gen) {
   VirtualTime cursor = t0;
   std::optional<VirtualTime> last_request;
 
-  std::vector<int> strobed;
-  for (int n = 0; n < kNodeCount; ++n)
-    if (node_scanned(n) && entry(n).conn(IoType::Strobe).enabled) strobed.push_back(n);
-  if (!strobed.empty()) {
-    // The bit-strobe request: 64 bits, bit n for node n (appendix A, p.118); zero-length in Idle.
-    std::vector<std::pair<int, Bytes>> bits;
-    Bytes message;
-    if (run) message.assign(8, 0);
-    for (int n : strobed) {
-      Bytes b;
-      if (run) {
-        const bool on = entry(n).conn(IoType::Strobe).tx == 1 && !sample_outputs(n, IoType::Strobe).empty() &&
-                        (sample_outputs(n, IoType::Strobe)[0] & 1) != 0;
-        b.push_back(on ? 1 : 0);
-        if (on) message[static_cast<std::size_t>(n / 8)] |= static_cast<std::uint8_t>(1u << (n % 8));
-      }
-      bits.emplace_back(n, std::move(b));
-    }
-    cursor += io_message_time(baud, static_cast<int>(message.size()));
+  std::uint64_t strobed = 0;
+  for_listed([&](int n) {
+    if (node_scanned(n) && entry(n).conn(IoType::Strobe).enabled) strobed |= std::uint64_t{1} << n;
+  });
+  if (strobed != 0) {
+    // The bit-strobe request: 64 bits, bit n for node n (appendix A, p.118), so `on` is the
+    // message itself; zero-length in Idle. Each strobed node gets its bit as one byte (Run) or
+    // nothing (Idle).
+    std::uint64_t on = 0;
+    if (run)
+      for_each_node(strobed, [&](int n) {
+        if (entry(n).conn(IoType::Strobe).tx != 1) return;
+        const Bytes out = sample_outputs(n, IoType::Strobe);
+        if (!out.empty() && (out[0] & 1) != 0) on |= std::uint64_t{1} << n;
+      });
+    cursor += io_message_time(baud, run ? 8 : 0);
     const VirtualTime request_end = cursor;
     last_request = request_end;
-    at_running(request_end, gen, [this, bits = std::move(bits)] {
-      for (const auto& [n, b] : bits) deliver(n, IoType::Strobe, b);
+    at_running(request_end, gen, [this, strobed, on, run] {
+      for_each_node(strobed, [&](int n) {
+        const std::uint8_t bit = (on >> n) & 1u;
+        deliver(n, IoType::Strobe, run ? std::span<const std::uint8_t>(&bit, 1) : std::span<const std::uint8_t>());
+      });
     });
-    for (int n : strobed) {
+    for_each_node(strobed, [&](int n) {
       const SimDevice* d = net_.device(n);
-      const auto answer = d != nullptr ? d->produce(IoType::Strobe) : std::nullopt;
-      if (!answer) continue;
-      cursor = std::max(cursor, request_end + d->model().io_response_time) +
-               io_message_time(baud, static_cast<int>(answer->size()));
+      const auto answer = d != nullptr ? d->produced_length(IoType::Strobe) : std::nullopt;
+      if (!answer) return;
+      cursor = std::max(cursor, request_end + d->model().io_response_time) + io_message_time(baud, *answer);
       at_running(cursor, gen, [this, n] { receive(n, IoType::Strobe); });
-    }
+    });
   }
 
   const bool background_due = background_count_ % config_.background_poll_ratio == 0;
   background_count_ = (background_count_ + 1) % config_.background_poll_ratio;
-  for (int n = 0; n < kNodeCount; ++n) {
-    if (!node_scanned(n)) continue;
+  for_listed([&](int n) {
+    if (!node_scanned(n)) return;
     const ConnectionConfig& c = entry(n).conn(IoType::Poll);
-    if (!c.enabled || (c.background && !background_due)) continue;
+    if (!c.enabled || (c.background && !background_due)) return;
     Bytes out = run ? sample_outputs(n, IoType::Poll) : Bytes{};
     cursor += io_message_time(baud, static_cast<int>(out.size()));
     last_request = cursor;
     at_running(cursor, gen, [this, n, out = std::move(out)] { deliver(n, IoType::Poll, out); });
     const SimDevice* d = net_.device(n);
-    const auto answer = d != nullptr ? d->produce(IoType::Poll) : std::nullopt;
-    if (!answer) continue;
-    cursor += d->model().io_response_time + io_message_time(baud, static_cast<int>(answer->size()));
+    const auto answer = d != nullptr ? d->produced_length(IoType::Poll) : std::nullopt;
+    if (!answer) return;
+    cursor += d->model().io_response_time + io_message_time(baud, *answer);
     at_running(cursor, gen, [this, n] { receive(n, IoType::Poll); });
-  }
+  });
 
   // Change-of-state outputs go out when they change (and on every heartbeat, schedule_periodic).
-  for (int n = 0; n < kNodeCount; ++n) {
-    if (!node_scanned(n) || !entry(n).conn(IoType::Cos).enabled) continue;
+  for_listed([&](int n) {
+    if (!node_scanned(n) || !entry(n).conn(IoType::Cos).enabled) return;
     NodeState& s = nodes_[static_cast<std::size_t>(n)];
     Bytes out = run ? sample_outputs(n, IoType::Cos) : Bytes{};
-    if (s.cos_sent && out == s.last_cos_out) continue;
+    if (s.cos_sent && out == s.last_cos_out) return;
     s.last_cos_out = out;
     s.cos_sent = true;
     const VirtualTime t = t0 + io_message_time(baud, static_cast<int>(out.size()));
     at_running(t, gen, [this, n, out = std::move(out)] { deliver(n, IoType::Cos, out); });
-  }
+  });
 
   const VirtualTime scan_end = cursor;
   at_running(scan_end, gen, [this, gen] { end_of_scan(gen); });
@@ -586,8 +594,8 @@ void Scanner::schedule_periodic(int node, IoType t) {
     });
     // The device's heartbeat or cyclic production.
     if (const SimDevice* d = net_.device(node)) {
-      if (const auto answer = d->produce(t)) {
-        const VirtualTime arrives = now() + d->model().io_response_time + io_message_time(baud, static_cast<int>(answer->size()));
+      if (const auto answer = d->produced_length(t)) {
+        const VirtualTime arrives = now() + d->model().io_response_time + io_message_time(baud, *answer);
         at_running(arrives, gen, [this, node, t, epoch] {
           if (nodes_[static_cast<std::size_t>(node)].epoch == epoch) receive(node, t);
         });
@@ -602,17 +610,16 @@ void Scanner::on_input_changed(int node) {
   if (!entry(node).conn(IoType::Cos).enabled) return;
   const SimDevice* d = net_.device(node);
   if (d == nullptr) return;
-  const auto answer = d->produce(IoType::Cos);
+  const auto answer = d->produced_length(IoType::Cos);
   if (!answer) return;
   const std::uint64_t epoch = nodes_[static_cast<std::size_t>(node)].epoch;
-  const VirtualTime arrives =
-      now() + d->model().io_response_time + io_message_time(config_.baud, static_cast<int>(answer->size()));
+  const VirtualTime arrives = now() + d->model().io_response_time + io_message_time(config_.baud, *answer);
   at_running(arrives, generation_, [this, node, epoch] {
     if (nodes_[static_cast<std::size_t>(node)].epoch == epoch) receive(node, IoType::Cos);
   });
 }
 
-void Scanner::deliver(int node, IoType t, const Bytes& data) {
+void Scanner::deliver(int node, IoType t, std::span<const std::uint8_t> data) {
   NodeState& s = nodes_[static_cast<std::size_t>(node)];
   if (s.phase != Phase::Connected) return;
   if (SimDevice* d = net_.device(node)) d->consume(t, data);
@@ -623,16 +630,18 @@ void Scanner::receive(int node, IoType t) {
   NodeState& s = nodes_[static_cast<std::size_t>(node)];
   if (s.phase != Phase::Connected) return;
   const SimDevice* d = net_.device(node);
-  const auto data = d != nullptr ? d->produce(t) : std::nullopt;
-  if (!data) return;  // silent: the connection timeout notices
+  // produce(t) without building it: the length, and the input image whose first bytes it carries
+  // (bytes past the image are zeros, which map_inputs reads for bytes past the span).
+  const auto length = d != nullptr ? d->produced_length(t) : std::nullopt;
+  if (!length) return;  // silent: the connection timeout notices
   s.last_rx[static_cast<std::size_t>(t)] = now();
-  if (data->empty()) {
+  if (*length == 0) {
     if (!s.idle) trace("node " + std::to_string(node) + " idle");
     s.idle = true;
     s.active = true;
     return;
   }
-  if (static_cast<int>(data->size()) != entry(node).conn(t).rx) {
+  if (*length != entry(node).conn(t).rx) {
     fail_node(node, static_cast<int>(SdnCode::RuntimeSizeError), false);
     return;
   }
@@ -641,7 +650,8 @@ void Scanner::receive(int node, IoType t) {
   s.active = true;
   s.failed = false;
   s.code = 0;
-  map_inputs(node, t, *data);
+  const Bytes& image = d->inputs();
+  map_inputs(node, t, std::span<const std::uint8_t>(image).first(std::min(image.size(), static_cast<std::size_t>(*length))));
 }
 
 // ---- mapping ------------------------------------------------------------------------------------------
@@ -708,12 +718,12 @@ std::array<std::uint16_t, layout::kImageWords> Scanner::input_image() const {
 
 std::uint16_t Scanner::status_register() const {
   std::uint16_t w = command_error_ ? 0 : static_cast<std::uint16_t>(command_word_ & kEchoedCommandBits);
-  // Built every input scan: ORs without a branch per node (64 nodes).
+  // Built every input scan. Only a listed node can be failed (release_nodes resets an unlisted one).
   bool any_failed = false, any_autoverify = false;
-  for (const auto& s : nodes_) {
-    any_failed |= s.failed;
-    any_autoverify |= s.autoverify;
-  }
+  for_listed([&](int n) {
+    any_failed |= nodes_[static_cast<std::size_t>(n)].failed;
+    any_autoverify |= nodes_[static_cast<std::size_t>(n)].autoverify;
+  });
   if (any_failed) w |= bit(StatusBit::DeviceFailure);
   if (any_autoverify) w |= bit(StatusBit::AutoverifyFailure);
   const bool no_partner = (port_ == Port::Initializing && transmit_failed_) ||
@@ -795,9 +805,10 @@ int Scanner::node_code(int n) const {
 }
 
 int Scanner::lowest_node_problem(int& node) const {
-  for (int n = 0; n < kNodeCount; ++n)
-    if (int code = node_code(n)) {
-      node = n;
+  // An unlisted node has no code (release_nodes resets it), so the listed ones, lowest first.
+  for (std::uint64_t m = listed_; m != 0; m &= m - 1)
+    if (int code = node_code(std::countr_zero(m))) {
+      node = std::countr_zero(m);
       return code;
     }
   return 0;
@@ -825,9 +836,7 @@ std::uint16_t Scanner::node_status_word() const {
   if (const int code = lowest_node_problem(node)) return static_cast<std::uint16_t>(node << 8 | code);
   if (init_remaining_ > 0) return module(static_cast<int>(SdnCode::Initializing));
   if (config_.autoscan) return module(static_cast<int>(SdnCode::AutoScanActive));
-  bool any_entry = false;
-  for (const auto& s : nodes_) any_entry = any_entry || s.phase != Phase::Unlisted;
-  if (!any_entry) return module(static_cast<int>(SdnCode::NoTraffic));
+  if (listed_ == 0) return module(static_cast<int>(SdnCode::NoTraffic));
   if (!in_run()) return module(static_cast<int>(SdnCode::Idle));
   return module(addr);
 }
@@ -953,7 +962,10 @@ std::optional<ResponseBlock> Scanner::completed_response(std::uint8_t txid) cons
 }
 
 void Scanner::send_explicit(VirtualTime& cursor, std::uint64_t gen) {
-  for (int n = 0; n < kNodeCount; ++n) {
+  // Only a listed node has requests queued (handle_request queues for connected nodes; release_nodes
+  // empties the queues of the nodes it unlists).
+  for (std::uint64_t m = listed_; m != 0; m &= m - 1) {
+    const int n = std::countr_zero(m);
     NodeState& s = nodes_[static_cast<std::size_t>(n)];
     if (s.explicit_in_flight || s.explicit_queue.empty()) continue;
     const std::uint8_t txid = s.explicit_queue.front();
@@ -1117,6 +1129,7 @@ void Scanner::finish_probe(int node, std::uint64_t /*gen*/) {
   NodeState& s = nodes_[static_cast<std::size_t>(node)];
   s.phase = Phase::Waiting;
   s.entry = static_cast<int>(config_.scanlist.size() - 1);
+  listed_ |= std::uint64_t{1} << node;
   s.retry_at = now();
   autoscan_rejected_[static_cast<std::size_t>(node)] = false;
   trace("autoscan: node " + std::to_string(node) + " added");

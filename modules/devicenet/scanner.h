@@ -49,6 +49,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -203,6 +204,18 @@ class Scanner : public NetworkObserver {
   void reset_ram();
   void release_nodes();
   void rebuild_nodes();
+  void refresh_listed();
+  // Calls f(n) for every node n in `mask`, lowest first (node order).
+  template <class F>
+  static void for_each_node(std::uint64_t mask, F&& f) {
+    for (; mask != 0; mask &= mask - 1) f(std::countr_zero(mask));
+  }
+  // Calls f(n) for every listed node (in the scanlist, or marked illegal), lowest first: every
+  // other node is as NodeState{} leaves it and takes part in nothing.
+  template <class F>
+  void for_listed(F&& f) const {
+    for_each_node(listed_, std::forward<F>(f));
+  }
 
   // The scan cycle.
   void cycle(std::uint64_t gen);
@@ -210,7 +223,7 @@ class Scanner : public NetworkObserver {
   void begin_connect(int node);
   void finish_connect(int node);
   void receive(int node, IoType t);
-  void deliver(int node, IoType t, const Bytes& data);
+  void deliver(int node, IoType t, std::span<const std::uint8_t> data);
   void fail_node(int node, int code, bool autoverify);
   void schedule_watchdog(int node);
   void schedule_periodic(int node, IoType t);
@@ -258,6 +271,7 @@ class Scanner : public NetworkObserver {
   ScannerConfig config_;
   std::vector<ScanlistIssue> issues_;
   std::array<NodeState, kNodeCount> nodes_{};
+  std::uint64_t listed_ = 0;  // bit n: nodes_[n].phase != Unlisted (kept by release/rebuild_nodes, finish_probe)
 
   std::array<std::uint16_t, layout::kImageWords> din_{};   // discrete inputs (word 0 unused)
   std::array<std::uint16_t, layout::kImageWords> dout_{};  // discrete outputs (word 0 = command)

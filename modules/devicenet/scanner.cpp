@@ -667,21 +667,27 @@ void Scanner::set_table_bit(const TableRef& at, int offset, bool value) {
   *word = static_cast<std::uint16_t>(value ? *word | mask : *word & ~mask);
 }
 
-bool Scanner::get_table_bit(const TableRef& at, int offset, bool /*input_side*/) const {
-  const int linear = at.word * 16 + at.bit + offset;
-  const auto w = static_cast<std::size_t>(linear / 16);
-  const int b = linear % 16;
-  if (at.area == TableRef::Area::MFile) return w < layout::kDataWords && ((m0_[w] >> b) & 1) != 0;
-  return w >= 1 && w < dout_.size() && ((dout_[w] >> b) & 1) != 0;
-}
-
+// Every receive maps its data: the bits go over in runs that stay within one device byte and one
+// table word (a byte-aligned segment is one run per byte), as set_table_bit would set them one by one.
 void Scanner::map_inputs(int node, IoType t, std::span<const std::uint8_t> data) {
   for (const MapSegment& s : entry(node).inputs) {
     if (s.connection != t) continue;
-    for (int b = 0; b < s.bits; ++b) {
-      const int index = s.device_byte * 8 + s.device_bit + b;
-      const auto byte = static_cast<std::size_t>(index / 8);
-      set_table_bit(s.table, b, byte < data.size() && ((data[byte] >> (index % 8)) & 1) != 0);
+    int src = s.device_byte * 8 + s.device_bit;
+    int dst = s.table.word * 16 + s.table.bit;
+    for (int left = s.bits; left > 0;) {
+      const int sb = src % 8, db = dst % 16;
+      const int k = std::min({left, 8 - sb, 16 - db});
+      const unsigned ones = (1u << k) - 1;
+      const auto byte = static_cast<std::size_t>(src / 8);
+      const unsigned v = byte < data.size() ? (static_cast<unsigned>(data[byte]) >> sb) & ones : 0;
+      const auto w = static_cast<std::size_t>(dst / 16);
+      std::uint16_t* word = nullptr;
+      if (s.table.area == TableRef::Area::MFile && w < m1_.size()) word = &m1_[w];
+      if (s.table.area == TableRef::Area::Discrete && w >= 1 && w < din_.size()) word = &din_[w];
+      if (word != nullptr) *word = static_cast<std::uint16_t>((*word & ~(ones << db)) | (v << db));
+      src += k;
+      dst += k;
+      left -= k;
     }
   }
 }
@@ -693,16 +699,27 @@ void Scanner::clear_inputs(int node) {
     for (int b = 0; b < s.bits; ++b) set_table_bit(s.table, b, false);
 }
 
+// In runs, as map_inputs (get_table_bit one bit at a time gives the same bytes).
 Bytes Scanner::sample_outputs(int node, IoType t) const {
   const ConnectionConfig& c = entry(node).conn(t);
   Bytes out(static_cast<std::size_t>(c.tx), 0);
   for (const MapSegment& s : entry(node).outputs) {
     if (s.connection != t) continue;
-    for (int b = 0; b < s.bits; ++b) {
-      const int index = s.device_byte * 8 + s.device_bit + b;
-      const auto byte = static_cast<std::size_t>(index / 8);
-      if (byte < out.size() && get_table_bit(s.table, b, false))
-        out[byte] = static_cast<std::uint8_t>(out[byte] | (1u << (index % 8)));
+    int dst = s.device_byte * 8 + s.device_bit;
+    int src = s.table.word * 16 + s.table.bit;
+    for (int left = s.bits; left > 0;) {
+      const int db = dst % 8, sb = src % 16;
+      const int k = std::min({left, 8 - db, 16 - sb});
+      const unsigned ones = (1u << k) - 1;
+      const auto w = static_cast<std::size_t>(src / 16);
+      unsigned word = 0;
+      if (s.table.area == TableRef::Area::MFile) word = w < layout::kDataWords ? m0_[w] : 0;
+      else word = w >= 1 && w < dout_.size() ? dout_[w] : 0;
+      const auto byte = static_cast<std::size_t>(dst / 8);
+      if (byte < out.size()) out[byte] = static_cast<std::uint8_t>(out[byte] | (((word >> sb) & ones) << db));
+      src += k;
+      dst += k;
+      left -= k;
     }
   }
   return out;
@@ -742,10 +759,13 @@ bool Scanner::read_m(MFile f, int word, std::uint16_t& value) const {
     value = m0_[static_cast<std::size_t>(word)];
     return true;
   }
+  // Only a listed node can be active, idle, failed or autoverify-failed (release_nodes resets the others).
   auto node_table = [&](int base, auto&& has) {
     std::uint16_t v = 0;
-    for (int b = 0; b < 16; ++b)
-      if (has(nodes_[static_cast<std::size_t>((word - base) * 16 + b)])) v = static_cast<std::uint16_t>(v | (1u << b));
+    const int first = (word - base) * 16;
+    for_each_node((listed_ >> first) & 0xFFFFu, [&](int b) {
+      if (has(nodes_[static_cast<std::size_t>(first + b)])) v = static_cast<std::uint16_t>(v | (1u << b));
+    });
     return v;
   };
   using L = std::pair<int, int>;

@@ -235,7 +235,6 @@ class Scanner : public NetworkObserver {
   void map_inputs(int node, IoType t, std::span<const std::uint8_t> data);
   void clear_inputs(int node);
   Bytes sample_outputs(int node, IoType t) const;
-  bool get_table_bit(const TableRef& at, int offset, bool input_side) const;
   void set_table_bit(const TableRef& at, int offset, bool value);
 
   // Explicit messaging.

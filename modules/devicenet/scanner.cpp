@@ -667,28 +667,39 @@ void Scanner::set_table_bit(const TableRef& at, int offset, bool value) {
   *word = static_cast<std::uint16_t>(value ? *word | mask : *word & ~mask);
 }
 
-// Every receive maps its data: the bits go over in runs that stay within one device byte and one
-// table word (a byte-aligned segment is one run per byte), as set_table_bit would set them one by one.
+namespace {
+
+// Walks `bits` bits from bit position `a` on a side of ABits-bit units to bit position `b` on a side
+// of BBits-bit units, in runs that stay within one unit on both sides: f(a unit, shift in it, b unit,
+// shift in it, run length). A byte-aligned segment is one run per byte.
+template <int ABits, int BBits, class F>
+void for_each_run(int a, int b, int bits, F&& f) {
+  for (int left = bits; left > 0;) {
+    const int as = a % ABits, bs = b % BBits;
+    const int k = std::min({left, ABits - as, BBits - bs});
+    f(a / ABits, as, b / BBits, bs, k);
+    a += k;
+    b += k;
+    left -= k;
+  }
+}
+
+}  // namespace
+
+// Every receive maps its data: in runs (for_each_run), as set_table_bit would set them one by one.
 void Scanner::map_inputs(int node, IoType t, std::span<const std::uint8_t> data) {
   for (const MapSegment& s : entry(node).inputs) {
     if (s.connection != t) continue;
-    int src = s.device_byte * 8 + s.device_bit;
-    int dst = s.table.word * 16 + s.table.bit;
-    for (int left = s.bits; left > 0;) {
-      const int sb = src % 8, db = dst % 16;
-      const int k = std::min({left, 8 - sb, 16 - db});
-      const unsigned ones = (1u << k) - 1;
-      const auto byte = static_cast<std::size_t>(src / 8);
-      const unsigned v = byte < data.size() ? (static_cast<unsigned>(data[byte]) >> sb) & ones : 0;
-      const auto w = static_cast<std::size_t>(dst / 16);
-      std::uint16_t* word = nullptr;
-      if (s.table.area == TableRef::Area::MFile && w < m1_.size()) word = &m1_[w];
-      if (s.table.area == TableRef::Area::Discrete && w >= 1 && w < din_.size()) word = &din_[w];
-      if (word != nullptr) *word = static_cast<std::uint16_t>((*word & ~(ones << db)) | (v << db));
-      src += k;
-      dst += k;
-      left -= k;
-    }
+    for_each_run<8, 16>(s.device_byte * 8 + s.device_bit, s.table.word * 16 + s.table.bit, s.bits,
+                        [&](int byte, int sb, int w, int db, int k) {
+                          const unsigned ones = (1u << k) - 1;
+                          const auto i = static_cast<std::size_t>(byte), j = static_cast<std::size_t>(w);
+                          const unsigned v = i < data.size() ? (static_cast<unsigned>(data[i]) >> sb) & ones : 0;
+                          std::uint16_t* word = nullptr;
+                          if (s.table.area == TableRef::Area::MFile && j < m1_.size()) word = &m1_[j];
+                          if (s.table.area == TableRef::Area::Discrete && j >= 1 && j < din_.size()) word = &din_[j];
+                          if (word != nullptr) *word = static_cast<std::uint16_t>((*word & ~(ones << db)) | (v << db));
+                        });
   }
 }
 
@@ -699,28 +710,21 @@ void Scanner::clear_inputs(int node) {
     for (int b = 0; b < s.bits; ++b) set_table_bit(s.table, b, false);
 }
 
-// In runs, as map_inputs (get_table_bit one bit at a time gives the same bytes).
+// In runs, as map_inputs; bits outside M0's data area or the output image read 0.
 Bytes Scanner::sample_outputs(int node, IoType t) const {
   const ConnectionConfig& c = entry(node).conn(t);
   Bytes out(static_cast<std::size_t>(c.tx), 0);
   for (const MapSegment& s : entry(node).outputs) {
     if (s.connection != t) continue;
-    int dst = s.device_byte * 8 + s.device_bit;
-    int src = s.table.word * 16 + s.table.bit;
-    for (int left = s.bits; left > 0;) {
-      const int db = dst % 8, sb = src % 16;
-      const int k = std::min({left, 8 - db, 16 - sb});
-      const unsigned ones = (1u << k) - 1;
-      const auto w = static_cast<std::size_t>(src / 16);
-      unsigned word = 0;
-      if (s.table.area == TableRef::Area::MFile) word = w < layout::kDataWords ? m0_[w] : 0;
-      else word = w >= 1 && w < dout_.size() ? dout_[w] : 0;
-      const auto byte = static_cast<std::size_t>(dst / 8);
-      if (byte < out.size()) out[byte] = static_cast<std::uint8_t>(out[byte] | (((word >> sb) & ones) << db));
-      src += k;
-      dst += k;
-      left -= k;
-    }
+    for_each_run<16, 8>(s.table.word * 16 + s.table.bit, s.device_byte * 8 + s.device_bit, s.bits,
+                        [&](int w, int sb, int byte, int db, int k) {
+                          const auto i = static_cast<std::size_t>(byte), j = static_cast<std::size_t>(w);
+                          unsigned word = 0;
+                          if (s.table.area == TableRef::Area::MFile) word = j < layout::kDataWords ? m0_[j] : 0;
+                          else word = j >= 1 && j < dout_.size() ? dout_[j] : 0;
+                          if (i < out.size())
+                            out[i] = static_cast<std::uint8_t>(out[i] | (((word >> sb) & ((1u << k) - 1)) << db));
+                        });
   }
   return out;
 }

@@ -91,7 +91,16 @@ class DemPort {
 
   // One execution of a DEM instruction. `owner` identifies its control block (for example the
   // data-table index of word 0) so several DEM instructions can share the module's one slot.
+  // `now` and the scanner are read only when reads_network() says so; otherwise `now` is unused.
   void on_rung(std::uint32_t owner, std::span<std::uint16_t, kWords> cb, bool rung_in, VirtualTime now);
+  // Whether on_rung(owner, cb, rung_in, ...) would read the time or the scanner: when this control
+  // block has the message in flight (its completion, timeout or accumulator) or would start one now
+  // (rung true, EN clear, the slot free). Otherwise the execution only clears WS or EN, sets WS, or
+  // leaves the block alone, from the block, the rung and the slot alone (chapter 8, p.100), and
+  // the wrapper need not advance the network to the instruction's time.
+  bool reads_network(std::uint32_t owner, std::span<const std::uint16_t, kWords> cb, bool rung_in) const {
+    return owner_ == owner || (rung_in && (cb[kStatusWord] & kEN) == 0 && !owner_);
+  }
   // Forgets the in-flight message and deletes its transaction (the processor left Run). The
   // owner's control block keeps EN until it executes again with its rung false, which clears it.
   void abandon();

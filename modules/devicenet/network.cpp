@@ -1,5 +1,7 @@
 #include "modules/devicenet/network.h"
 
+#include <algorithm>
+
 namespace softslc::devicenet {
 
 namespace {
@@ -15,6 +17,7 @@ SimDevice& Network::attach(int node, DeviceModel model) {
   slot->set_input_listener([this, node] {
     if (observer_ != nullptr) observer_->on_input_changed(node);
   });
+  attached_.insert(std::upper_bound(attached_.begin(), attached_.end(), node), node);
   bus_changed();
   return *slot;
 }
@@ -22,6 +25,7 @@ SimDevice& Network::attach(int node, DeviceModel model) {
 bool Network::detach(int node) {
   if (!valid_node(node) || !devices_[static_cast<std::size_t>(node)]) return false;
   devices_[static_cast<std::size_t>(node)].reset();
+  std::erase(attached_, node);
   bus_changed();
   return true;
 }
@@ -68,8 +72,12 @@ bool Network::address_answers(int node) const {
 }
 
 bool Network::any_other_node(int except) const {
-  for (int n = 0; n < kNodeCount; ++n)
+  // Asked by every status register the scanner builds: only the attached devices and the claims,
+  // not all 64 addresses.
+  for (int n : attached_)
     if (n != except && address_answers(n)) return true;
+  for (int n = 0; n < kNodeCount; ++n)
+    if (n != except && claims_[static_cast<std::size_t>(n)]) return true;
   return false;
 }
 

@@ -87,6 +87,7 @@ class Network {
   Baud baud_;
   Timeline timeline_;
   std::array<std::unique_ptr<SimDevice>, kNodeCount> devices_{};
+  std::vector<int> attached_;  // addresses with a device, ascending
   std::array<bool, kNodeCount> claims_{};
   bool bus_fault_ = false;
   bool power_ = true;

@@ -1,6 +1,7 @@
 #include "modules/devicenet/scanner.h"
 
 #include <algorithm>
+#include <bit>
 
 namespace softslc::devicenet {
 
@@ -146,6 +147,7 @@ void Scanner::release_nodes() {
     s.connections = connections;
     s.explicit_in_flight = in_flight;  // its attempt events still complete it
   }
+  listed_ = 0;
 }
 
 void Scanner::rebuild_nodes() {
@@ -166,6 +168,13 @@ void Scanner::rebuild_nodes() {
     s.phase = Phase::Illegal;
     s.code = static_cast<int>(SdnCode::IllegalScanlistData);
   }
+  refresh_listed();
+}
+
+void Scanner::refresh_listed() {
+  listed_ = 0;
+  for (int n = 0; n < kNodeCount; ++n)
+    if (nodes_[static_cast<std::size_t>(n)].phase != Phase::Unlisted) listed_ |= std::uint64_t{1} << n;
 }
 
 const ScanlistEntry& Scanner::entry(int node) const {
@@ -174,15 +183,20 @@ const ScanlistEntry& Scanner::entry(int node) const {
 
 // ---- events -----------------------------------------------------------------------------------------
 
-void Scanner::at(VirtualTime t, std::function<void()> fn) {
-  net_.timeline().schedule_at(t, [fn = std::move(fn)](VirtualTime) { fn(); },
+template <class F>
+void Scanner::at(VirtualTime t, F&& fn) {
+  net_.timeline().schedule_at(t, [fn = std::forward<F>(fn)](VirtualTime) mutable { fn(); },
                               reinterpret_cast<Timeline::Owner>(this));
 }
 
-void Scanner::at_running(VirtualTime t, std::uint64_t gen, std::function<void()> fn) {
-  at(t, [this, gen, fn = std::move(fn)] {
-    if (gen == generation_ && port_ == Port::Running) fn();
-  });
+template <class F>
+void Scanner::at_running(VirtualTime t, std::uint64_t gen, F&& fn) {
+  net_.timeline().schedule_at(
+      t,
+      [this, gen, fn = std::forward<F>(fn)](VirtualTime) mutable {
+        if (gen == generation_ && port_ == Port::Running) fn();
+      },
+      reinterpret_cast<Timeline::Owner>(this));
 }
 
 void Scanner::trace(const std::string& what) {
@@ -344,9 +358,9 @@ void Scanner::cycle(std::uint64_t gen) {
   const Baud baud = config_.baud;
 
   // 1. Connection timeouts: no packet for 4 x EPR.
-  for (int n = 0; n < kNodeCount; ++n) {
+  for_listed([&](int n) {
     NodeState& s = nodes_[static_cast<std::size_t>(n)];
-    if (s.phase != Phase::Connected) continue;
+    if (s.phase != Phase::Connected) return;
     const ScanlistEntry& e = entry(n);
     for (IoType t : kIoTypes) {
       const ConnectionConfig& c = e.conn(t);
@@ -355,12 +369,12 @@ void Scanner::cycle(std::uint64_t gen) {
         break;
       }
     }
-  }
+  });
   // 2. Connection attempts.
-  for (int n = 0; n < kNodeCount; ++n) {
+  for_listed([&](int n) {
     const NodeState& s = nodes_[static_cast<std::size_t>(n)];
     if (s.phase == Phase::Waiting && s.retry_at <= t0) begin_connect(n);
-  }
+  });
   // 3. AutoScan.
   if (autoscan_active() && !probe_busy_) autoscan_probe(gen);
 
@@ -369,68 +383,67 @@ void Scanner::cycle(std::uint64_t gen) {
   VirtualTime cursor = t0;
   std::optional<VirtualTime> last_request;
 
-  std::vector<int> strobed;
-  for (int n = 0; n < kNodeCount; ++n)
-    if (node_scanned(n) && entry(n).conn(IoType::Strobe).enabled) strobed.push_back(n);
-  if (!strobed.empty()) {
-    // The bit-strobe request: 64 bits, bit n for node n (appendix A, p.118); zero-length in Idle.
-    std::vector<std::pair<int, Bytes>> bits;
-    Bytes message;
-    if (run) message.assign(8, 0);
-    for (int n : strobed) {
-      Bytes b;
-      if (run) {
-        const bool on = entry(n).conn(IoType::Strobe).tx == 1 && !sample_outputs(n, IoType::Strobe).empty() &&
-                        (sample_outputs(n, IoType::Strobe)[0] & 1) != 0;
-        b.push_back(on ? 1 : 0);
-        if (on) message[static_cast<std::size_t>(n / 8)] |= static_cast<std::uint8_t>(1u << (n % 8));
-      }
-      bits.emplace_back(n, std::move(b));
-    }
-    cursor += io_message_time(baud, static_cast<int>(message.size()));
+  std::uint64_t strobed = 0;
+  for_listed([&](int n) {
+    if (node_scanned(n) && entry(n).conn(IoType::Strobe).enabled) strobed |= std::uint64_t{1} << n;
+  });
+  if (strobed != 0) {
+    // The bit-strobe request: 64 bits, bit n for node n (appendix A, p.118), so `on` is the
+    // message itself; zero-length in Idle. Each strobed node gets its bit as one byte (Run) or
+    // nothing (Idle).
+    std::uint64_t on = 0;
+    if (run)
+      for_each_node(strobed, [&](int n) {
+        if (entry(n).conn(IoType::Strobe).tx != 1) return;
+        const Bytes out = sample_outputs(n, IoType::Strobe);
+        if (!out.empty() && (out[0] & 1) != 0) on |= std::uint64_t{1} << n;
+      });
+    cursor += io_message_time(baud, run ? 8 : 0);
     const VirtualTime request_end = cursor;
     last_request = request_end;
-    at_running(request_end, gen, [this, bits] {
-      for (const auto& [n, b] : bits) deliver(n, IoType::Strobe, b);
+    at_running(request_end, gen, [this, strobed, on, run] {
+      for_each_node(strobed, [&](int n) {
+        const std::uint8_t bit = (on >> n) & 1u;
+        deliver(n, IoType::Strobe, run ? std::span<const std::uint8_t>(&bit, 1) : std::span<const std::uint8_t>());
+      });
     });
-    for (int n : strobed) {
+    for_each_node(strobed, [&](int n) {
       const SimDevice* d = net_.device(n);
-      const auto answer = d != nullptr ? d->produce(IoType::Strobe) : std::nullopt;
-      if (!answer) continue;
-      cursor = std::max(cursor, request_end + d->model().io_response_time) +
-               io_message_time(baud, static_cast<int>(answer->size()));
+      const auto answer = d != nullptr ? d->produced_length(IoType::Strobe) : std::nullopt;
+      if (!answer) return;
+      cursor = std::max(cursor, request_end + d->model().io_response_time) + io_message_time(baud, *answer);
       at_running(cursor, gen, [this, n] { receive(n, IoType::Strobe); });
-    }
+    });
   }
 
   const bool background_due = background_count_ % config_.background_poll_ratio == 0;
   background_count_ = (background_count_ + 1) % config_.background_poll_ratio;
-  for (int n = 0; n < kNodeCount; ++n) {
-    if (!node_scanned(n)) continue;
+  for_listed([&](int n) {
+    if (!node_scanned(n)) return;
     const ConnectionConfig& c = entry(n).conn(IoType::Poll);
-    if (!c.enabled || (c.background && !background_due)) continue;
+    if (!c.enabled || (c.background && !background_due)) return;
     Bytes out = run ? sample_outputs(n, IoType::Poll) : Bytes{};
     cursor += io_message_time(baud, static_cast<int>(out.size()));
     last_request = cursor;
     at_running(cursor, gen, [this, n, out = std::move(out)] { deliver(n, IoType::Poll, out); });
     const SimDevice* d = net_.device(n);
-    const auto answer = d != nullptr ? d->produce(IoType::Poll) : std::nullopt;
-    if (!answer) continue;
-    cursor += d->model().io_response_time + io_message_time(baud, static_cast<int>(answer->size()));
+    const auto answer = d != nullptr ? d->produced_length(IoType::Poll) : std::nullopt;
+    if (!answer) return;
+    cursor += d->model().io_response_time + io_message_time(baud, *answer);
     at_running(cursor, gen, [this, n] { receive(n, IoType::Poll); });
-  }
+  });
 
   // Change-of-state outputs go out when they change (and on every heartbeat, schedule_periodic).
-  for (int n = 0; n < kNodeCount; ++n) {
-    if (!node_scanned(n) || !entry(n).conn(IoType::Cos).enabled) continue;
+  for_listed([&](int n) {
+    if (!node_scanned(n) || !entry(n).conn(IoType::Cos).enabled) return;
     NodeState& s = nodes_[static_cast<std::size_t>(n)];
     Bytes out = run ? sample_outputs(n, IoType::Cos) : Bytes{};
-    if (s.cos_sent && out == s.last_cos_out) continue;
+    if (s.cos_sent && out == s.last_cos_out) return;
     s.last_cos_out = out;
     s.cos_sent = true;
     const VirtualTime t = t0 + io_message_time(baud, static_cast<int>(out.size()));
     at_running(t, gen, [this, n, out = std::move(out)] { deliver(n, IoType::Cos, out); });
-  }
+  });
 
   const VirtualTime scan_end = cursor;
   at_running(scan_end, gen, [this, gen] { end_of_scan(gen); });
@@ -581,8 +594,8 @@ void Scanner::schedule_periodic(int node, IoType t) {
     });
     // The device's heartbeat or cyclic production.
     if (const SimDevice* d = net_.device(node)) {
-      if (const auto answer = d->produce(t)) {
-        const VirtualTime arrives = now() + d->model().io_response_time + io_message_time(baud, static_cast<int>(answer->size()));
+      if (const auto answer = d->produced_length(t)) {
+        const VirtualTime arrives = now() + d->model().io_response_time + io_message_time(baud, *answer);
         at_running(arrives, gen, [this, node, t, epoch] {
           if (nodes_[static_cast<std::size_t>(node)].epoch == epoch) receive(node, t);
         });
@@ -597,17 +610,16 @@ void Scanner::on_input_changed(int node) {
   if (!entry(node).conn(IoType::Cos).enabled) return;
   const SimDevice* d = net_.device(node);
   if (d == nullptr) return;
-  const auto answer = d->produce(IoType::Cos);
+  const auto answer = d->produced_length(IoType::Cos);
   if (!answer) return;
   const std::uint64_t epoch = nodes_[static_cast<std::size_t>(node)].epoch;
-  const VirtualTime arrives =
-      now() + d->model().io_response_time + io_message_time(config_.baud, static_cast<int>(answer->size()));
+  const VirtualTime arrives = now() + d->model().io_response_time + io_message_time(config_.baud, *answer);
   at_running(arrives, generation_, [this, node, epoch] {
     if (nodes_[static_cast<std::size_t>(node)].epoch == epoch) receive(node, IoType::Cos);
   });
 }
 
-void Scanner::deliver(int node, IoType t, Bytes data) {
+void Scanner::deliver(int node, IoType t, std::span<const std::uint8_t> data) {
   NodeState& s = nodes_[static_cast<std::size_t>(node)];
   if (s.phase != Phase::Connected) return;
   if (SimDevice* d = net_.device(node)) d->consume(t, data);
@@ -618,16 +630,18 @@ void Scanner::receive(int node, IoType t) {
   NodeState& s = nodes_[static_cast<std::size_t>(node)];
   if (s.phase != Phase::Connected) return;
   const SimDevice* d = net_.device(node);
-  const auto data = d != nullptr ? d->produce(t) : std::nullopt;
-  if (!data) return;  // silent: the connection timeout notices
+  // produce(t) without building it: the length, and the input image whose first bytes it carries
+  // (bytes past the image are zeros, which map_inputs reads for bytes past the span).
+  const auto length = d != nullptr ? d->produced_length(t) : std::nullopt;
+  if (!length) return;  // silent: the connection timeout notices
   s.last_rx[static_cast<std::size_t>(t)] = now();
-  if (data->empty()) {
+  if (*length == 0) {
     if (!s.idle) trace("node " + std::to_string(node) + " idle");
     s.idle = true;
     s.active = true;
     return;
   }
-  if (static_cast<int>(data->size()) != entry(node).conn(t).rx) {
+  if (*length != entry(node).conn(t).rx) {
     fail_node(node, static_cast<int>(SdnCode::RuntimeSizeError), false);
     return;
   }
@@ -636,7 +650,8 @@ void Scanner::receive(int node, IoType t) {
   s.active = true;
   s.failed = false;
   s.code = 0;
-  map_inputs(node, t, *data);
+  const Bytes& image = d->inputs();
+  map_inputs(node, t, std::span<const std::uint8_t>(image).first(std::min(image.size(), static_cast<std::size_t>(*length))));
 }
 
 // ---- mapping ------------------------------------------------------------------------------------------
@@ -652,22 +667,39 @@ void Scanner::set_table_bit(const TableRef& at, int offset, bool value) {
   *word = static_cast<std::uint16_t>(value ? *word | mask : *word & ~mask);
 }
 
-bool Scanner::get_table_bit(const TableRef& at, int offset, bool /*input_side*/) const {
-  const int linear = at.word * 16 + at.bit + offset;
-  const auto w = static_cast<std::size_t>(linear / 16);
-  const int b = linear % 16;
-  if (at.area == TableRef::Area::MFile) return w < layout::kDataWords && ((m0_[w] >> b) & 1) != 0;
-  return w >= 1 && w < dout_.size() && ((dout_[w] >> b) & 1) != 0;
+namespace {
+
+// Walks `bits` bits from bit position `a` on a side of ABits-bit units to bit position `b` on a side
+// of BBits-bit units, in runs that stay within one unit on both sides: f(a unit, shift in it, b unit,
+// shift in it, run length). A byte-aligned segment is one run per byte.
+template <int ABits, int BBits, class F>
+void for_each_run(int a, int b, int bits, F&& f) {
+  for (int left = bits; left > 0;) {
+    const int as = a % ABits, bs = b % BBits;
+    const int k = std::min({left, ABits - as, BBits - bs});
+    f(a / ABits, as, b / BBits, bs, k);
+    a += k;
+    b += k;
+    left -= k;
+  }
 }
 
+}  // namespace
+
+// Every receive maps its data: in runs (for_each_run), as set_table_bit would set them one by one.
 void Scanner::map_inputs(int node, IoType t, std::span<const std::uint8_t> data) {
   for (const MapSegment& s : entry(node).inputs) {
     if (s.connection != t) continue;
-    for (int b = 0; b < s.bits; ++b) {
-      const int index = s.device_byte * 8 + s.device_bit + b;
-      const auto byte = static_cast<std::size_t>(index / 8);
-      set_table_bit(s.table, b, byte < data.size() && ((data[byte] >> (index % 8)) & 1) != 0);
-    }
+    for_each_run<8, 16>(s.device_byte * 8 + s.device_bit, s.table.word * 16 + s.table.bit, s.bits,
+                        [&](int byte, int sb, int w, int db, int k) {
+                          const unsigned ones = (1u << k) - 1;
+                          const auto i = static_cast<std::size_t>(byte), j = static_cast<std::size_t>(w);
+                          const unsigned v = i < data.size() ? (static_cast<unsigned>(data[i]) >> sb) & ones : 0;
+                          std::uint16_t* word = nullptr;
+                          if (s.table.area == TableRef::Area::MFile && j < m1_.size()) word = &m1_[j];
+                          if (s.table.area == TableRef::Area::Discrete && j >= 1 && j < din_.size()) word = &din_[j];
+                          if (word != nullptr) *word = static_cast<std::uint16_t>((*word & ~(ones << db)) | (v << db));
+                        });
   }
 }
 
@@ -678,17 +710,21 @@ void Scanner::clear_inputs(int node) {
     for (int b = 0; b < s.bits; ++b) set_table_bit(s.table, b, false);
 }
 
+// In runs, as map_inputs; bits outside M0's data area or the output image read 0.
 Bytes Scanner::sample_outputs(int node, IoType t) const {
   const ConnectionConfig& c = entry(node).conn(t);
   Bytes out(static_cast<std::size_t>(c.tx), 0);
   for (const MapSegment& s : entry(node).outputs) {
     if (s.connection != t) continue;
-    for (int b = 0; b < s.bits; ++b) {
-      const int index = s.device_byte * 8 + s.device_bit + b;
-      const auto byte = static_cast<std::size_t>(index / 8);
-      if (byte < out.size() && get_table_bit(s.table, b, false))
-        out[byte] = static_cast<std::uint8_t>(out[byte] | (1u << (index % 8)));
-    }
+    for_each_run<16, 8>(s.table.word * 16 + s.table.bit, s.device_byte * 8 + s.device_bit, s.bits,
+                        [&](int w, int sb, int byte, int db, int k) {
+                          const auto i = static_cast<std::size_t>(byte), j = static_cast<std::size_t>(w);
+                          unsigned word = 0;
+                          if (s.table.area == TableRef::Area::MFile) word = j < layout::kDataWords ? m0_[j] : 0;
+                          else word = j >= 1 && j < dout_.size() ? dout_[j] : 0;
+                          if (i < out.size())
+                            out[i] = static_cast<std::uint8_t>(out[i] | (((word >> sb) & ((1u << k) - 1)) << db));
+                        });
   }
   return out;
 }
@@ -703,12 +739,12 @@ std::array<std::uint16_t, layout::kImageWords> Scanner::input_image() const {
 
 std::uint16_t Scanner::status_register() const {
   std::uint16_t w = command_error_ ? 0 : static_cast<std::uint16_t>(command_word_ & kEchoedCommandBits);
-  // Built every input scan: ORs without a branch per node (64 nodes).
+  // Built every input scan. Only a listed node can be failed (release_nodes resets an unlisted one).
   bool any_failed = false, any_autoverify = false;
-  for (const auto& s : nodes_) {
-    any_failed |= s.failed;
-    any_autoverify |= s.autoverify;
-  }
+  for_listed([&](int n) {
+    any_failed |= nodes_[static_cast<std::size_t>(n)].failed;
+    any_autoverify |= nodes_[static_cast<std::size_t>(n)].autoverify;
+  });
   if (any_failed) w |= bit(StatusBit::DeviceFailure);
   if (any_autoverify) w |= bit(StatusBit::AutoverifyFailure);
   const bool no_partner = (port_ == Port::Initializing && transmit_failed_) ||
@@ -727,10 +763,13 @@ bool Scanner::read_m(MFile f, int word, std::uint16_t& value) const {
     value = m0_[static_cast<std::size_t>(word)];
     return true;
   }
+  // Only a listed node can be active, idle, failed or autoverify-failed (release_nodes resets the others).
   auto node_table = [&](int base, auto&& has) {
     std::uint16_t v = 0;
-    for (int b = 0; b < 16; ++b)
-      if (has(nodes_[static_cast<std::size_t>((word - base) * 16 + b)])) v = static_cast<std::uint16_t>(v | (1u << b));
+    const int first = (word - base) * 16;
+    for_each_node((listed_ >> first) & 0xFFFFu, [&](int b) {
+      if (has(nodes_[static_cast<std::size_t>(first + b)])) v = static_cast<std::uint16_t>(v | (1u << b));
+    });
     return v;
   };
   using L = std::pair<int, int>;
@@ -790,9 +829,10 @@ int Scanner::node_code(int n) const {
 }
 
 int Scanner::lowest_node_problem(int& node) const {
-  for (int n = 0; n < kNodeCount; ++n)
-    if (int code = node_code(n)) {
-      node = n;
+  // An unlisted node has no code (release_nodes resets it), so the listed ones, lowest first.
+  for (std::uint64_t m = listed_; m != 0; m &= m - 1)
+    if (int code = node_code(std::countr_zero(m))) {
+      node = std::countr_zero(m);
       return code;
     }
   return 0;
@@ -820,9 +860,7 @@ std::uint16_t Scanner::node_status_word() const {
   if (const int code = lowest_node_problem(node)) return static_cast<std::uint16_t>(node << 8 | code);
   if (init_remaining_ > 0) return module(static_cast<int>(SdnCode::Initializing));
   if (config_.autoscan) return module(static_cast<int>(SdnCode::AutoScanActive));
-  bool any_entry = false;
-  for (const auto& s : nodes_) any_entry = any_entry || s.phase != Phase::Unlisted;
-  if (!any_entry) return module(static_cast<int>(SdnCode::NoTraffic));
+  if (listed_ == 0) return module(static_cast<int>(SdnCode::NoTraffic));
   if (!in_run()) return module(static_cast<int>(SdnCode::Idle));
   return module(addr);
 }
@@ -948,7 +986,10 @@ std::optional<ResponseBlock> Scanner::completed_response(std::uint8_t txid) cons
 }
 
 void Scanner::send_explicit(VirtualTime& cursor, std::uint64_t gen) {
-  for (int n = 0; n < kNodeCount; ++n) {
+  // Only a listed node has requests queued (handle_request queues for connected nodes; release_nodes
+  // empties the queues of the nodes it unlists).
+  for (std::uint64_t m = listed_; m != 0; m &= m - 1) {
+    const int n = std::countr_zero(m);
     NodeState& s = nodes_[static_cast<std::size_t>(n)];
     if (s.explicit_in_flight || s.explicit_queue.empty()) continue;
     const std::uint8_t txid = s.explicit_queue.front();
@@ -1112,6 +1153,7 @@ void Scanner::finish_probe(int node, std::uint64_t /*gen*/) {
   NodeState& s = nodes_[static_cast<std::size_t>(node)];
   s.phase = Phase::Waiting;
   s.entry = static_cast<int>(config_.scanlist.size() - 1);
+  listed_ |= std::uint64_t{1} << node;
   s.retry_at = now();
   autoscan_rejected_[static_cast<std::size_t>(node)] = false;
   trace("autoscan: node " + std::to_string(node) + " added");

@@ -49,6 +49,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -203,6 +204,18 @@ class Scanner : public NetworkObserver {
   void reset_ram();
   void release_nodes();
   void rebuild_nodes();
+  void refresh_listed();
+  // Calls f(n) for every node n in `mask`, lowest first (node order).
+  template <class F>
+  static void for_each_node(std::uint64_t mask, F&& f) {
+    for (; mask != 0; mask &= mask - 1) f(std::countr_zero(mask));
+  }
+  // Calls f(n) for every listed node (in the scanlist, or marked illegal), lowest first: every
+  // other node is as NodeState{} leaves it and takes part in nothing.
+  template <class F>
+  void for_listed(F&& f) const {
+    for_each_node(listed_, std::forward<F>(f));
+  }
 
   // The scan cycle.
   void cycle(std::uint64_t gen);
@@ -210,7 +223,7 @@ class Scanner : public NetworkObserver {
   void begin_connect(int node);
   void finish_connect(int node);
   void receive(int node, IoType t);
-  void deliver(int node, IoType t, Bytes data);
+  void deliver(int node, IoType t, std::span<const std::uint8_t> data);
   void fail_node(int node, int code, bool autoverify);
   void schedule_watchdog(int node);
   void schedule_periodic(int node, IoType t);
@@ -222,7 +235,6 @@ class Scanner : public NetworkObserver {
   void map_inputs(int node, IoType t, std::span<const std::uint8_t> data);
   void clear_inputs(int node);
   Bytes sample_outputs(int node, IoType t) const;
-  bool get_table_bit(const TableRef& at, int offset, bool input_side) const;
   void set_table_bit(const TableRef& at, int offset, bool value);
 
   // Explicit messaging.
@@ -240,9 +252,13 @@ class Scanner : public NetworkObserver {
   void set_autoscan(bool enabled);
 
   // Events. at() schedules on the network's timeline under this scanner's owner tag; at_running()
-  // also drops the work if the port has stopped (or restarted) since it was scheduled.
-  void at(VirtualTime t, std::function<void()> fn);
-  void at_running(VirtualTime t, std::uint64_t gen, std::function<void()> fn);
+  // also drops the work if the port has stopped (or restarted) since it was scheduled. Templates
+  // (defined in scanner.cpp, their only user) so that `fn` lands in the timeline's callback as it
+  // is, without a std::function around it.
+  template <class F>
+  void at(VirtualTime t, F&& fn);
+  template <class F>
+  void at_running(VirtualTime t, std::uint64_t gen, F&& fn);
   VirtualTime now() const { return net_.now(); }
   void flush_();
   void reboot();
@@ -254,6 +270,7 @@ class Scanner : public NetworkObserver {
   ScannerConfig config_;
   std::vector<ScanlistIssue> issues_;
   std::array<NodeState, kNodeCount> nodes_{};
+  std::uint64_t listed_ = 0;  // bit n: nodes_[n].phase != Unlisted (kept by release/rebuild_nodes, finish_probe)
 
   std::array<std::uint16_t, layout::kImageWords> din_{};   // discrete inputs (word 0 unused)
   std::array<std::uint16_t, layout::kImageWords> dout_{};  // discrete outputs (word 0 = command)

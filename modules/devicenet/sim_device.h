@@ -79,6 +79,11 @@ class SimDevice {
   // The device's answer to an I/O message: nullopt = silent (offline or not allocated); empty =
   // the zero-length idle message; otherwise produced_size(t) bytes of the input image.
   std::optional<Bytes> produce(IoType t) const;
+  // produce(t)'s length without building it (the scanner's cycle needs only the frame's length).
+  std::optional<int> produced_length(IoType t) const {
+    if (!online_ || !allocated_ || !supports(t)) return std::nullopt;
+    return producing_idle_ ? 0 : produced_size(t);
+  }
   // Receives output data: empty = idle (idle action) for a connection that consumes data, nothing
   // for one that does not (an input-only device is polled with zero-length commands); otherwise
   // Run data. A strobe delivers the device's single strobe bit as output byte 0, bit 0.

@@ -1,5 +1,6 @@
 #include "modules/devicenet/timeline.h"
 
+#include <algorithm>
 #include <string>
 
 namespace softslc::devicenet {
@@ -8,31 +9,46 @@ Timeline::EventId Timeline::schedule_at(VirtualTime at, Callback cb, Owner owner
   if (at < now_)
     throw TimeWentBackwards("DeviceNet event scheduled at " + std::to_string(at) + " ns, before now (" +
                             std::to_string(now_) + " ns)");
+  std::uint32_t slot = 0;
+  if (!free_.empty()) {
+    slot = free_.back();
+    free_.pop_back();
+  } else {
+    slot = static_cast<std::uint32_t>(slots_.size());
+    slots_.emplace_back();
+  }
+  slots_[slot].cb = std::move(cb);
+  slots_[slot].owner = owner;
   const EventId id = next_id_++;
-  events_.emplace(Key{at, id}, Entry{std::move(cb), owner});
-  time_of_.emplace(id, at);
+  heap_.push_back(Key{at, id, slot});
+  std::push_heap(heap_.begin(), heap_.end(), runs_after);
   return id;
 }
 
+void Timeline::release(std::uint32_t slot) {
+  slots_[slot].cb = Callback();
+  slots_[slot].owner = 0;
+  free_.push_back(slot);
+}
+
 bool Timeline::cancel(EventId id) {
-  auto it = time_of_.find(id);
-  if (it == time_of_.end()) return false;
-  events_.erase(Key{it->second, id});
-  time_of_.erase(it);
+  const auto it = std::find_if(heap_.begin(), heap_.end(), [id](const Key& k) { return k.id == id; });
+  if (it == heap_.end()) return false;
+  release(it->slot);
+  heap_.erase(it);
+  std::make_heap(heap_.begin(), heap_.end(), runs_after);
   return true;
 }
 
 std::size_t Timeline::cancel_owner(Owner owner) {
-  std::size_t n = 0;
-  for (auto it = events_.begin(); it != events_.end();) {
-    if (it->second.owner == owner) {
-      time_of_.erase(it->first.second);
-      it = events_.erase(it);
-      ++n;
-    } else {
-      ++it;
-    }
-  }
+  const auto kept = std::remove_if(heap_.begin(), heap_.end(), [&](const Key& k) {
+    if (slots_[k.slot].owner != owner) return false;
+    release(k.slot);
+    return true;
+  });
+  const auto n = static_cast<std::size_t>(heap_.end() - kept);
+  heap_.erase(kept, heap_.end());
+  std::make_heap(heap_.begin(), heap_.end(), runs_after);
   return n;
 }
 
@@ -41,21 +57,20 @@ std::size_t Timeline::advance_to(VirtualTime t) {
     throw TimeWentBackwards("DeviceNet network asked to go from " + std::to_string(now_) + " ns back to " +
                             std::to_string(t) + " ns");
   std::size_t ran = 0;
-  while (!events_.empty() && events_.begin()->first.first <= t) {
-    auto node = events_.extract(events_.begin());
-    time_of_.erase(node.key().second);
-    now_ = node.key().first;
-    // The callback may schedule more events at >= now; the loop picks them up in order.
-    node.mapped().cb(now_);
+  while (!heap_.empty() && heap_.front().at <= t) {
+    std::pop_heap(heap_.begin(), heap_.end(), runs_after);
+    const Key k = heap_.back();
+    heap_.pop_back();
+    // The callback leaves its slot before it runs: it may schedule more events (at >= now), which
+    // may reuse the slot or grow the slot vector; the loop picks them up in order.
+    Callback cb = std::move(slots_[k.slot].cb);
+    release(k.slot);
+    now_ = k.at;
+    cb(now_);
     ++ran;
   }
   now_ = t;
   return ran;
-}
-
-std::optional<VirtualTime> Timeline::next_time() const {
-  if (events_.empty()) return std::nullopt;
-  return events_.begin()->first.first;
 }
 
 }  // namespace softslc::devicenet

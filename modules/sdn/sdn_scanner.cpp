@@ -162,20 +162,29 @@ void SdnScanner::execute(ModuleInstructionContext& ctx) {
   std::array<std::uint16_t, dn::dem::kWords> cb{};
   if (!ctx.read_block(cb_op, 0, cb)) return;
   const auto before = cb;
-  const std::optional<VirtualTime> next = network_->next_event_time();
-  if (next && *next <= ctx.now()) ++program_changes_;  // the network moves mid-scan
-  sync(ctx.now());
-  const auto owner = dem_->owner();
+  const std::uint32_t owner = ops[cb_op].word;
+  // A DEM with no message in flight that starts none (a false rung, EN still set, or WS while
+  // another block holds the slot) acts from its block, the rung and the slot alone: it neither
+  // asks the time (so a probe may repeat across the network's events) nor advances the network.
+  const bool timed = dem_->reads_network(owner, cb, ctx.rung_in());
+  VirtualTime now = 0;
+  if (timed) {
+    now = ctx.now();
+    const std::optional<VirtualTime> next = network_->next_event_time();
+    if (next && *next <= now) ++program_changes_;  // the network moves mid-scan
+    sync(now);
+  }
+  const auto slot_owner = dem_->owner();
   const auto abandoned = dem_->abandoned();
-  dem_->on_rung(ops[cb_op].word, cb, ctx.rung_in(), ctx.now());
-  if (cb != before || dem_->owner() != owner || dem_->abandoned() != abandoned) ++program_changes_;
+  dem_->on_rung(owner, cb, ctx.rung_in(), now);
+  if (cb != before || dem_->owner() != slot_owner || dem_->abandoned() != abandoned) ++program_changes_;
   // Most scans change nothing in the block: one compare of the whole block then, not 70.
   if (cb != before)
     for (int k = 0; k < dn::dem::kWords; ++k) {
       const auto i = static_cast<std::size_t>(k);
       if (cb[i] != before[i] && !ctx.write(cb_op, static_cast<std::uint32_t>(k), cb[i])) return;
     }
-  rearm();
+  if (timed) rearm();
 }
 
 // ---- Bench devices --------------------------------------------------------------------------------------------

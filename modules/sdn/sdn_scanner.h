@@ -37,7 +37,10 @@
 // of the scan). A DEM changes something when it starts or drops a message (the port's owner or
 // its abandoned block changes), when it changes its control block (the runtime sees that in the
 // table too), or when it advances the network to its own time within the scan past one of the
-// network's events (the event then ran mid-scan instead of at its end).
+// network's events (the event then ran mid-scan instead of at its end). Only a DEM that has its
+// message in flight or starts one reads the time and advances the network
+// (DemPort::reads_network): any other (a false rung, EN still set, WS) acts from its control block,
+// the rung and the slot, so a probe with such DEMs may repeat across the network's events.
 #pragma once
 
 #include <memory>

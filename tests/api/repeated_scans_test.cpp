@@ -104,7 +104,8 @@ TEST(RepeatedScans, EveryShippedExampleGivesTheSameResultsWithAndWithoutThem) {
     // (across its link's events), M1 through the 1203-SM1, and a 1747-SN program whose link's
     // events run at the end of nearly every scan; and indexed and indirect operands
     // (addressing_faults, and appe_drive_parameter's N21:[N14:0] on a 1747-SDN), S:4/3
-    // (ch4_m1_status) and a timed PID (pid_level, 84% in its first 10 s while its tank settles).
+    // (ch4_m1_status) and a timed PID (pid_level, 84% in its first 10 s while its tank settles); and
+    // DEM instructions with nothing in flight, across the DeviceNet network's events (ch8, ch9).
     const std::string name = p.parent_path().filename().string() + "/" + p.stem().string();
     // So must the MicroLogix function-file examples (no pulses, no inputs, as sim_bench runs them),
     // and ml1100_sti between its 10 ms expiries (two executed scans in about 36: the one its expiry
@@ -113,7 +114,7 @@ TEST(RepeatedScans, EveryShippedExampleGivesTheSameResultsWithAndWithoutThem) {
                              "1747-sn/ch5_directional", "1203-sm1/appb_messaging", "1747-sn/throughput_discrete",
                              "faults/addressing_faults", "1747-sdn/appe_drive_parameter", "1747-sn/ch4_m1_status",
                              "micrologix/ml1100_eii", "micrologix/ml1100_hsc", "micrologix/ml1100_pto",
-                             "micrologix/ml1100_datalog"}) {
+                             "micrologix/ml1100_datalog", "1747-sdn/ch8_dem_drive_parameter", "1747-sdn/ch9_autoscan"}) {
       if (name == must) {
         EXPECT_GT(repeated, skipping.runtime().stats().scans * 9 / 10) << p;
       }
@@ -364,6 +365,50 @@ TEST(RepeatedScans, AnSdnDeviceInputArrivesByEventsBetweenRepeats) {
   }
   EXPECT_EQ(skipping.get_int("N7:0"), 3);
   EXPECT_GT(idle, 0u) << "an idle 1747-SDN must let scans repeat";
+}
+
+// A DEM with no message in flight that starts none (its rung false, or EN still set after DN) acts
+// from its control block, the rung and the module's one DEM slot (chapter 8, p.100), so it does not
+// ask the time (DemPort::reads_network) and the probe may repeat across the network's events
+// (docs/semantics.md, "Repeats across events"); one in flight, or starting, asks it. The drive's
+// parameter read still runs at the same scans with the same results. Tried: with the DEM asking
+// the time on every execution (as before), the idle stretches repeat about 60% of their scans (only
+// between the network's events, never across one) instead of over 90%, and this test fails.
+TEST(RepeatedScans, ADemWithNothingInFlightRepeatsAcrossTheNetworksEvents) {
+  const std::string text =
+      "START 1747-L542\nSLOT 1 1747-SDN SCAN_IN 32 SCAN_OUT 32\nLADDER 2\n"
+      "SOR OTE O:1.0/0 EOR\n"
+      "SOR XIC B3:0/0 DEM 1 N30:0 70 EOR\n"
+      "SOR XIC N30:0/13 MOV N30:41 N20:0 EOR\n"
+      // Get_Attribute_Single (0Eh) of class 0Fh instance 39 attribute 1 at node 3, 5 s timeout.
+      "DATA N30:0\n% N30:0 % 0 5 0 0 0 0 0 0 3587 15\n% N30:10 % 39 1 0 0 0 0 0 0 0 0\n"
+      "% N30:20 % 0 0 0 0 0 0 0 0 0 0\n% N30:30 % 0 0 0 0 0 0 0 0 0 0\n% N30:40 % 0 0 0 0 0 0 0 0 0 0\n"
+      "% N30:50 % 0 0 0 0 0 0 0 0 0 0\n% N30:60 % 0 0 0 0 0 0 0 0 0 0\n"
+      "DATA N20:0\n% N20:0 % 0\n";
+  const std::string bench =
+      "devicenet DNET slot=1 node=0 baud=500K {\n"
+      "  node DRIVE address=3 model=ac-drive {\n"
+      "    poll rx=4 tx=4\n"
+      "  }\n"
+      "}\n";
+  Controller skipping = Controller::from_text(text, bench);
+  Controller executing = Controller::from_text(text, bench);
+  const auto repeated_share = [&](int slices, const std::string& what) {
+    const ScanStats before = skipping.runtime().stats();
+    run_side_by_side(skipping, executing, slices, milliseconds(100), what);
+    const ScanStats& after = skipping.runtime().stats();
+    return static_cast<double>(after.repeated - before.repeated) / static_cast<double>(after.scans - before.scans);
+  };
+  repeated_share(30, "SDN starting");  // the duplicate node check (2 s) and the drive's connection
+  EXPECT_GT(repeated_share(20, "DEM rung false"), 0.9);
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
+  repeated_share(10, "DEM reading");
+  EXPECT_EQ(skipping.get_int("N20:0"), 100);  // the ac-drive's Accel Time 1
+  EXPECT_EQ(skipping.get_int("N30:0") & 0xA000, 0xA000);  // EN and DN, the rung still true
+  EXPECT_GT(repeated_share(20, "DEM done, rung true"), 0.9);
+  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 0);
+  EXPECT_GT(repeated_share(20, "DEM done, rung false"), 0.9);
+  EXPECT_EQ(skipping.get_int("N30:0") & 0xA000, 0x2000);  // EN cleared by the false rung (p.100)
 }
 
 // RPC reads the checksum the compiler computed, a constant of the program (1766-RM001A p. 239),

@@ -3,6 +3,8 @@
 // floor((34 + 8n - 1) / 4)), hand-computed below, at 8/4/2 us per bit for 125/250/500K.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -73,6 +75,28 @@ TEST(Timeline, CancelAndOwners) {
   EXPECT_EQ(t.pending(), 0u);
   t.advance_to(10);
   EXPECT_EQ(ran, 0);
+}
+
+// A callback's captures sit in place up to Timeline::Callback::kInlineBytes and on the heap beyond
+// (an explicit message's reply): both run with their captures intact, in (time, sequence) order,
+// also when events scheduled from a running callback reuse the slots of events that ran.
+TEST(Timeline, LargeCapturesAndReusedSlots) {
+  Timeline t;
+  std::vector<int> log;
+  std::array<int, 64> big{};  // 256 bytes: on the heap
+  big[63] = 7;
+  auto shared = std::make_shared<int>(3);  // counts copies left alive
+  t.schedule_at(2, [&log, big](VirtualTime) { log.push_back(big[63]); });
+  t.schedule_at(1, [&log, &t, shared](VirtualTime now) {
+    log.push_back(*shared);
+    for (int k = 0; k < 3; ++k) t.schedule_at(now, [&log, k](VirtualTime) { log.push_back(10 + k); });
+  });
+  t.schedule_at(9, [shared](VirtualTime) {}, 5);
+  EXPECT_EQ(t.advance_to(2), 5u);
+  EXPECT_EQ(log, (std::vector<int>{3, 10, 11, 12, 7}));
+  EXPECT_EQ(shared.use_count(), 2);  // the ran event's copy is gone, the pending one's is not
+  EXPECT_EQ(t.cancel_owner(5), 1u);
+  EXPECT_EQ(shared.use_count(), 1);
 }
 
 }  // namespace

@@ -329,5 +329,70 @@ TEST_F(DemFixture, Abandon) {
   EXPECT_EQ(x.sdn->transactions_in_use(), 0u);
 }
 
+// DemPort::reads_network (issue 20): the module wrapper asks the instruction's time and advances the
+// network only when it says so. Two identical networks run the same chapter 8 sequence (a start,
+// WS, a waiting DEM giving up, the accumulator, a timeout, a completion, DN with the rung true,
+// EN cleared by a false rung, abandon); the second's DEM is given a wrong time (0) whenever
+// reads_network is false, and both must agree word for word at every step. Tried: with
+// reads_network false for the block in flight, the accumulator and the timeout differ.
+TEST(DemReadsNetwork, ADemThatDoesNotReadTheNetworkActsTheSameAtAnyTime) {
+  ExampleNetwork a(true), b(true);
+  dem::DemPort pa(*a.sdn), pb(*b.sdn);
+  for (ExampleNetwork* x : {&a, &b}) {
+    x->run();
+    x->start();
+    x->drive->set_explicit_silent(true);
+  }
+  ControlBlock a1 = read_parameter(39, kDriveNode, 3), b1 = a1;
+  ControlBlock a2 = read_parameter(40), b2 = a2;
+  int step = 0, untimed = 0;
+  const auto exec = [&](int which, bool rung) {
+    ControlBlock& ca = which == 1 ? a1 : a2;
+    ControlBlock& cb = which == 1 ? b1 : b2;
+    const auto owner = static_cast<std::uint32_t>(which);
+    const bool reads = pa.reads_network(owner, ca, rung);
+    ASSERT_EQ(reads, pb.reads_network(owner, cb, rung)) << "step " << step;
+    if (!reads) ++untimed;
+    pa.on_rung(owner, ca, rung, a.net.now());
+    pb.on_rung(owner, cb, rung, reads ? b.net.now() : 0);
+    EXPECT_EQ(ca, cb) << "step " << step;
+    EXPECT_EQ(pa.owner(), pb.owner()) << "step " << step;
+    EXPECT_EQ(pa.abandoned(), pb.abandoned()) << "step " << step;
+    EXPECT_EQ(a.sdn->transactions_in_use(), b.sdn->transactions_in_use()) << "step " << step;
+    ++step;
+  };
+  const auto advance = [&](int ms) {
+    a.advance_ms(ms);
+    b.advance_ms(ms);
+  };
+  exec(1, false);  // idle
+  exec(1, true);   // starts: EN
+  exec(2, true);   // WS: the slot is taken
+  advance(1200);
+  exec(1, true);   // in flight: the accumulator counts 1 s
+  EXPECT_EQ(a1[2], 1);
+  exec(2, true);
+  exec(2, false);  // gives up: WS clears
+  advance(2000);
+  exec(1, false);  // the 3 s timeout: ER, and EN clears with the rung false
+  EXPECT_EQ(a1[0] & (kEN | kER), kER);
+  exec(1, false);
+  for (ExampleNetwork* x : {&a, &b}) x->drive->set_explicit_silent(false);
+  exec(1, true);  // starts again
+  exec(1, true);
+  advance(50);
+  exec(1, true);  // DN
+  EXPECT_EQ(a1[0] & (kEN | kDN), kEN | kDN);
+  exec(1, true);   // EN still set: nothing to do
+  exec(1, false);  // EN clears
+  exec(2, true);   // starts
+  pa.abandon();
+  pb.abandon();
+  exec(2, true);   // abandoned, EN still set
+  exec(2, false);  // EN clears
+  EXPECT_EQ(a2[0] & kEN, 0);
+  EXPECT_GE(untimed, 8);
+}
+
 }  // namespace
 }  // namespace softslc::devicenet::test

@@ -637,6 +637,50 @@ TEST(AppendixA, DiscreteStrobeMapping) {
   EXPECT_EQ(net.device(33)->output("out"), false);
 }
 
+// A map segment moves `bits` bits from a device bit position to a table bit position (the input and
+// output tables of p.60-61, where RSNetWorx maps bytes and single bits anywhere in a word): here
+// segments that start mid-byte and cross a device byte and a table word (issue 20: map_inputs and
+// sample_outputs move them in runs, not bit by bit). Bits of the table words outside the segment
+// keep what the ladder wrote; device bits outside it are not sent.
+TEST(Mapping, SegmentsCrossingBytesAndWordsMoveBitForBit) {
+  std::string points_in, points_out;
+  for (int b = 0; b < 16; ++b) {
+    const std::string pos = "\"byte\": " + std::to_string(b / 8) + ", \"bit\": " + std::to_string(b % 8) + "}";
+    points_in += std::string(b ? ", " : "") + "{\"name\": \"i" + std::to_string(b) + "\", " + pos;
+    points_out += std::string(b ? ", " : "") + "{\"name\": \"o" + std::to_string(b) + "\", " + pos;
+  }
+  const std::string model_text = R"({"name": "two-byte", "identity": {"vendor": 1, "device_type": 7, "product_code": 1,
+    "major": 1, "minor": 1, "product_name": "two bytes"}, "io": {"poll": {"produce": 2, "consume": 2}},
+    "inputs": [)" + points_in + R"(], "outputs": [)" + points_out + "]}";
+  ScannerConfig c;
+  c.node_address = 0;
+  c.baud = Baud::k500;
+  Network net(Baud::k500);
+  net.attach(5, parse_device_model_text(model_text));
+  ScanlistEntry e;
+  e.node = 5;
+  e.conn(IoType::Poll) = ConnectionConfig{true, 2, 2, default_epr(IoType::Poll), false};
+  e.inputs.push_back(segment(IoType::Poll, 0, 3, 10, TableRef::Area::MFile, 2, 12));   // device bits 3-12 -> M1:2/12-3/5
+  e.outputs.push_back(segment(IoType::Poll, 0, 6, 7, TableRef::Area::MFile, 4, 13));   // M0:4/13-5/3 -> device bits 6-12
+  c.scanlist.push_back(e);
+  Scanner sdn(net, c);
+  std::array<std::uint16_t, 1> run{kRun};
+  sdn.write_output_image(run);
+  sdn.write_m(MFile::M1, 2, 0x0ABC);
+  sdn.write_m(MFile::M1, 3, 0xFF00);
+  sdn.write_m(MFile::M0, 4, 0xA000);  // bits 13 and 15: device bits 6 and 8
+  sdn.write_m(MFile::M0, 5, 0x0019);  // bits 0 and 3: device bits 9 and 12; bit 4 is past the segment
+  net.advance_to(milliseconds(2200));
+  for (const char* p : {"i2", "i3", "i7", "i8", "i12", "i13"}) net.set_input(5, p, true);  // i2, i13 outside
+  net.advance_to(milliseconds(2300));
+  std::uint16_t w2 = 0, w3 = 0;
+  sdn.read_m(MFile::M1, 2, w2);
+  sdn.read_m(MFile::M1, 3, w3);
+  EXPECT_EQ(w2, 0x0ABC | 1u << 12);                       // device bit 3 -> M1:2/12
+  EXPECT_EQ(w3, 0xFF00 | 1u << 0 | 1u << 1 | 1u << 5);    // bits 7, 8, 12 -> M1:3/0, 3/1, 3/5
+  EXPECT_EQ(net.device(5)->outputs(), (Bytes{0x40, 0x13}));  // bits 6 | 8, 9, 12
+}
+
 // ---- change of state and cyclic (chapter 1, p.16; glossary) ---------------------------------------
 
 ScannerConfig cos_config() {

@@ -5,7 +5,8 @@
 // the same order, so `spec(op)` is an array index. The parser checks operand count and kinds
 // against the spec, the compiler reads the operand kinds and access modes, the VM dispatches on
 // the opcode, the disassembler prints the mnemonic and box labels, and the scan-time model picks
-// the M0/M1 access-time row from each operand's MFileAccess class. Adding an instruction is one
+// the M0/M1 access-time row from each operand's MFileAccess class, and the runtime reads each
+// row's Repeat class to decide whether a program's scans may repeat. Adding an instruction is one
 // row in the .def file plus one handler in the VM.
 #pragma once
 
@@ -140,6 +141,18 @@ enum class Requirement : std::uint8_t {
   MicroLogixDataLog,
 };
 
+// Whether a program holding the instruction may have its scans repeated (docs/semantics.md
+// "Repeated scans"; the REPEAT column of instruction_table.def says why for each class and row).
+enum class Repeat : std::uint8_t {
+  TableAlone,    // a function of the data table, the rung and the first pass alone
+  FunctionFile,  // a MicroLogix function-file instruction: the probe judges the sub-system behind it
+  Module,        // acts through the module in its slot, which the probe asks
+  Network,       // MSG: acts through the network, which the probe judges when the controller is alone
+  KnownTime,     // the table and a time the probe records, before which the repeats end (PID)
+  AsciiPort,     // an ASCII channel instruction: the port acts between scans only in its events
+  Never,         // rules repeats out
+};
+
 struct OperandSpec {
   OperandKind kind;
   OperandAccess access;
@@ -166,6 +179,7 @@ struct InstructionSpec {
   Opcode opcode;
   Role role;
   Requirement requires_;
+  Repeat repeat;
   std::uint8_t operand_count;
   std::array<OperandSpec, kMaxOperands> operands;
 
@@ -179,19 +193,22 @@ struct InstructionSpec {
 
 namespace detail {
 template <typename... Ops>
-constexpr InstructionSpec make_spec(std::string_view m, Opcode op, Role role, Requirement req, Ops... ops) {
+constexpr InstructionSpec make_spec(std::string_view m, Opcode op, Role role, Requirement req, Repeat repeat,
+                                    Ops... ops) {
   static_assert(sizeof...(Ops) <= kMaxOperands);
-  return InstructionSpec{m, op, role, req, static_cast<std::uint8_t>(sizeof...(Ops)), {ops...}};
+  return InstructionSpec{m, op, role, req, repeat, static_cast<std::uint8_t>(sizeof...(Ops)), {ops...}};
 }
 }  // namespace detail
 
 inline constexpr InstructionSpec kInstructionTable[] = {
 #define OPERAND(kind, access, mfile, label, lo, hi) \
   OperandSpec { OperandKind::kind, OperandAccess::access, MFileAccess::mfile, label, lo, hi }
-#define SOFTSLC_INSTRUCTION(mnemonic, role, req, ...) \
-  detail::make_spec(#mnemonic, Opcode::mnemonic, Role::role, Requirement::req __VA_OPT__(, ) __VA_ARGS__),
-#define SOFTSLC_INSTRUCTION_FORM(opcode, text, role, req, ...) \
-  detail::make_spec(text, Opcode::opcode, Role::role, Requirement::req __VA_OPT__(, ) __VA_ARGS__),
+#define SOFTSLC_INSTRUCTION(mnemonic, role, req, repeat, ...)                                  \
+  detail::make_spec(#mnemonic, Opcode::mnemonic, Role::role, Requirement::req, Repeat::repeat \
+                    __VA_OPT__(, ) __VA_ARGS__),
+#define SOFTSLC_INSTRUCTION_FORM(opcode, text, role, req, repeat, ...)                   \
+  detail::make_spec(text, Opcode::opcode, Role::role, Requirement::req, Repeat::repeat \
+                    __VA_OPT__(, ) __VA_ARGS__),
 #include "instructions/instruction_table.def"
 #undef SOFTSLC_INSTRUCTION_FORM
 #undef SOFTSLC_INSTRUCTION

@@ -11,8 +11,9 @@ namespace softslc {
 namespace {
 
 // A rule must agree with its instruction-table row: a contact is an Input that reads one bit, a
-// coil an Output that writes one bit. Checked at compile time for every row fused_rule names,
-// so a change to a row cannot silently leave its fused rule behind.
+// coil an Output that writes one bit. Checked at compile time for every row fused_rule names
+// (every_rule_fits_its_row_and_kernels, below), so a change to a row cannot silently leave its
+// fused rule behind.
 constexpr bool row_is_contact(Opcode op) {
   const InstructionSpec& s = spec(op);
   return s.role == Role::Input && s.operand_count == 1 && s.operands[0].kind == OperandKind::Bit &&
@@ -105,6 +106,75 @@ constexpr bool is_coil(FusedRule r) {
 constexpr Op kActions[] = {Op::SOR, Op::TON, Op::TOF, Op::RTO, Op::CTU, Op::CTD,
                            Op::RES, Op::MOV, Op::ADD, Op::SUB, Op::COP};
 constexpr bool is_timer(Op a) { return a == Op::TON || a == Op::TOF || a == Op::RTO; }
+
+// What a fused rung does with each op (fused_rule). A per-opcode list kept here rather than as a
+// column of the instruction table: each rule but None names a kernel of this file (a contact, coil
+// or compare rule the truth tables run, an action in kActions with its word_rung kernel), so a row
+// could not choose one without code here, and None, the general path, is right for any row.
+constexpr FusedRule rule_of(Opcode op) {
+  switch (op) {
+    case Opcode::XIC: return FusedRule::Contact;
+    case Opcode::XIO: return FusedRule::OpenContact;
+    case Opcode::OTE: return FusedRule::Energize;
+    case Opcode::OTL: return FusedRule::Latch;
+    case Opcode::OTU: return FusedRule::Unlatch;
+    case Opcode::LBL:
+    case Opcode::SBR:
+    case Opcode::INT: return FusedRule::NoOp;
+    case Opcode::EQU:
+    case Opcode::NEQ:
+    case Opcode::LES:
+    case Opcode::LEQ:
+    case Opcode::GRT:
+    case Opcode::GEQ: return FusedRule::Compare;
+    case Opcode::TON:
+    case Opcode::TOF:
+    case Opcode::RTO:
+    case Opcode::CTU:
+    case Opcode::CTD:
+    case Opcode::RES:
+    case Opcode::MOV:
+    case Opcode::ADD:
+    case Opcode::SUB:
+    case Opcode::COP: return FusedRule::Action;
+    case Opcode::JSR:
+    case Opcode::RET: return FusedRule::Transfer;
+    default: return FusedRule::None;
+  }
+}
+
+// Every op with a rule has the row its rule expects, and the ops with the Action rule are exactly
+// kActions' (the word-rung loop has a kernel for each), so the list cannot drift from the table or
+// from the kernels.
+constexpr bool rule_fits_row(Opcode op, FusedRule r) {
+  switch (r) {
+    case FusedRule::None: return true;
+    case FusedRule::Contact:
+    case FusedRule::OpenContact: return row_is_contact(op);
+    case FusedRule::Energize:
+    case FusedRule::Latch:
+    case FusedRule::Unlatch: return row_is_coil(op);
+    case FusedRule::NoOp: return row_is_no_op(op);
+    case FusedRule::Compare: return row_is_compare(op);
+    case FusedRule::Action:
+      return row_is_action(op, 0, OperandKind::Timer) || row_is_action(op, 0, OperandKind::Counter) ||
+             row_is_action(op, 0, OperandKind::Resettable) || row_is_action(op, 1, OperandKind::Dest) ||
+             row_is_action(op, 2, OperandKind::Dest) || row_is_file_copy(op);
+    case FusedRule::Transfer: return row_is_transfer(op);
+  }
+  return false;
+}
+constexpr bool every_rule_fits_its_row_and_kernels() {
+  for (std::size_t i = 0; i < kInstructionCount; ++i) {
+    const Opcode op = static_cast<Opcode>(i);
+    bool action = false;
+    for (Op a : kActions) action = action || a == to_op(op);
+    if (!rule_fits_row(op, rule_of(op)) || action != (rule_of(op) == FusedRule::Action)) return false;
+  }
+  return true;
+}
+static_assert(every_rule_fits_its_row_and_kernels());
+
 // Per action, the word-rung loop has kernels for 0-2 contacts and 0-1 compares with no coils, and
 // for 1-2 contacts with one coil (the common rungs, and a contact network built as a word rung:
 // straight-line code), then one for any counts (loops).
@@ -143,37 +213,7 @@ inline std::int64_t read_operand(const std::uint16_t* w, std::uint32_t x) {
 
 }  // namespace
 
-FusedRule fused_rule(Opcode op) {
-  switch (op) {
-    case Opcode::XIC: return FusedRule::Contact;
-    case Opcode::XIO: return FusedRule::OpenContact;
-    case Opcode::OTE: return FusedRule::Energize;
-    case Opcode::OTL: return FusedRule::Latch;
-    case Opcode::OTU: return FusedRule::Unlatch;
-    case Opcode::LBL:
-    case Opcode::SBR:
-    case Opcode::INT: return FusedRule::NoOp;
-    case Opcode::EQU:
-    case Opcode::NEQ:
-    case Opcode::LES:
-    case Opcode::LEQ:
-    case Opcode::GRT:
-    case Opcode::GEQ: return FusedRule::Compare;
-    case Opcode::TON:
-    case Opcode::TOF:
-    case Opcode::RTO:
-    case Opcode::CTU:
-    case Opcode::CTD:
-    case Opcode::RES:
-    case Opcode::MOV:
-    case Opcode::ADD:
-    case Opcode::SUB:
-    case Opcode::COP: return FusedRule::Action;
-    case Opcode::JSR:
-    case Opcode::RET: return FusedRule::Transfer;
-    default: return FusedRule::None;
-  }
-}
+FusedRule fused_rule(Opcode op) { return rule_of(op); }
 
 // Builds the shapes: one per distinct op sequence, keyed by the rung's header words (operands
 // are per rung and live in the records).

@@ -698,7 +698,7 @@ bool Interpreter::nothing_pending_between_scans() const {
   // (an expiry, an STS) is not repeated; a MicroLogix expiry waiting for UIE (sti_queued_) vetoes.
   // An HSC with no pulses arriving counts nothing (its loads by SP, HSL and RAC take the table's
   // values, the same in every repeat), and an idle PTO's scan follows the table alone. An ASCII
-  // port acts between scans only in its events (vm/runtime.cpp acts_through_the_ascii_port).
+  // port acts between scans only in its events (Repeat::AsciiPort in the instruction table).
   const bool no_isr = std::all_of(isr_file_.begin(), isr_file_.end(), [](int f) { return f == 0; });
   return sti_queued_ == 0 && dii_.file == 0 && no_isr && events_queued_ == 0 && !hsc_.pulses_arriving() &&
          pulse_trains_.idle() && coverage_ == nullptr;

@@ -40,96 +40,6 @@ std::uint16_t clamp_u16(std::int64_t v) { return static_cast<std::uint16_t>(std:
 constexpr std::array<int, 6> kRuntimeStatusWords = {status::kWatchdog, status::kClock,    status::kMaxScan,
                                                     status::kAvgScan,  status::kCommBits, status::kLastScanMs};
 
-// The instructions whose effect is a function of the data table, the rung condition and the first
-// pass alone, so that a scan that changed nothing is followed by the same scan. The timers are
-// among them because a probe also requires that no timer is timing (TT). CPT is, as the math
-// instructions it combines (its expression's addresses are checked like operands, below); RPC
-// writes the checksum the compiler computed, a constant of the program. DLG's queue is outside the
-// data table, but DLG appends a record only on a scan that finds its rung true and its queue's EN
-// bit (a DLS word, in the table) clear, and it then sets EN: a probe that logged a record changed
-// the table and is no probe that repeats (vm/ml_data_log.cpp DataLogs::scan). SUS suspends the
-// processor when its rung is true (the probe is then not in Run) and does nothing otherwise; INT
-// marks an interrupt routine; STD and STE set or clear S:2/1; STS writes S:30, S:31 and S:2 and
-// restarts the SLC's STI timer, which the probe compares (a rung-true STS moves the timer's due
-// time every scan, so its probe is not repeated). The string instructions (ACI ACN AEX AIC ASC
-// ASR) read and write strings in the table and S:5/15. The MicroLogix function-file instructions
-// and the ASCII channel instructions are listed apart (acts_on_a_micrologix_function_file,
-// acts_through_the_ascii_port). Everything else — I/O, modules, messages, interrupts, ACL, PID, the
-// clocks — and any instruction added later rules repeats out until it is listed here (docs/semantics.md "Repeated scans" says why each of those is left out).
-bool acts_on_the_table_alone(Opcode op) {
-  switch (op) {
-    case Opcode::XIC: case Opcode::XIO: case Opcode::OTE: case Opcode::OTL: case Opcode::OTU:
-    case Opcode::OSR: case Opcode::ONS: case Opcode::OSR_ML: case Opcode::OSF:
-    case Opcode::TON: case Opcode::TOF: case Opcode::RTO: case Opcode::CTU: case Opcode::CTD: case Opcode::RES:
-    case Opcode::EQU: case Opcode::NEQ: case Opcode::LES: case Opcode::LEQ: case Opcode::GRT: case Opcode::GEQ:
-    case Opcode::LIM: case Opcode::MEQ:
-    case Opcode::ADD: case Opcode::SUB: case Opcode::MUL: case Opcode::DIV: case Opcode::NEG: case Opcode::CLR:
-    case Opcode::DDV: case Opcode::SQR: case Opcode::SCP: case Opcode::SCL: case Opcode::ABS:
-    case Opcode::LN: case Opcode::LOG: case Opcode::XPY: case Opcode::SIN: case Opcode::COS: case Opcode::TAN:
-    case Opcode::ASN: case Opcode::ACS: case Opcode::ATN: case Opcode::DEG: case Opcode::RAD:
-    case Opcode::AND: case Opcode::OR: case Opcode::XOR: case Opcode::NOT:
-    case Opcode::MOV: case Opcode::MVM: case Opcode::COP: case Opcode::CPW: case Opcode::FLL:
-    case Opcode::TOD: case Opcode::FRD: case Opcode::DCD: case Opcode::ENC: case Opcode::SWP:
-    case Opcode::BSL: case Opcode::BSR: case Opcode::SQO: case Opcode::SQC: case Opcode::SQL:
-    case Opcode::LFL: case Opcode::LFU: case Opcode::FFL: case Opcode::FFU:
-    case Opcode::JMP: case Opcode::LBL: case Opcode::JSR: case Opcode::SBR: case Opcode::RET:
-    case Opcode::END: case Opcode::TND: case Opcode::MCR:
-    case Opcode::CPT: case Opcode::RPC: case Opcode::DLG:
-    case Opcode::SUS: case Opcode::INT: case Opcode::STD: case Opcode::STE: case Opcode::STS:
-    case Opcode::ACI: case Opcode::ACN: case Opcode::AEX: case Opcode::AIC: case Opcode::ASC: case Opcode::ASR:
-      return true;
-    default:
-      return false;
-  }
-}
-
-// The MicroLogix instructions that act on a function file and the sub-system behind it, whose state
-// outside the table the probe judges (docs/semantics.md "Repeated scans", "The MicroLogix function
-// files"). STS (the MicroLogix form) restarts the STI timer, which the probe compares as the SLC
-// STS's. HSL and RAC load the high-speed counter from their operands, which a repeat reads the same,
-// so a scan after one that loaded loads the same again; nothing repeats while pulses arrive (the
-// counter then moves with time; Interpreter::nothing_pending_between_scans). PTO and PTOX: an idle pulse
-// train's scan is a function of its function-file words and the rung (PulseTrainOutputs::idle),
-// and nothing repeats while one runs (Interpreter::nothing_pending_between_scans).
-bool acts_on_a_micrologix_function_file(Opcode op) {
-  return op == Opcode::STS_ML || op == Opcode::HSL || op == Opcode::RAC || op == Opcode::PTO || op == Opcode::PTOX;
-}
-
-// The channel instructions but ACL: they act on their control element and, on a scan that finds
-// their rung true and EN clear (or EN set and nothing queued: the queue was full), queue a job on
-// the ASCII port; the control element then changes (EN, EU or IN, DN or ER), so a probe that queued
-// one is not repeated. What the port does later — characters sent and received, a job finished —
-// happens in its events and writes the table through the process host, which the repeats stop at
-// (docs/semantics.md "Repeated scans"). ACL is left out: a true ACL empties the receive buffer at
-// every scan without a change in the table, so characters arriving between repeats would stay
-// where executed scans would have removed them.
-bool acts_through_the_ascii_port(Opcode op) {
-  switch (op) {
-    case Opcode::ABL: case Opcode::ACB: case Opcode::AHL: case Opcode::ARD: case Opcode::ARL: case Opcode::AWA:
-    case Opcode::AWT:
-      return true;
-    default:
-      return false;
-  }
-}
-
-// The specialty-module instructions: they act through the module in their slot, which a probe then
-// asks (Module::program_changes; docs/semantics.md "Repeated scans").
-bool acts_through_a_module(Opcode op) { return op == Opcode::BTR || op == Opcode::BTW || op == Opcode::DEM; }
-
-// MSG: it starts a message (setting EN) or aborts one (ER) through the network, which a probe then
-// judges when the controller is alone on it (MessageNetwork::quiet_until); otherwise it acts on its
-// control block.
-// SVC, which services the network in the middle of the scan, is left out.
-bool acts_through_the_network(Opcode op) {
-  return op == Opcode::MSG || op == Opcode::MSG_502 || op == Opcode::MSG_ML;
-}
-
-// The SLC's PID: a function of the data table and, in timed mode, of whether its loop update is
-// due, which happens at a known time the probe records (pid::Outcome::same_until); the repeats end
-// before it (docs/semantics.md "Repeated scans").
-bool acts_on_the_table_until_a_known_time(Opcode op) { return op == Opcode::PID; }
-
 bool reads_only_program_words(const Address& a, bool file_start = false);
 
 // A direct read of the free-running clock S:4, a bit of it or the whole word: allowed, and the bits
@@ -227,12 +137,21 @@ bool elements_repeatable(const std::vector<RungElement>& elements, RepeatFacts& 
         if (!elements_repeatable(leg, facts)) return false;
       continue;
     }
-    const Opcode op = e.instruction.opcode;
-    if (!acts_on_the_table_alone(op) && !acts_through_a_module(op) && !acts_through_the_network(op) &&
-        !acts_on_the_table_until_a_known_time(op) && !acts_on_a_micrologix_function_file(op) &&
-        !acts_through_the_ascii_port(op))
-      return false;
     const InstructionSpec& sp = spec(e.instruction.opcode);
+    // The instruction's Repeat class (instructions/instruction_table.def, REPEAT, says why each class
+    // may repeat and what judges the state outside the table: the probe's module, network, function-file
+    // and known-time checks). No default: a new class must be decided here.
+    switch (sp.repeat) {
+      case Repeat::TableAlone:
+      case Repeat::FunctionFile:
+      case Repeat::Module:
+      case Repeat::Network:
+      case Repeat::KnownTime:
+      case Repeat::AsciiPort:
+        break;
+      case Repeat::Never:
+        return false;
+    }
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
       const Operand& operand = e.instruction.operands[i];
       const OperandSpec* os = i < sp.operand_count ? &sp.operands[i] : nullptr;

@@ -12,8 +12,10 @@
 #include <iterator>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "instructions/instruction_table.h"
 #include "parser/loader.h"
 #include "tools/controller/controller.h"
 #include "vm/discrete_io.h"
@@ -236,6 +238,58 @@ TEST(RepeatedScans, AProgramWithAclIsNeverRepeated) {
   EXPECT_EQ(skipping.get_int("R6:0.POS"), 0) << "the buffer was cleared";
   EXPECT_FALSE(skipping.get_bit("R6:0/DN"));
   EXPECT_EQ(skipping.runtime().stats().repeated, 0u);
+}
+
+// Which instructions a repeating program may hold is the REPEAT column of the instruction table
+// (instructions/instruction_table.def), with the reasons docs/semantics.md "Repeated scans" gives:
+// BTR, BTW and DEM act through the module in their slot, which the probe asks ("M files and module
+// instructions"); the three MSG forms through the network, judged when the controller is alone on it
+// ("MSG alone on its network"); the SLC's PID until the loop update it records ("The SLC's PID");
+// STS in its MicroLogix form, HSL, RAC, PTO and PTOX on a function file ("The MicroLogix function
+// files"); the SLC's STS, RPC, CPT, DLG, SUS and the string instructions on the table alone ("The
+// MicroLogix instructions" and "When"); the ASCII channel instructions but ACL through the port ("The
+// ASCII port"). The runtime treats every class but Never alike, so this names the class each row must
+// have.
+TEST(RepeatedScans, TheInstructionTableSaysWhyEachInstructionMayRepeat) {
+  const std::pair<Opcode, Repeat> rows[] = {
+      {Opcode::BTR, Repeat::Module},          {Opcode::BTW, Repeat::Module},
+      {Opcode::DEM, Repeat::Module},          {Opcode::MSG, Repeat::Network},
+      {Opcode::MSG_502, Repeat::Network},     {Opcode::MSG_ML, Repeat::Network},
+      {Opcode::PID, Repeat::KnownTime},       {Opcode::STS_ML, Repeat::FunctionFile},
+      {Opcode::HSL, Repeat::FunctionFile},    {Opcode::RAC, Repeat::FunctionFile},
+      {Opcode::PTO, Repeat::FunctionFile},    {Opcode::PTOX, Repeat::FunctionFile},
+      {Opcode::STS, Repeat::TableAlone},      {Opcode::RPC, Repeat::TableAlone},
+      {Opcode::CPT, Repeat::TableAlone},      {Opcode::DLG, Repeat::TableAlone},
+      {Opcode::SUS, Repeat::TableAlone},      {Opcode::TON, Repeat::TableAlone},
+      {Opcode::RHC, Repeat::Never},           {Opcode::TDF, Repeat::Never},
+      {Opcode::SVC, Repeat::Never},           {Opcode::SVC_CH, Repeat::Never},
+      {Opcode::IIM, Repeat::Never},           {Opcode::REF, Repeat::Never},
+      {Opcode::ACL, Repeat::Never},           {Opcode::UID, Repeat::Never},
+      {Opcode::AWT, Repeat::AsciiPort},       {Opcode::ARL, Repeat::AsciiPort},
+      {Opcode::ACN, Repeat::TableAlone},      {Opcode::ASR, Repeat::TableAlone},
+  };
+  for (const auto& [op, repeat] : rows)
+    EXPECT_EQ(static_cast<int>(spec(op).repeat), static_cast<int>(repeat)) << spec(op).mnemonic;
+}
+
+// docs/semantics.md "Repeated scans", "When": an instruction outside those classes (REPEAT Never:
+// immediate I/O, REF, SVC, interrupts, ACL, RHC/TDF, FBC/DDT) rules repeats out for
+// the whole program, even on a rung that stays false. The same program without it repeats nearly
+// every scan, so each zero comes from the instruction's row.
+TEST(RepeatedScans, AProgramHoldingAnInstructionThatIsNeverRepeatedIsNeverRepeated) {
+  const std::string head =
+      "START 1747-L552\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nLADDER 2\n"
+      "SOR XIC B3:0/1 ADD N7:0 1 N7:0 EOR\n";
+  SideBySide alone = side_by_side(head + "SOR XIC B3:0/0 OTE B3:0/2 EOR\n");
+  const std::uint64_t repeated = alone.run(5, milliseconds(100), "without");
+  EXPECT_GT(repeated, alone.skipping.runtime().stats().scans * 9 / 10);
+  for (const char* rung :
+       {"SOR XIC B3:0/0 RHC N7:1 EOR\n", "SOR XIC B3:0/0 TDF N7:1 N7:2 N7:3 EOR\n", "SOR XIC B3:0/0 SVC EOR\n",
+        "SOR XIC B3:0/0 SVC 1 EOR\n", "SOR XIC B3:0/0 IIM I:1.0 65535 1 EOR\n", "SOR XIC B3:0/0 REF EOR\n",
+        "SOR XIC B3:0/0 IID 2 EOR\n",
+        "SOR XIC B3:0/0 FBC #B3:2 #B3:4 #N7:10 R6:0 16 0 R6:1 4 0 EOR\n"}) {
+    EXPECT_EQ(side_by_side(head + rung).run(5, milliseconds(100), rung), 0u) << rung;
+  }
 }
 
 // An input whose change reaches the input image after the module's input delay is an event: the

@@ -148,8 +148,16 @@ class RioScanner final : public Module {
     std::vector<std::uint16_t> received;               // what the scanner last received from it
     std::vector<std::uint16_t> generic_in, generic_out;  // adapters described without modules
     VirtualTime last_comm = -1;
-    EventQueue::EventId watchdog = 0;
+    // The communication watchdog (arm_watchdog): the time it expires unless the adapter is heard
+    // from again (-1: expired or never armed), the order in which it was last armed, and the time
+    // of the one event that stands for it (-1: none).
+    VirtualTime watchdog_due = -1;
+    std::uint64_t watchdog_armed = 0;
+    VirtualTime watchdog_event_at = -1;
+    std::uint64_t backplane_scheduled = 0;  // the order of its pending backplane event
+    bool outputs_stale = true;  // out_buffer changed since apply_outputs last ran
     std::vector<RemoteModule> modules;
+    std::vector<int> input_modules;  // indices of its discrete input modules
   };
   struct Device {
     RioGDevice g;
@@ -215,6 +223,9 @@ class RioScanner final : public Module {
   void backplane(int adapter, VirtualTime t);
   void apply_outputs(Adapter& a, VirtualTime t);
   void arm_watchdog(int adapter, VirtualTime t);
+  void watchdog_event(int adapter, VirtualTime t);
+  void watchdog_expires(int adapter, VirtualTime t);
+  void schedule_backplane(int adapter, VirtualTime at);
   std::uint32_t module_inputs(const RemoteModule& m) const;
   std::uint16_t adapter_input_word(const Adapter& a, int w) const;
   void set_module_input(int adapter, int module, std::uint32_t value, std::uint32_t mask);
@@ -259,6 +270,10 @@ class RioScanner final : public Module {
   bool link_running_ = false;
   bool cable_ok_ = true;
   std::size_t cursor_ = 0;
+  Visit visit_;  // the one visit in flight (schedule_next); the event captures only `this`
+  // Counts the watchdog arms and backplane schedulings, in the order they happen, so that the
+  // order of two of them can be told (arm_watchdog).
+  std::uint64_t order_ = 0;
   VirtualTime rio_scan_start_ = 0;
   Nanoseconds last_rio_scan_ = 0;
   std::uint64_t rio_scans_ = 0;

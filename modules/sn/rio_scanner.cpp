@@ -331,16 +331,13 @@ void RioScanner::on_mode_change(Mode from, Mode to) {
 }
 
 // See the header: the image scans are copies, the rest is events; not while a new mode waits for
-// its first scan or a block transfer is under way.
-//
-// A buffer is Waiting or Active exactly while it is in its rack's queue: enable() queues it as it
-// sets Waiting, start() makes only a queue's front Active, and post(), disable() and cancel_all()
-// take it out as they set Done, Error or Idle. So the four queues answer for the 33 buffers (the
-// runtime asks after every event between repeated scans).
-bool RioScanner::passive() const {
-  if (pending_mode_ || !notes_.empty() || !ready_.empty()) return false;
-  return std::all_of(rack_queue_.begin(), rack_queue_.end(), [](const std::deque<int>& q) { return q.empty(); });
-}
+// its first scan. A block transfer in progress is passive too (decision, issue 20, session 16):
+// everything it does later is an event already on the queue (a note or a finished transfer has
+// its service tick scheduled, request_tick; a Waiting buffer moves when the one before it ends; an
+// Active one at the link's visits and its BT timer), and the program sees it only through M1,
+// which the runtime reads again after the events between repeats, and through the M0 control
+// word, whose EN/TO edges count as changes (program_changes).
+bool RioScanner::passive() const { return !pending_mode_; }
 
 void RioScanner::execute(ModuleInstructionContext& ctx) {
   if (ctx.opcode() == Opcode::BTR || ctx.opcode() == Opcode::BTW) {

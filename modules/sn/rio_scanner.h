@@ -45,9 +45,9 @@
 // send; neither looks at the clock. Everything the link, the adapters' chassis, the input and
 // output delays, the watchdogs and the block-transfer service do later is an event on the runtime's
 // queue. So the scanner is passive unless a new Run/Test mode is waiting for the end of its first
-// scan (the output scan would then change the M0 settings in effect) or a block transfer is in
-// progress (a note or finished transfer waiting for a service tick, or a buffer Waiting or Active):
-// the transfer's progress is events too, but M1 changes with it.
+// scan (the output scan would then change the M0 settings in effect). A block transfer in progress
+// does not stop it: its progress is events too (service ticks, visits, the BT timer), and the M1
+// words that change with it are read again by the runtime after the events between repeats.
 //
 // M files and BTR/BTW in repeated scans (Module::program_changes): read_m is a copy of M0 or M1,
 // which change only in the link's and the block-transfer service's events and in write_m. A write

@@ -553,7 +553,22 @@ void RioScanner::backplane(int ai, VirtualTime t) {
   Adapter& a = adapters_[static_cast<std::size_t>(ai)];
   // A watchdog armed before this scan was scheduled and expiring now expired first (arm_watchdog).
   if (a.watchdog_due == t && a.watchdog_armed < a.backplane_scheduled) watchdog_expires(ai, t);
-  for (int k = 0; k < a.spec.groups; ++k) a.in_buffer[static_cast<std::size_t>(k)] = adapter_input_word(a, a.spec.first_word() + k);
+  if (a.modules.empty()) {
+    std::copy(a.generic_in.begin(), a.generic_in.end(), a.in_buffer.begin());
+  } else {
+    // adapter_input_word for every word at once: each input module gives only its one or two
+    // words, so the others are zero.
+    std::fill(a.in_buffer.begin(), a.in_buffer.end(), std::uint16_t{0});
+    for (int mi : a.input_modules) {
+      const RemoteModule& m = a.modules[static_cast<std::size_t>(mi)];
+      for (int w = first_word_of(m.spec); w <= first_word_of(m.spec) + 1; ++w) {
+        const int k = w - a.spec.first_word();
+        if (k < 0 || k >= a.spec.groups) continue;
+        auto& word = a.in_buffer[static_cast<std::size_t>(k)];
+        word = static_cast<std::uint16_t>(word | word_from_module(m.spec, module_inputs(m), w));
+      }
+    }
+  }
   apply_outputs(a, t);
   schedule_backplane(ai, t + a.spec.backplane_scan);
 }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <set>
 
 #include "parser/loader.h"
 #include "vm/duration.h"
@@ -675,12 +674,15 @@ void RioScanner::tick(VirtualTime t) {
   last_tick_ = t;
   // One enable (or time-out request) per T_SNo-bt, in the order the program made them; the
   // disables that precede nothing else of their buffer are taken at once (see apply_note).
-  std::deque<Note> kept;
-  std::set<int> blocked;  // buffers with an earlier note still waiting
+  // `kept` and the ready list are members that keep their storage: a tick runs at every enable,
+  // disable and finished transfer.
+  std::deque<Note>& kept = kept_notes_;
+  kept.clear();
+  std::array<bool, rio::kBufferCount + 1> blocked{};  // buffers with an earlier note still waiting
   bool slot_used = false;
   for (const Note& n : notes_) {
     Buffer& b = bt_[static_cast<std::size_t>(n.buffer)];
-    if (blocked.count(n.buffer)) {
+    if (blocked[static_cast<std::size_t>(n.buffer)]) {
       kept.push_back(n);
       continue;
     }
@@ -696,11 +698,12 @@ void RioScanner::tick(VirtualTime t) {
       continue;
     }
     kept.push_back(n);
-    blocked.insert(n.buffer);
+    blocked[static_cast<std::size_t>(n.buffer)] = true;
   }
   notes_.swap(kept);
   // Finished transfers are posted to M1 (one T_SNo-bt "to handle the BT response").
-  std::vector<int> ready;
+  std::vector<int>& ready = posting_;
+  ready.clear();
   ready.swap(ready_);
   for (int x : ready) post(x);
   if (!notes_.empty() || !ready_.empty()) request_tick();

@@ -290,6 +290,8 @@ class RioScanner final : public Module {
   std::deque<Note> notes_;
   std::array<std::deque<int>, 4> rack_queue_;
   std::vector<int> ready_;
+  std::deque<Note> kept_notes_;  // tick()'s scratch
+  std::vector<int> posting_;     // tick()'s scratch
   Nanoseconds tick_period_ = milliseconds(16);
   VirtualTime tick_origin_ = 0;
   VirtualTime next_tick_ = -1;  // scheduled tick time, -1 = none

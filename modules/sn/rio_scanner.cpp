@@ -440,6 +440,8 @@ void RioScanner::schedule_next(VirtualTime t) {
 void RioScanner::end_visit(const Visit& v, VirtualTime t) {
   const Logical& l = logical_[static_cast<std::size_t>(v.logical)];
   Device& d = devices_[static_cast<std::size_t>(l.device)];
+  const bool was_attempted = d.attempted;
+  const bool was_failing = d.failing[static_cast<std::size_t>(l.part)];
   d.attempted = true;
   if (v.reply == Reply::Ok) {
     exchange(l, d, adapters_[static_cast<std::size_t>(d.adapter)], t);
@@ -449,7 +451,11 @@ void RioScanner::end_visit(const Visit& v, VirtualTime t) {
   }
   if (v.bt_request) bt_visit_end(v.bt_request, v, t);
   if (v.bt_data) bt_visit_end(v.bt_data, v, t);
-  update_status();
+  // update_status is a function of the devices' attempted and failing flags and the inhibit words
+  // in effect, and gives the same words again for the same ones: it runs when one of them moved.
+  if (d.attempted != was_attempted || d.failing[static_cast<std::size_t>(l.part)] != was_failing ||
+      inhibit_words() != status_inhibit_)
+    update_status();
   cursor_ = static_cast<std::size_t>(v.logical) + 1;
   schedule_next(t);
 }
@@ -615,7 +621,12 @@ void RioScanner::set_module_input(int ai, int mi, std::uint32_t value, std::uint
   });
 }
 
+std::array<std::uint16_t, 4> RioScanner::inhibit_words() const {
+  return {control(8, 0), control(8, 1), control(8, 2), control(8, 3)};
+}
+
 void RioScanner::update_status() {
+  status_inhibit_ = inhibit_words();
   std::uint16_t w0 = static_cast<std::uint16_t>(m1w(0) & 0x0002);
   bool all_attempted = !devices_.empty();
   bool any_fault = false;

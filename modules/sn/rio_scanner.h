@@ -220,6 +220,7 @@ class RioScanner final : public Module {
   Reply reply_of(const Device& d) const;
   void exchange(const Logical& l, Device& d, Adapter& a, VirtualTime t);
   void update_status();
+  std::array<std::uint16_t, 4> inhibit_words() const;  // M0 words 8-11 in effect
   void backplane(int adapter, VirtualTime t);
   void apply_outputs(Adapter& a, VirtualTime t);
   void arm_watchdog(int adapter, VirtualTime t);
@@ -277,6 +278,7 @@ class RioScanner final : public Module {
   VirtualTime rio_scan_start_ = 0;
   Nanoseconds last_rio_scan_ = 0;
   std::uint64_t rio_scans_ = 0;
+  std::array<std::uint16_t, 4> status_inhibit_{};  // the inhibit words update_status last used
   std::array<bool, 4> rack_bt_used_{};
   // The mode the link acts on: a new Run/Test mode takes effect after the first full program
   // scan ("The processor does not use the M0 file until a full program scan occurs"); until then

@@ -767,8 +767,9 @@ bool Runtime::probe_due() {
     return false;
   }
   if (modules_passive() && interp_->nothing_pending_between_scans()) return true;
-  // Asked again after a wait that grows as after a probe that found a change: a 1747-SN whose
-  // program keeps block transfers going is seldom passive, and asking every scan costs.
+  // Asked again after a wait that grows as after a probe that found a change: a module that is
+  // seldom passive (a 1203-SM1 whose drives ramp, a 1747-SDN with a DEM in flight) would cost a
+  // question every scan.
   probe_wait_ = probe_backoff_;
   probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
   return false;

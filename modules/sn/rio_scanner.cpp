@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <limits>
-#include <set>
 
 #include "parser/loader.h"
 #include "vm/duration.h"
@@ -96,6 +95,7 @@ RioScanner::RioScanner(const SlotConfig& slot, int m0_words, int m1_words, std::
         m.response_delay = ms.response_delay;
         m.ramps = ms.ramps;
         m.steps = ms.steps;
+        if (ms.kind == RioModuleKind::Input) a.input_modules.push_back(static_cast<int>(a.modules.size()));
         a.modules.push_back(std::move(m));
       }
       adapters_.push_back(std::move(a));
@@ -241,8 +241,7 @@ void RioScanner::attach(ModuleHost& host) {
   // The adapters' chassis run from power-up, whatever the scanner does.
   for (std::size_t i = 0; i < adapters_.size(); ++i)
     if (adapters_[i].spec.backplane_scan > 0)
-      host.schedule_at(host.now() + adapters_[i].spec.backplane_scan,
-                       [this, i](VirtualTime t) { backplane(static_cast<int>(i), t); });
+      schedule_backplane(static_cast<int>(i), host.now() + adapters_[i].spec.backplane_scan);
 }
 
 void RioScanner::input_scan(std::span<std::uint16_t> image) {
@@ -254,8 +253,9 @@ void RioScanner::input_scan(std::span<std::uint16_t> image) {
 }
 
 void RioScanner::output_scan(std::span<const std::uint16_t> image) {
-  for (std::size_t w = 0; w < out_image_.size(); ++w)
-    out_image_[w] = w < image.size() && static_cast<int>(w) < scan_out_ ? image[w] : 0;
+  const std::size_t n = std::min({image.size(), out_image_.size(), static_cast<std::size_t>(std::max(scan_out_, 0))});
+  std::copy_n(image.begin(), n, out_image_.begin());
+  std::fill(out_image_.begin() + static_cast<std::ptrdiff_t>(n), out_image_.end(), std::uint16_t{0});
   // The end of the first full scan in a new Run/Test mode: the M0 settings take effect and the
   // outputs are updated ("The outputs of the RIO are updated after the end of the first SLC
   // processor scan").
@@ -330,16 +330,13 @@ void RioScanner::on_mode_change(Mode from, Mode to) {
 }
 
 // See the header: the image scans are copies, the rest is events; not while a new mode waits for
-// its first scan or a block transfer is under way.
-//
-// A buffer is Waiting or Active exactly while it is in its rack's queue: enable() queues it as it
-// sets Waiting, start() makes only a queue's front Active, and post(), disable() and cancel_all()
-// take it out as they set Done, Error or Idle. So the four queues answer for the 33 buffers (the
-// runtime asks after every event between repeated scans).
-bool RioScanner::passive() const {
-  if (pending_mode_ || !notes_.empty() || !ready_.empty()) return false;
-  return std::all_of(rack_queue_.begin(), rack_queue_.end(), [](const std::deque<int>& q) { return q.empty(); });
-}
+// its first scan. A block transfer in progress is passive too (decision, issue 20, session 16):
+// everything it does later is an event already on the queue (a note or a finished transfer has
+// its service tick scheduled, request_tick; a Waiting buffer moves when the one before it ends; an
+// Active one at the link's visits and its BT timer), and the program sees it only through M1,
+// which the runtime reads again after the events between repeats, and through the M0 control
+// word, whose EN/TO edges count as changes (program_changes).
+bool RioScanner::passive() const { return !pending_mode_; }
 
 void RioScanner::execute(ModuleInstructionContext& ctx) {
   if (ctx.opcode() == Opcode::BTR || ctx.opcode() == Opcode::BTW) {
@@ -428,7 +425,13 @@ void RioScanner::schedule_next(VirtualTime t) {
         }
       }
     }
-    host()->schedule_at(t + dur, [this, v](VirtualTime te) { end_visit(v, te); });
+    // One visit is in flight at a time, so it waits in visit_ and the event captures only `this`
+    // (a std::function holds that without allocating).
+    visit_ = v;
+    host()->schedule_at(t + dur, [this](VirtualTime te) {
+      const Visit done = visit_;
+      end_visit(done, te);
+    });
     return;
   }
   idle();  // every device is inhibited
@@ -437,6 +440,8 @@ void RioScanner::schedule_next(VirtualTime t) {
 void RioScanner::end_visit(const Visit& v, VirtualTime t) {
   const Logical& l = logical_[static_cast<std::size_t>(v.logical)];
   Device& d = devices_[static_cast<std::size_t>(l.device)];
+  const bool was_attempted = d.attempted;
+  const bool was_failing = d.failing[static_cast<std::size_t>(l.part)];
   d.attempted = true;
   if (v.reply == Reply::Ok) {
     exchange(l, d, adapters_[static_cast<std::size_t>(d.adapter)], t);
@@ -446,7 +451,11 @@ void RioScanner::end_visit(const Visit& v, VirtualTime t) {
   }
   if (v.bt_request) bt_visit_end(v.bt_request, v, t);
   if (v.bt_data) bt_visit_end(v.bt_data, v, t);
-  update_status();
+  // update_status is a function of the devices' attempted and failing flags and the inhibit words
+  // in effect, and gives the same words again for the same ones: it runs when one of them moved.
+  if (d.attempted != was_attempted || d.failing[static_cast<std::size_t>(l.part)] != was_failing ||
+      inhibit_words() != status_inhibit_)
+    update_status();
   cursor_ = static_cast<std::size_t>(v.logical) + 1;
   schedule_next(t);
 }
@@ -457,16 +466,21 @@ std::uint16_t RioScanner::adapter_input_word(const Adapter& a, int w) const {
   const int idx = w - a.spec.first_word();
   if (a.modules.empty()) return a.generic_in[static_cast<std::size_t>(idx)];
   std::uint16_t v = 0;
-  for (const auto& m : a.modules)
-    if (m.spec.kind == RioModuleKind::Input) v = static_cast<std::uint16_t>(v | word_from_module(m.spec, module_inputs(m), w));
+  for (int mi : a.input_modules) {
+    const RemoteModule& m = a.modules[static_cast<std::size_t>(mi)];
+    v = static_cast<std::uint16_t>(v | word_from_module(m.spec, module_inputs(m), w));
+  }
   return v;
 }
 
 void RioScanner::exchange(const Logical& l, Device& d, Adapter& a, VirtualTime t) {
-  const Command c = command_for(d);
   const std::size_t ai = static_cast<std::size_t>(d.adapter);
+  // A watchdog that expires now expired before this visit's end (arm_watchdog).
+  if (a.watchdog_due == t) watchdog_expires(static_cast<int>(ai), t);
+  const Command c = command_for(d);
   for (int w = l.first_word; w < l.first_word + l.words; ++w) {
     const auto idx = static_cast<std::size_t>(w - a.spec.first_word());
+    const std::uint16_t before = a.out_buffer[idx];
     switch (c) {
       case Command::Run: a.out_buffer[idx] = out_image_[static_cast<std::size_t>(w)]; break;
       case Command::Reset: a.out_buffer[idx] = 0; break;
@@ -474,6 +488,7 @@ void RioScanner::exchange(const Logical& l, Device& d, Adapter& a, VirtualTime t
         if (!a.hold_last_state) a.out_buffer[idx] = 0;
         break;
     }
+    if (a.out_buffer[idx] != before) a.outputs_stale = true;
     // The adapter answers with its input buffer (its chassis inputs as of its last backplane
     // scan, or now when it has no backplane delay).
     a.received[idx] = a.spec.backplane_scan > 0 ? a.in_buffer[idx] : adapter_input_word(a, w);
@@ -490,27 +505,84 @@ void RioScanner::exchange(const Logical& l, Device& d, Adapter& a, VirtualTime t
   if (a.spec.backplane_scan <= 0) apply_outputs(a, t);
 }
 
+// The watchdog expires comm_timeout after the adapter's last exchange. Every visit re-arms it, and
+// cancelling and scheduling an event at each visit was a tenth of the simulation's time, so one
+// event stands for it: it is scheduled when the watchdog is armed with none pending, and when it
+// runs before the (since moved) expiry it moves itself there (watchdog_event). The watchdog then
+// expires at the same time as an event armed at each visit would, and in the same order among
+// the events of that time that it does not commute with: those that read or write the adapter's
+// output buffer. An event armed at the last exchange would run before every visit ending at the
+// expiry (each was scheduled after that exchange) and before the adapter's backplane scan there
+// when that was scheduled after the arm; exchange() and backplane() let it expire first in
+// those cases, and the moved event then finds nothing to do. Every other event touches neither
+// the output buffer nor what the expiry reads, so its order against them does not matter.
 void RioScanner::arm_watchdog(int ai, VirtualTime t) {
   Adapter& a = adapters_[static_cast<std::size_t>(ai)];
-  if (a.watchdog) host()->cancel_event(a.watchdog);
-  a.watchdog = host()->schedule_at(t + a.spec.comm_timeout, [this, ai](VirtualTime te) {
-    Adapter& ad = adapters_[static_cast<std::size_t>(ai)];
-    ad.watchdog = 0;
-    // No valid transfer for the adapter's time-out: "Inhibited devices eventually time out and
-    // either return to their last state or reset (depending on the device's last state setting)".
-    if (!ad.hold_last_state) std::fill(ad.out_buffer.begin(), ad.out_buffer.end(), 0);
-    if (ad.spec.backplane_scan <= 0) apply_outputs(ad, te);
-  });
+  a.watchdog_due = t + a.spec.comm_timeout;
+  a.watchdog_armed = ++order_;
+  if (a.watchdog_event_at >= 0) return;  // it moves itself to the new expiry
+  a.watchdog_event_at = a.watchdog_due;
+  host()->schedule_at(a.watchdog_due, [this, ai](VirtualTime te) { watchdog_event(ai, te); });
+}
+
+void RioScanner::watchdog_event(int ai, VirtualTime t) {
+  Adapter& a = adapters_[static_cast<std::size_t>(ai)];
+  a.watchdog_event_at = -1;
+  if (a.watchdog_due < 0) return;  // expired already, at the start of a visit or backplane scan
+  if (a.watchdog_due > t) {
+    a.watchdog_event_at = a.watchdog_due;
+    host()->schedule_at(a.watchdog_due, [this, ai](VirtualTime te) { watchdog_event(ai, te); });
+    return;
+  }
+  watchdog_expires(ai, t);
+}
+
+void RioScanner::watchdog_expires(int ai, VirtualTime t) {
+  Adapter& a = adapters_[static_cast<std::size_t>(ai)];
+  a.watchdog_due = -1;
+  // No valid transfer for the adapter's time-out: "Inhibited devices eventually time out and
+  // either return to their last state or reset (depending on the device's last state setting)".
+  if (!a.hold_last_state) {
+    std::fill(a.out_buffer.begin(), a.out_buffer.end(), 0);
+    a.outputs_stale = true;
+  }
+  if (a.spec.backplane_scan <= 0) apply_outputs(a, t);
+}
+
+void RioScanner::schedule_backplane(int ai, VirtualTime at) {
+  adapters_[static_cast<std::size_t>(ai)].backplane_scheduled = ++order_;
+  host()->schedule_at(at, [this, ai](VirtualTime te) { backplane(ai, te); });
 }
 
 void RioScanner::backplane(int ai, VirtualTime t) {
   Adapter& a = adapters_[static_cast<std::size_t>(ai)];
-  for (int k = 0; k < a.spec.groups; ++k) a.in_buffer[static_cast<std::size_t>(k)] = adapter_input_word(a, a.spec.first_word() + k);
+  // A watchdog armed before this scan was scheduled and expiring now expired first (arm_watchdog).
+  if (a.watchdog_due == t && a.watchdog_armed < a.backplane_scheduled) watchdog_expires(ai, t);
+  if (a.modules.empty()) {
+    std::copy(a.generic_in.begin(), a.generic_in.end(), a.in_buffer.begin());
+  } else {
+    // adapter_input_word for every word at once: each input module gives only its one or two
+    // words, so the others are zero.
+    std::fill(a.in_buffer.begin(), a.in_buffer.end(), std::uint16_t{0});
+    for (int mi : a.input_modules) {
+      const RemoteModule& m = a.modules[static_cast<std::size_t>(mi)];
+      for (int w = first_word_of(m.spec); w <= first_word_of(m.spec) + 1; ++w) {
+        const int k = w - a.spec.first_word();
+        if (k < 0 || k >= a.spec.groups) continue;
+        auto& word = a.in_buffer[static_cast<std::size_t>(k)];
+        word = static_cast<std::uint16_t>(word | word_from_module(m.spec, module_inputs(m), w));
+      }
+    }
+  }
   apply_outputs(a, t);
-  host()->schedule_at(t + a.spec.backplane_scan, [this, ai](VirtualTime te) { backplane(ai, te); });
+  schedule_backplane(ai, t + a.spec.backplane_scan);
 }
 
 void RioScanner::apply_outputs(Adapter& a, VirtualTime t) {
+  // An output buffer that has not changed since the last call gives every module the target it
+  // has: nothing to do.
+  if (!a.outputs_stale) return;
+  a.outputs_stale = false;
   a.generic_out = a.out_buffer;
   const auto ai = static_cast<std::size_t>(&a - adapters_.data());
   for (std::size_t mi = 0; mi < a.modules.size(); ++mi) {
@@ -549,7 +621,12 @@ void RioScanner::set_module_input(int ai, int mi, std::uint32_t value, std::uint
   });
 }
 
+std::array<std::uint16_t, 4> RioScanner::inhibit_words() const {
+  return {control(8, 0), control(8, 1), control(8, 2), control(8, 3)};
+}
+
 void RioScanner::update_status() {
+  status_inhibit_ = inhibit_words();
   std::uint16_t w0 = static_cast<std::uint16_t>(m1w(0) & 0x0002);
   bool all_attempted = !devices_.empty();
   bool any_fault = false;
@@ -608,12 +685,15 @@ void RioScanner::tick(VirtualTime t) {
   last_tick_ = t;
   // One enable (or time-out request) per T_SNo-bt, in the order the program made them; the
   // disables that precede nothing else of their buffer are taken at once (see apply_note).
-  std::deque<Note> kept;
-  std::set<int> blocked;  // buffers with an earlier note still waiting
+  // `kept` and the ready list are members that keep their storage: a tick runs at every enable,
+  // disable and finished transfer.
+  std::deque<Note>& kept = kept_notes_;
+  kept.clear();
+  std::array<bool, rio::kBufferCount + 1> blocked{};  // buffers with an earlier note still waiting
   bool slot_used = false;
   for (const Note& n : notes_) {
     Buffer& b = bt_[static_cast<std::size_t>(n.buffer)];
-    if (blocked.count(n.buffer)) {
+    if (blocked[static_cast<std::size_t>(n.buffer)]) {
       kept.push_back(n);
       continue;
     }
@@ -629,11 +709,12 @@ void RioScanner::tick(VirtualTime t) {
       continue;
     }
     kept.push_back(n);
-    blocked.insert(n.buffer);
+    blocked[static_cast<std::size_t>(n.buffer)] = true;
   }
   notes_.swap(kept);
   // Finished transfers are posted to M1 (one T_SNo-bt "to handle the BT response").
-  std::vector<int> ready;
+  std::vector<int>& ready = posting_;
+  ready.clear();
   ready.swap(ready_);
   for (int x : ready) post(x);
   if (!notes_.empty() || !ready_.empty()) request_tick();

@@ -45,9 +45,9 @@
 // send; neither looks at the clock. Everything the link, the adapters' chassis, the input and
 // output delays, the watchdogs and the block-transfer service do later is an event on the runtime's
 // queue. So the scanner is passive unless a new Run/Test mode is waiting for the end of its first
-// scan (the output scan would then change the M0 settings in effect) or a block transfer is in
-// progress (a note or finished transfer waiting for a service tick, or a buffer Waiting or Active):
-// the transfer's progress is events too, but M1 changes with it.
+// scan (the output scan would then change the M0 settings in effect). A block transfer in progress
+// does not stop it: its progress is events too (service ticks, visits, the BT timer), and the M1
+// words that change with it are read again by the runtime after the events between repeats.
 //
 // M files and BTR/BTW in repeated scans (Module::program_changes): read_m is a copy of M0 or M1,
 // which change only in the link's and the block-transfer service's events and in write_m. A write
@@ -148,8 +148,16 @@ class RioScanner final : public Module {
     std::vector<std::uint16_t> received;               // what the scanner last received from it
     std::vector<std::uint16_t> generic_in, generic_out;  // adapters described without modules
     VirtualTime last_comm = -1;
-    EventQueue::EventId watchdog = 0;
+    // The communication watchdog (arm_watchdog): the time it expires unless the adapter is heard
+    // from again (-1: expired or never armed), the order in which it was last armed, and the time
+    // of the one event that stands for it (-1: none).
+    VirtualTime watchdog_due = -1;
+    std::uint64_t watchdog_armed = 0;
+    VirtualTime watchdog_event_at = -1;
+    std::uint64_t backplane_scheduled = 0;  // the order of its pending backplane event
+    bool outputs_stale = true;  // out_buffer changed since apply_outputs last ran
     std::vector<RemoteModule> modules;
+    std::vector<int> input_modules;  // indices of its discrete input modules
   };
   struct Device {
     RioGDevice g;
@@ -212,9 +220,13 @@ class RioScanner final : public Module {
   Reply reply_of(const Device& d) const;
   void exchange(const Logical& l, Device& d, Adapter& a, VirtualTime t);
   void update_status();
+  std::array<std::uint16_t, 4> inhibit_words() const;  // M0 words 8-11 in effect
   void backplane(int adapter, VirtualTime t);
   void apply_outputs(Adapter& a, VirtualTime t);
   void arm_watchdog(int adapter, VirtualTime t);
+  void watchdog_event(int adapter, VirtualTime t);
+  void watchdog_expires(int adapter, VirtualTime t);
+  void schedule_backplane(int adapter, VirtualTime at);
   std::uint32_t module_inputs(const RemoteModule& m) const;
   std::uint16_t adapter_input_word(const Adapter& a, int w) const;
   void set_module_input(int adapter, int module, std::uint32_t value, std::uint32_t mask);
@@ -259,9 +271,14 @@ class RioScanner final : public Module {
   bool link_running_ = false;
   bool cable_ok_ = true;
   std::size_t cursor_ = 0;
+  Visit visit_;  // the one visit in flight (schedule_next); the event captures only `this`
+  // Counts the watchdog arms and backplane schedulings, in the order they happen, so that the
+  // order of two of them can be told (arm_watchdog).
+  std::uint64_t order_ = 0;
   VirtualTime rio_scan_start_ = 0;
   Nanoseconds last_rio_scan_ = 0;
   std::uint64_t rio_scans_ = 0;
+  std::array<std::uint16_t, 4> status_inhibit_{};  // the inhibit words update_status last used
   std::array<bool, 4> rack_bt_used_{};
   // The mode the link acts on: a new Run/Test mode takes effect after the first full program
   // scan ("The processor does not use the M0 file until a full program scan occurs"); until then
@@ -275,6 +292,8 @@ class RioScanner final : public Module {
   std::deque<Note> notes_;
   std::array<std::deque<int>, 4> rack_queue_;
   std::vector<int> ready_;
+  std::deque<Note> kept_notes_;  // tick()'s scratch
+  std::vector<int> posting_;     // tick()'s scratch
   Nanoseconds tick_period_ = milliseconds(16);
   VirtualTime tick_origin_ = 0;
   VirtualTime next_tick_ = -1;  // scheduled tick time, -1 = none

@@ -880,6 +880,63 @@ TEST(RepeatedScans, AnSnM0WriteOfANewValueIsNotRepeated) {
   EXPECT_GT(skipping.runtime().stats().repeated, 0u);
 }
 
+// A block transfer in progress (decision, issue 20, session 16; docs/semantics.md "Repeated
+// scans", docs/1747-sn.md): the 1747-SN is passive while a transfer is under way, because the
+// transfer moves only in events (the service ticks, the link's visits, the four-second BT timer)
+// and the program sees it only through M1, which the runtime reads again after the events between
+// repeats. A continuous BTR (Appendix D's repeating read: enabled while neither DN nor ER) to a
+// module that answers 300 ms after the request keeps a transfer in progress nearly all the time,
+// with M1:1.100 unchanged (EN, EW, ST) while the module prepares its answer; those scans repeat.
+// Then the module stops answering, and each transfer ends with ER and -9 when the scanner's BT
+// timer runs out 4 s after the start (Table 5.3). Observed every 7 and 13 ms, off the 4.5 ms
+// backplane scans, with M0/M1 of the buffer and the module's read count compared too. Tried:
+// with the scanner not passive during a transfer (the rule before) no scan repeats here; with the
+// runtime's re-reading of the probe's M words after events left out, N11 and N20 differ.
+TEST(RepeatedScans, AnSnBlockTransferInProgressRepeatsUntilItsStatusChanges) {
+  const std::string text =
+      "START 1747-L532\nSLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 3\n 0 1 15 OPTION baud=115.2K\nLADDER 2\n"
+      "SOR XIO N10:0/13 XIO N10:0/12 BTR N10:0 M1:1.100 #N11:0 0 2 0 8 EOR\n"
+      "SOR BST XIC N10:0/13 OSR B3:1/0 ADD N20:0 1 N20:0 NXB XIC N10:0/12 OSR B3:1/1 ADD N20:2 1 N20:2 BND EOR\n";
+  const std::string bench =
+      "scanner RIO slot=1 {\n"
+      "  adapter RACK0 catalog=1747-ASB rack=0 group=0 size=full backplane_scan=4.5ms {\n"
+      "    module ANALOG catalog=1771-IFE kind=bt group=2 slot=0 length=8 response_delay=300ms "
+      "data=100,200,300,400,500,600,700,800 {\n"
+      "      ramp word=0 from=100 step=1 every=50ms\n"
+      "    }\n  }\n}\n";
+  Controller skipping = Controller::from_text(text, bench);
+  Controller executing = Controller::from_text(text, bench);
+  const auto buffer = [](Runtime& r) {
+    std::vector<std::uint16_t> out;
+    Module* sn = r.module(1);
+    for (int w = 100; w <= 117; ++w) {
+      std::uint16_t v = 0;
+      sn->read_m(MFile::M1, w, v);
+      out.push_back(v);
+    }
+    for (int w = 100; w <= 101; ++w) {
+      std::uint16_t v = 0;
+      sn->read_m(MFile::M0, w, v);
+      out.push_back(v);
+    }
+    return out;
+  };
+  run_side_by_side(skipping.runtime(), executing.runtime(), 300, milliseconds(7), "SN BTR in progress", buffer);
+  EXPECT_EQ(skipping.observe("ANALOG", "btr count"), executing.observe("ANALOG", "btr count"));
+  EXPECT_GE(skipping.get_int("N20:0"), 5) << "transfers done in 2.1 s";
+  // Each 7 ms slice (two scans of about 3.5 ms) starts with a probe, so at most about half repeat.
+  EXPECT_GT(skipping.runtime().stats().repeated, skipping.runtime().stats().scans / 3);
+  for (Controller* c : {&skipping, &executing}) c->inject("ANALOG", "not responding", {});
+  const std::int64_t done = skipping.get_int("N20:0");
+  run_side_by_side(skipping.runtime(), executing.runtime(), 700, milliseconds(13), "SN BTR timing out", buffer);
+  EXPECT_LE(skipping.get_int("N20:0"), done + 1);
+  EXPECT_GE(skipping.get_int("N20:2"), 2) << "two four-second BT timeouts in 9.1 s";
+  for (Controller* c : {&skipping, &executing}) c->inject("ANALOG", "responding", {});
+  // The transfer in flight still waits for its answer until its timer runs out; the next is answered.
+  run_side_by_side(skipping.runtime(), executing.runtime(), 400, milliseconds(13), "SN BTR answered again", buffer);
+  EXPECT_GT(skipping.get_int("N20:0"), done + 1);
+}
+
 // ---- The SLC's STI ----------------------------------------------------------------------------------
 
 // A timing STI (RM 11-12: every 10 ms here, S:30 = 1 with S:2/10 clear) expires in the middle of a

@@ -196,6 +196,72 @@ TEST(ModeTable, FaultModeResetsOutputs) {
   EXPECT_EQ(g.out(), 0);
 }
 
+// The adapter's communication watchdog ("Inhibited devices eventually time out and either return
+// to their last state or reset"; decision: comm_timeout, 100 ms by default, docs/1747-sn.md "The
+// RIO link in virtual time"). One 1/2 rack ASB at 115.2K, so a RIO scan is its one visit, 4.0 ms
+// (appendix A, "RIO Scan Times for Adapters"), ending at multiples of 4 ms from Run entry at 0;
+// its OB16's terminals follow 1 ms after the adapter drives them. The adapter goes off line, so
+// its last exchange ends the visit under way then (answered when it started), and its outputs reset
+// comm_timeout later:
+// at once without a backplane scan, else at the first backplane scan from then on. A scan at the
+// same time as the expiry was scheduled one backplane scan before it, after the watchdog was armed,
+// so the reset applies at that scan (100 ms: the expiry falls on a scan, at 164 ms and at 300 ms;
+// 98 ms: 2 ms before one). The last case is the one where the softslc scanner's single watchdog
+// event (rio_scanner.cpp, arm_watchdog) is moved to the expiry only after that backplane scan was
+// scheduled, so the scan must let the watchdog expire first: without that it resets 10 ms late
+// (tried).
+TEST(RioLink, AnAdapterThatHearsNothingResetsItsOutputsCommTimeoutAfterItsLastExchange) {
+  struct Case {
+    const char* backplane;  // the adapter's backplane_scan setting ("" = none)
+    int timeout_ms;
+    int offline_at_ms;  // when the adapter goes off line (at the end of a scan from then on)
+    int off_after_ms;   // after the last exchange, to the terminals
+  };
+  for (const Case c : {Case{"", 100, 61, 101}, Case{" backplane_scan=4ms", 100, 61, 101},
+                       Case{" backplane_scan=4ms", 98, 61, 101}, Case{" backplane_scan=10ms", 100, 197, 101}}) {
+    Bench b("START 1747-L532\nSLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 3\n 0 1 3 OPTION baud=115.2K\nLADDER 2\n"
+            "SOR OTE O:1.1/0 EOR\n",
+            std::string("scanner RIO slot=1 {\n  adapter ASB rack=0 group=0 size=1/2") + c.backplane +
+                " comm_timeout=" + std::to_string(c.timeout_ms) +
+                "ms {\n    module OUT catalog=1746-OB16 group=1 output_delay=1ms\n  }\n}\n");
+    const std::string what = std::string("backplane") + c.backplane + ", time-out " + std::to_string(c.timeout_ms);
+    b.run();
+    b->run_for(milliseconds(c.offline_at_ms) + microseconds(300));
+    ASSERT_EQ((*b->observe("OUT", "outputs"))[0], 1) << what;
+    // The visit under way was answered: the last exchange is its end.
+    const VirtualTime last = (b->now() / milliseconds(4) + 1) * milliseconds(4);
+    if (c.offline_at_ms == 197) {
+      ASSERT_EQ(last, milliseconds(200)) << what;
+    }
+    b.inject("ASB", "offline");
+    b->run_for(milliseconds(300));
+    EXPECT_EQ((*b->observe("OUT", "outputs"))[0], 0) << what;
+    EXPECT_EQ((*b->observe("OUT", "output changed at"))[0], last + milliseconds(c.off_after_ms)) << what;
+    b.inject("ASB", "online");
+    b->run_for(milliseconds(50));
+    EXPECT_EQ((*b->observe("OUT", "outputs"))[0], 1) << what;
+  }
+}
+
+// The same watchdog when it runs out at every visit: comm_timeout equal to the 4.0 ms visit. Each
+// visit's exchange re-arms it for the end of the next visit, where it expires (the visit's event
+// was scheduled after the arm) and the exchange then drives the outputs again. The backplane scan
+// every 8 ms falls on every other visit end; it was scheduled 8 ms before, before the watchdog was
+// armed, so it drives the outputs before the watchdog clears them: the terminals stay on.
+TEST(RioLink, AWatchdogRunningOutAtEachVisitLeavesTheOutputsAsTheBackplaneScanFindsThem) {
+  Bench b("START 1747-L532\nSLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 3\n 0 1 3 OPTION baud=115.2K\nLADDER 2\n"
+          "SOR OTE O:1.1/0 EOR\n",
+          "scanner RIO slot=1 {\n  adapter ASB rack=0 group=0 size=1/2 backplane_scan=8ms comm_timeout=4ms {\n"
+          "    module OUT catalog=1746-OB16 group=1 output_delay=1ms\n  }\n}\n");
+  b.run();
+  b->run_for(milliseconds(50));
+  ASSERT_EQ((*b->observe("OUT", "outputs"))[0], 1);
+  const std::int64_t on_at = (*b->observe("OUT", "output changed at"))[0];
+  b->run_for(milliseconds(200));
+  EXPECT_EQ((*b->observe("OUT", "outputs"))[0], 1);
+  EXPECT_EQ((*b->observe("OUT", "output changed at"))[0], on_at);
+}
+
 TEST(RioLink, InhibitedDeviceIsNotScanned) {
   Bench b(kExampleProgram + "SOR XIC B3:0/0 OTE M0:1.11/0 EOR\n", kExampleBench);
   b.run();

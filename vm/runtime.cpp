@@ -770,9 +770,13 @@ bool Runtime::probe_due() {
   // Asked again after a wait that grows as after a probe that found a change: a module that is
   // seldom passive (a 1203-SM1 whose drives ramp, a 1747-SDN with a DEM in flight) would cost a
   // question every scan.
+  wait_longer_before_probing();
+  return false;
+}
+
+void Runtime::wait_longer_before_probing() {
   probe_wait_ = probe_backoff_;
   probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
-  return false;
 }
 
 bool Runtime::modules_passive() const {
@@ -820,9 +824,7 @@ bool Runtime::probe_reads_the_same() {
 // that the wait doubles with each failure, to 64 scans: a program that changes its table every
 // scan, or whose network has an event at the end of most scans, pays for a probe at most every 64.
 void Runtime::probe_failed() {
-  if (++probe_failures_ < kProbesBeforeBackoff) return;
-  probe_wait_ = probe_backoff_;
-  probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
+  if (++probe_failures_ >= kProbesBeforeBackoff) wait_longer_before_probing();
 }
 
 std::int64_t Runtime::probe_and_repeat(VirtualTime end) {

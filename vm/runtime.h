@@ -261,6 +261,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   bool probe_due();
   std::int64_t probe_and_repeat(VirtualTime end);
   void probe_failed();
+  void wait_longer_before_probing();  // the wait before the next probe doubles, up to 64 scans
   // Every scanned module says it is passive (Module::passive).
   bool modules_passive() const;
   // During a probe: notes a module the program reaches (its count before the first access).

@@ -81,7 +81,9 @@ struct SideBySide {
     return run_side_by_side(skipping, executing, slices, slice, what);
   }
 };
-SideBySide side_by_side(const std::string& text) { return {Controller::from_text(text), Controller::from_text(text)}; }
+SideBySide side_by_side(const std::string& text, const std::string& bench = {}) {
+  return {Controller::from_text(text, bench), Controller::from_text(text, bench)};
+}
 
 TEST(RepeatedScans, EveryShippedExampleGivesTheSameResultsWithAndWithoutThem) {
   const fs::path root = fs::path(SOFTSLC_SOURCE_DIR) / "examples" / "ladder";
@@ -195,25 +197,25 @@ TEST(RepeatedScans, ProbesFollowAtOnceAfterAFewChangingScans) {
   EXPECT_EQ((after.scans - before.scans) - (after.repeated - before.repeated), 4u);
 }
 
+// 9600 baud, 8N1: a character every 1.04 ms.
+constexpr const char* kScaleBench = "serial SCALE baud=9600 termination=CR append=CRLF eol=CR\n";
+
 // The ASCII port (vm/ascii_channel.h) acts between scans only in its events: an ARL waiting for its
 // line lets the scans repeat, and the characters arriving one by one, its POS "continuously
 // updated" and its DN stop them where executed scans would see each change.
 TEST(RepeatedScans, AnAsciiReadWaitingForItsLineRepeatsUntilTheCharactersArrive) {
-  const std::string text =
+  SideBySide p = side_by_side(
       "START 1747-L532\nLADDER 2\nSOR XIC B3:0/0 ARL 0 ST10:0 R6:0 82 0 EOR\n"
-      "SOR XIC R6:0/DN ACI ST10:0 N7:0 EOR\nDATA ST10:0\n";
-  const std::string bench = "serial SCALE baud=9600 termination=CR append=CRLF eol=CR\n";
-  Controller skipping = Controller::from_text(text, bench);
-  Controller executing = Controller::from_text(text, bench);
-  run_side_by_side(skipping, executing, 5, milliseconds(10), "port idle");
-  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
-  run_side_by_side(skipping, executing, 10, milliseconds(10), "ARL waiting");
-  const std::uint64_t waiting = skipping.runtime().stats().repeated;
-  EXPECT_GT(waiting, skipping.runtime().stats().scans / 2);
-  for (Controller* c : {&skipping, &executing}) c->inject("SCALE", "send", {"W", "00125"});
-  run_side_by_side(skipping, executing, 10, milliseconds(3), "line arriving");
-  EXPECT_EQ(skipping.get_int("N7:0"), 125);
-  EXPECT_EQ(skipping.get_int("R6:0.POS"), 8);
+      "SOR XIC R6:0/DN ACI ST10:0 N7:0 EOR\nDATA ST10:0\n",
+      kScaleBench);
+  p.run(5, milliseconds(10), "port idle");
+  for (Controller* c : {&p.skipping, &p.executing}) c->set("B3:0/0", 1);
+  p.run(10, milliseconds(10), "ARL waiting");
+  EXPECT_GT(p.skipping.runtime().stats().repeated, p.skipping.runtime().stats().scans / 2);
+  for (Controller* c : {&p.skipping, &p.executing}) c->inject("SCALE", "send", {"W", "00125"});
+  p.run(10, milliseconds(3), "line arriving");
+  EXPECT_EQ(p.skipping.get_int("N7:0"), 125);
+  EXPECT_EQ(p.skipping.get_int("R6:0.POS"), 8);
 }
 
 // A true ACL empties the receive buffer at every scan without a change in the table: characters
@@ -223,21 +225,19 @@ TEST(RepeatedScans, AnAsciiReadWaitingForItsLineRepeatsUntilTheCharactersArrive)
 // so it waits for a line. With ACL among the port's instructions this fails (tried: the line
 // arrives between repeats and the ARL reads it, DN and POS 6, only with repeats).
 TEST(RepeatedScans, AProgramWithAclIsNeverRepeated) {
-  const std::string text =
+  SideBySide p = side_by_side(
       "START 1747-L532\nLADDER 2\nSOR XIC B3:0/1 ARL 0 ST10:0 R6:0 82 0 EOR\n"
-      "SOR XIC B3:0/0 ACL 0 0 1 EOR\nDATA ST10:0\n";
-  const std::string bench = "serial SCALE baud=9600 termination=CR append=CRLF eol=CR\n";
-  Controller skipping = Controller::from_text(text, bench);
-  Controller executing = Controller::from_text(text, bench);
-  for (Controller* c : {&skipping, &executing}) c->set("B3:0/0", 1);
-  run_side_by_side(skipping, executing, 2, milliseconds(5), "ACL clearing");
-  for (Controller* c : {&skipping, &executing}) c->inject("SCALE", "send", {"HELLO"});
-  run_side_by_side(skipping, executing, 1, milliseconds(10), "characters arriving, cleared");
-  for (Controller* c : {&skipping, &executing}) c->set("B3:0/1", 1);
-  run_side_by_side(skipping, executing, 2, milliseconds(5), "ARL");
-  EXPECT_EQ(skipping.get_int("R6:0.POS"), 0) << "the buffer was cleared";
-  EXPECT_FALSE(skipping.get_bit("R6:0/DN"));
-  EXPECT_EQ(skipping.runtime().stats().repeated, 0u);
+      "SOR XIC B3:0/0 ACL 0 0 1 EOR\nDATA ST10:0\n",
+      kScaleBench);
+  for (Controller* c : {&p.skipping, &p.executing}) c->set("B3:0/0", 1);
+  p.run(2, milliseconds(5), "ACL clearing");
+  for (Controller* c : {&p.skipping, &p.executing}) c->inject("SCALE", "send", {"HELLO"});
+  p.run(1, milliseconds(10), "characters arriving, cleared");
+  for (Controller* c : {&p.skipping, &p.executing}) c->set("B3:0/1", 1);
+  p.run(2, milliseconds(5), "ARL");
+  EXPECT_EQ(p.skipping.get_int("R6:0.POS"), 0) << "the buffer was cleared";
+  EXPECT_FALSE(p.skipping.get_bit("R6:0/DN"));
+  EXPECT_EQ(p.skipping.runtime().stats().repeated, 0u);
 }
 
 // Which instructions a repeating program may hold is the REPEAT column of the instruction table

@@ -1116,33 +1116,37 @@ TEST(RepeatedScans, ARealTimeClockReadSeesEverySecondWithRepeats) {
   EXPECT_GT(skipping.runtime().stats().repeated, skipping.runtime().stats().scans * 9 / 10);
 }
 
-// An EII (EII:0: rising edge of I:0/0, UIE and AS, PFN 3) fires on an input edge, which reaches the
-// controller as an event (the input filter delay of `io ... input_delay`): a part shorter than a scan
-// rises and falls in the events between two scans, so the input image is the probe's again, but the
-// routine waits (1763-RM001C p. 275). The queued run stops the repeats; without that check this
+// A MicroLogix 1100 whose EII 0 (EII:0: rising edge of I:0/0 through the bench's 3 ms input filter,
+// UIE and AS, PFN 3) runs file 3, which counts in N7:0; `main_rungs` are file 2.
+SideBySide eii_side_by_side(const std::string& main_rungs) {
+  return side_by_side("START Bul.1763\nLADDER 2\n" + main_rungs +
+                          "LADDER 3\nSOR ADD N7:0 1 N7:0 EOR\nDATA EII0:0\n     3      0 0X4022      0\n",
+                      "io EYE slot=0 input_delay=3ms\n");
+}
+
+// A part shorter than a scan passes the eye: the input rises and falls at the same instant.
+void a_part_passes(SideBySide& p) {
+  for (Controller* c : {&p.skipping, &p.executing}) {
+    c->inject("EYE", "input", {"1"});
+    c->inject("EYE", "input", {"0"});
+  }
+}
+
+// The EII fires on an input edge, which reaches the controller as an event (the input filter delay
+// of `io ... input_delay`): a part shorter than a scan rises and falls in the events between two
+// scans, so the input image is the probe's again, but the routine waits (1763-RM001C p. 275). The queued run stops the repeats; without that check this
 // fails (tried: the part is counted at the next probe, slices later).
 TEST(RepeatedScans, AnEiiEdgeArrivingBetweenRepeatsRunsItsRoutineAtTheSameScan) {
-  const std::string text =
-      "START Bul.1763\nLADDER 2\n"
-      "SOR MOV N7:0 N7:1 EOR\n"
-      "SOR XIC EII:0/UIL OTE B3:0/0 EOR\n"
-      "LADDER 3\nSOR ADD N7:0 1 N7:0 EOR\n"
-      "DATA EII0:0\n     3      0 0X4022      0\n";
-  const std::string bench = "io EYE slot=0 input_delay=3ms\n";
-  Controller skipping = Controller::from_text(text, bench);
-  Controller executing = Controller::from_text(text, bench);
-  run_side_by_side(skipping, executing, 5, milliseconds(100), "EII idle");
-  const std::uint64_t idle = skipping.runtime().stats().repeated;
+  SideBySide p = eii_side_by_side("SOR MOV N7:0 N7:1 EOR\nSOR XIC EII:0/UIL OTE B3:0/0 EOR\n");
+  p.run(5, milliseconds(100), "EII idle");
+  const std::uint64_t idle = p.skipping.runtime().stats().repeated;
   EXPECT_GT(idle, 0u);
   for (int i = 0; i < 6; ++i) {
-    for (Controller* c : {&skipping, &executing}) {
-      c->inject("EYE", "input", {"1"});
-      c->inject("EYE", "input", {"0"});
-    }
-    run_side_by_side(skipping, executing, 4, milliseconds(11 + 2 * i), "EII short part " + std::to_string(i));
+    a_part_passes(p);
+    p.run(4, milliseconds(11 + 2 * i), "EII short part " + std::to_string(i));
   }
-  EXPECT_EQ(skipping.get_int("N7:0"), 6);
-  EXPECT_GT(skipping.runtime().stats().repeated, idle);
+  EXPECT_EQ(p.skipping.get_int("N7:0"), 6);
+  EXPECT_GT(p.skipping.runtime().stats().repeated, idle);
 }
 
 // An EII whose IS a tool has set to no embedded input (check refuses it in a program) meets an input
@@ -1151,27 +1155,16 @@ TEST(RepeatedScans, AnEiiEdgeArrivingBetweenRepeatsRunsItsRoutineAtTheSameScan) 
 // at that write; without the check this fails (tried: N7:5, which counts the scans that see ED,
 // lags by the rest of the repeats).
 TEST(RepeatedScans, AnEiiErrorSetBetweenRepeatsStopsThem) {
-  const std::string text =
-      "START Bul.1763\nLADDER 2\n"
-      "SOR XIC EII:0/ED ADD N7:5 1 N7:5 EOR\n"
-      "LADDER 3\nSOR ADD N7:0 1 N7:0 EOR\n"
-      "DATA EII0:0\n     3      0 0X4022      0\n";
-  const std::string bench = "io EYE slot=0 input_delay=3ms\n";
-  Controller skipping = Controller::from_text(text, bench);
-  Controller executing = Controller::from_text(text, bench);
-  run_side_by_side(skipping, executing, 5, milliseconds(100), "EII idle");
-  for (Controller* c : {&skipping, &executing}) c->set("EII:0.IS", 99);
-  run_side_by_side(skipping, executing, 5, milliseconds(100), "EII with a bad IS, idle");
-  const std::uint64_t idle = skipping.runtime().stats().repeated;
-  EXPECT_GT(idle, 0u);
-  for (Controller* c : {&skipping, &executing}) {
-    c->inject("EYE", "input", {"1"});
-    c->inject("EYE", "input", {"0"});
-  }
-  run_side_by_side(skipping, executing, 10, milliseconds(13), "EII error at the edge");
-  EXPECT_EQ(skipping.get_int("EII:0.ER"), 2);
-  EXPECT_GT(skipping.get_int("N7:5"), 0);
-  EXPECT_EQ(skipping.get_int("N7:0"), 0) << "no routine runs";
+  SideBySide p = eii_side_by_side("SOR XIC EII:0/ED ADD N7:5 1 N7:5 EOR\n");
+  p.run(5, milliseconds(100), "EII idle");
+  for (Controller* c : {&p.skipping, &p.executing}) c->set("EII:0.IS", 99);
+  p.run(5, milliseconds(100), "EII with a bad IS, idle");
+  EXPECT_GT(p.skipping.runtime().stats().repeated, 0u);
+  a_part_passes(p);
+  p.run(10, milliseconds(13), "EII error at the edge");
+  EXPECT_EQ(p.skipping.get_int("EII:0.ER"), 2);
+  EXPECT_GT(p.skipping.get_int("N7:5"), 0);
+  EXPECT_EQ(p.skipping.get_int("N7:0"), 0) << "no routine runs";
 }
 
 

@@ -100,9 +100,9 @@ int SimDevice::produced_size(IoType t) const {
 int SimDevice::consumed_size(IoType t) const { return supports(t) ? model_.support(t).consume : 0; }
 
 std::optional<Bytes> SimDevice::produce(IoType t) const {
-  if (!online_ || !allocated_ || !supports(t)) return std::nullopt;
-  if (producing_idle_) return Bytes{};
-  Bytes out(static_cast<std::size_t>(produced_size(t)), 0);
+  const std::optional<int> length = produced_length(t);  // silent, idle (0) or the input image's size
+  if (!length) return std::nullopt;
+  Bytes out(static_cast<std::size_t>(*length), 0);
   std::copy_n(inputs_.begin(), std::min(out.size(), inputs_.size()), out.begin());
   return out;
 }

@@ -9,6 +9,14 @@
 // fresh load (outside the timing) after 100 s of virtual time: a fast run simulates hours, and
 // some examples count transfers in a 16-bit word that overflows (fault 0020h) long before that.
 //
+// BM_SimulateNetwork/<test file>: every shipped example's test file that puts its program on a MSG
+// network with other controllers (`peer` lines, docs/testing.md), the program and its peers built
+// as that file's first such test builds them (tools/testrunner/test_loader.h), then run in virtual
+// time like BM_Simulate. `x_realtime` is virtual seconds of the whole network per CPU second, every
+// controller's scans included. An MSG example alone (BM_Simulate) has nobody to talk to and, on
+// Ethernet, no IP address: it measures the failure path; with its peers it runs what it was written
+// for (docs/performance.md "Examples with their peers").
+//
 // BM_LoadProgram/<rungs>: parse + check + compile of a generated program from 1,000 to 1,000,000
 // rungs (the mix of parse_bench.cpp: contacts, branches, TON, CTU, ADD, GEQ, MOV, OTL, OTE), split
 // into program files of at most 50,000 rungs that file 2 calls with JSR (a file holds at most
@@ -25,6 +33,7 @@
 #include <vector>
 
 #include "parser/loader.h"
+#include "tools/testrunner/test_loader.h"
 #include "tools/controller/controller.h"
 #include "vm/compiler.h"
 
@@ -60,6 +69,51 @@ void BM_Simulate(benchmark::State& state, const fs::path& program, const std::op
   }
   state.counters["x_realtime"] = benchmark::Counter(static_cast<double>(simulated) / 1e9, benchmark::Counter::kIsRate);
   state.counters["scan_us"] = static_cast<double>(plc->runtime().stats().avg()) / 1e3;
+}
+
+void BM_SimulateNetwork(benchmark::State& state, const fs::path& test_file) {
+  testing::ProgramCache cache;
+  const testing::TestFileLoad load = testing::load_test_file(test_file, test_file.string(), cache);
+  if (!load.ok()) {
+    state.SkipWithError(load.render().substr(0, 500).c_str());
+    return;
+  }
+  const auto with_peers = std::find_if(load.file.tests.begin(), load.file.tests.end(),
+                                       [](const testing::TestCase& t) { return !t.peers.empty(); });
+  if (with_peers == load.file.tests.end()) {
+    state.SkipWithError("no test of this file has peers");
+    return;
+  }
+  const std::shared_ptr<const testing::LoadedProgram> program = with_peers->program;
+  auto fresh = [&]() -> std::unique_ptr<Runtime> {
+    RuntimeResult r = Runtime::create(program->program, program->modules);
+    if (!r.ok() || !r.runtime->set_mode(Mode::Run)) return nullptr;  // the leader takes its peers along
+    return std::move(r.runtime);
+  };
+  std::unique_ptr<Runtime> rt = fresh();
+  if (!rt) {
+    state.SkipWithError("the network did not build");
+    return;
+  }
+  constexpr Nanoseconds kSlice = milliseconds(100);
+  constexpr Nanoseconds kRestartAfter = milliseconds(100'000);
+  Nanoseconds simulated = 0;
+  for (auto _ : state) {
+    if (rt->now() >= kRestartAfter) {
+      state.PauseTiming();
+      rt = fresh();
+      state.ResumeTiming();
+    }
+    const VirtualTime before = rt->now();
+    rt->run_for(kSlice);
+    if (rt->fault()) {
+      state.SkipWithError(("faults: " + rt->fault()->to_string()).c_str());
+      return;
+    }
+    simulated += rt->now() - before;
+  }
+  state.counters["x_realtime"] = benchmark::Counter(static_cast<double>(simulated) / 1e9, benchmark::Counter::kIsRate);
+  state.counters["scan_us"] = static_cast<double>(rt->stats().avg()) / 1e3;
 }
 
 std::string generate_program(int rungs) {
@@ -100,19 +154,35 @@ void BM_LoadProgram(benchmark::State& state) {
 }
 BENCHMARK(BM_LoadProgram)->Arg(1'000)->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->Unit(benchmark::kMillisecond);
 
-// One benchmark per shipped example, in path order.
+// One benchmark per shipped example, in path order, and one per test file with peers.
 void register_examples() {
   std::vector<fs::path> programs;
+  std::vector<fs::path> test_files;
   const fs::path root = fs::path(SOFTSLC_SOURCE_DIR) / "examples" / "ladder";
-  for (const auto& e : fs::recursive_directory_iterator(root))
-    if (e.is_regular_file() && e.path().extension() == ".slc") programs.push_back(e.path());
+  for (const auto& e : fs::recursive_directory_iterator(root)) {
+    if (!e.is_regular_file()) continue;
+    if (e.path().extension() == ".slc") programs.push_back(e.path());
+    if (e.path().extension() == ".test") test_files.push_back(e.path());
+  }
   std::sort(programs.begin(), programs.end());
+  std::sort(test_files.begin(), test_files.end());
   for (const auto& p : programs) {
     fs::path bench = p;
     bench.replace_extension(".bench");
     const std::optional<fs::path> b = fs::exists(bench) ? std::optional<fs::path>(bench) : std::nullopt;
     const std::string name = "BM_Simulate/" + fs::relative(p, root).string();
     benchmark::RegisterBenchmark(name.c_str(), [p, b](benchmark::State& st) { BM_Simulate(st, p, b); })
+        ->Unit(benchmark::kMillisecond);
+  }
+  for (const auto& t : test_files) {
+    // A test file with peers names them on a file-level `peer` line; the others are not registered.
+    testing::ProgramCache cache;
+    const testing::TestFileLoad load = testing::load_test_file(t, t.string(), cache);
+    const bool has_peers = std::any_of(load.file.tests.begin(), load.file.tests.end(),
+                                       [](const testing::TestCase& c) { return !c.peers.empty(); });
+    if (!has_peers) continue;
+    const std::string name = "BM_SimulateNetwork/" + fs::relative(t, root).string();
+    benchmark::RegisterBenchmark(name.c_str(), [t](benchmark::State& st) { BM_SimulateNetwork(st, t); })
         ->Unit(benchmark::kMillisecond);
   }
 }

@@ -302,6 +302,23 @@ TEST(Cli, InstructionsListProcessors) {
   EXPECT_NE(r.out.find("CPT dest expression"), std::string::npos);
 }
 
+// The REPEAT column of the instruction table (instructions/instruction_table.def) is printed with
+// each row: a user asking why a program executes every scan finds it there.
+TEST(Cli, InstructionsSayWhetherAProgramHoldingThemMayHaveItsScansRepeated) {
+  auto r = run("instructions");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("XIC bit\n    processors: all SLC 500 processors\n    repeated scans: yes: acts on the data table alone\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("ACL channel transmit buffer receive buffer\n"), std::string::npos) << r.out;
+  const auto acl = r.out.find("ACL channel");
+  ASSERT_NE(acl, std::string::npos);
+  EXPECT_EQ(r.out.find("    repeated scans: ", acl), r.out.find("    repeated scans: no: a program holding it executes every scan", acl));
+  const auto btr = r.out.find("BTR ");
+  ASSERT_NE(btr, std::string::npos);
+  EXPECT_EQ(r.out.find("    repeated scans: ", btr), r.out.find("    repeated scans: while the module in its slot is passive", btr));
+}
+
 TEST(Cli, CheckNamesTheProcessorAnInstructionIsMissingOn) {
   auto f = temp_file("scp502.slc", "START 1747-L524\nLADDER 2\nSOR SCP N7:0 0 100 0 10 N7:1 EOR\n");
   auto r = run("check " + f.string());

@@ -615,11 +615,27 @@ int run_disasm(const DisasmOptions& o) {
   return kOk;
 }
 
+// The REPEAT column of the instruction table in words (instructions/instruction_table.def says why
+// each class may repeat; docs/semantics.md "Repeated scans").
+const char* repeat_text(Repeat r) {
+  switch (r) {
+    case Repeat::TableAlone: return "yes: acts on the data table alone";
+    case Repeat::FunctionFile: return "while the function file's sub-system stands still";
+    case Repeat::Module: return "while the module in its slot is passive";
+    case Repeat::Network: return "while no message is in flight, for a controller alone on its network";
+    case Repeat::KnownTime: return "until the time it next acts (recorded by the probe)";
+    case Repeat::AsciiPort: return "while the ASCII port has nothing to do";
+    case Repeat::Never: return "no: a program holding it executes every scan";
+  }
+  return "no";
+}
+
 int run_instructions() {
   for (const auto& s : kInstructionTable) {
     std::cout << s.mnemonic;
     for (const auto& o : s.operand_specs()) std::cout << ' ' << o.label;
     std::cout << "\n    processors: " << requirement_processors(s.requires_) << "\n";
+    std::cout << "    repeated scans: " << repeat_text(s.repeat) << "\n";
     for (const auto& o : s.operand_specs()) {
       std::cout << "    " << o.label << ": " << to_string(o.kind);
       bool constant = o.kind == OperandKind::Literal || o.kind == OperandKind::Label ||

@@ -1120,24 +1120,24 @@ class Checker {
     if (ops[3].kind == Operand::Kind::Symbol && ops[3].spelling == "REMOTE")
       return error(ops[3].pos, "MSG REMOTE (a message through a bridge to another link, 1762-RM001C p. 21-13) is not "
                                "simulated by softslc; the simulated network is one link: use LOCAL");
+    // Channel 1: the 1100/1400's Ethernet port; the 1764-LRP's second serial port, on DH-485 as channel 0
+    // is ("For controllers with 2 channels (1764-LRP processor installed), the channel can be 0 or 1",
+    // 1762-RM001C p. 21-12), so the channel 0 rules below hold for it; one channel elsewhere.
     if (channel.kind == Operand::Kind::Integer && channel.integer == 1) {
-      const bool lrp = proc.micrologix == MicroLogixModel::ML1500LRP;
       if (proc.has_routing_files()) return check_micrologix_ethernet_message(in);
-      if (lrp)
-        return error(channel.pos, "MSG on channel 1 of the 1764-LRP (its second serial port) is not simulated by "
-                                  "softslc: the simulated network is on channel 0 (docs/semantics.md \"The "
-                                  "MicroLogix MSG\")");
-      return error(channel.pos, "the " + proc.display_name + " has one channel: its MSG channel is always 0 "
-                                "(1762-RM001C p. 21-4, sub-element 8)");
+      if (proc.micrologix != MicroLogixModel::ML1500LRP)
+        return error(channel.pos, "the " + proc.display_name + " has one channel: its MSG channel is always 0 "
+                                  "(1762-RM001C p. 21-4, sub-element 8)");
     }
+    const std::string port = channel.kind == Operand::Kind::Integer ? std::to_string(channel.integer) : "0";
     if (node.is_address())
       return error(node.pos, "MSG target " + node.text() + ": an RI routing element is for a channel 1 Ethernet "
-                             "message (1763-RM001B p. 384, 1766-RM001A p. 435); on channel 0 (DH-485) the target is a "
-                             "node number, 1-31");
+                             "message of the MicroLogix 1100/1400 (1763-RM001B p. 384, 1766-RM001A p. 435); on the " +
+                             proc.display_name + "'s channel " + port + " (DH-485) the target is a node number, 1-31");
     const std::string dev = device.kind == Operand::Kind::Symbol ? device.spelling : "";
     if (dev == "PLC5")
       return error(device.pos, "MSG PLC5 on DH-485: a PLC-5 is on DH+ or Ethernet; the " + proc.display_name +
-                                   "'s channel 0 on the simulated DH-485 link sends 500CPU and 485CIF messages "
+                                   "'s channel " + port + " on the simulated DH-485 link sends 500CPU and 485CIF messages "
                                    "(docs/semantics.md \"MSG\")");
     if (node.kind == Operand::Kind::Integer) {
       const auto [lo, hi] = message_node_range(MessageLink::Dh485);

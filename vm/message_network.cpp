@@ -67,7 +67,7 @@ Nanoseconds message_frame_time(MessageLink link, int data_bytes) {
 MessageNetwork::~MessageNetwork() = default;
 
 std::size_t MessageNetwork::attach(Runtime& rt, int node, std::string name, std::unique_ptr<Runtime> owned,
-                                   std::uint32_t ip) {
+                                   std::uint32_t ip, int segment) {
   Station s;
   s.rt = &rt;
   s.owned = std::move(owned);
@@ -75,7 +75,20 @@ std::size_t MessageNetwork::attach(Runtime& rt, int node, std::string name, std:
   s.ip = ip;
   s.name = std::move(name);
   stations_.push_back(std::move(s));
-  return stations_.size() - 1;
+  const std::size_t index = stations_.size() - 1;
+  attach_port(index, network_channel(index), node, segment);
+  return index;
+}
+
+void MessageNetwork::attach_port(std::size_t station, int channel, int node, int segment) {
+  Station& s = stations_[station];
+  s.port_node[static_cast<std::size_t>(channel & 1)] = node;
+  s.port_segment[static_cast<std::size_t>(channel & 1)] = segment;
+}
+
+std::optional<std::size_t> MessageNetwork::station_on(int segment, int node) const {
+  if (const auto at = port_at(segment, node)) return at->first;
+  return std::nullopt;
 }
 
 std::uint16_t MessageNetwork::word(std::size_t station, std::uint32_t index) const {
@@ -111,15 +124,20 @@ int MessageNetwork::network_channel(std::size_t station) const {
 }
 
 MessageLink MessageNetwork::channel_link(std::size_t station, int channel) const {
-  if (channel == network_channel(station)) return link_;
+  if (channel == network_channel(station) || stations_[station].port_node[static_cast<std::size_t>(channel & 1)] >= 0)
+    return link_;
+  // The 1764-LRP's channel 1 is a serial port like its channel 0 (DH-485 in softslc), here on no network.
+  if (stations_[station].rt->compiled().processor.micrologix == MicroLogixModel::ML1500LRP) return MessageLink::Dh485;
   // Only a MicroLogix 1100/1400 sends on a channel off the network (check holds every other MSG to its
   // processor's network channel): its Ethernet port (channel 1) or its serial port (channel 0, DH-485).
   return channel == 1 ? MessageLink::Ethernet : MessageLink::Dh485;
 }
 
-std::optional<std::size_t> MessageNetwork::station_at(int node) const {
+std::optional<std::pair<std::size_t, int>> MessageNetwork::port_at(int segment, int node) const {
   for (std::size_t i = 0; i < stations_.size(); ++i)
-    if (stations_[i].node == node) return i;
+    for (std::size_t c = 0; c < 2; ++c)
+      if (stations_[i].port_node[c] == node && stations_[i].port_segment[c] == segment)
+        return std::pair{i, static_cast<int>(c)};
   return std::nullopt;
 }
 
@@ -151,8 +169,19 @@ void MessageNetwork::remove(std::size_t station, std::uint64_t serial) {
 
 // ---- The instruction ---------------------------------------------------------------------------------------
 
-void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
+void MessageNetwork::start(std::size_t station, const MessageInstruction& instruction) {
   const Runtime& rt = *stations_[station].rt;
+  MessageInstruction in = instruction;
+  // The 1764-LRP reads the channel from MG word 8 when the message starts: CHN is read/write there, "0
+  // (channel 0) or 1 (channel 1)" (1762-RM001C p. 21-4), so a program that writes it sends on the other
+  // port. Any other value names no channel: 21h "bad MSG file parameter" (decision [U], docs/semantics.md
+  // "Channel 1 of the 1500 LRP"). The LSP and the 1200 keep CHN 0, read only ("always 0", p. 21-4).
+  std::uint8_t bad_channel = 0;
+  if (in.micrologix && rt.compiled().processor.micrologix == MicroLogixModel::ML1500LRP) {
+    const std::uint16_t chn = word(station, in.block + mg::kChannel);
+    if (chn > 1) bad_channel = msg::kBadMessageFile;
+    else in.channel = chn;
+  }
   const DataTableLayout& layout = *rt.compiled().layout;
   // A message of this control block still in a buffer or the queue is replaced: the program cleared
   // EN before DN or ER, which the manual forbids (RM 12-30); the new one wins.
@@ -203,8 +232,9 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& in) {
   // The control block as the processor reads it: a file type of the local file, a count that fits the
   // local file and one message, a node the link has (RM 12-41: 04h, 16h).
   const int file = layout.file_containing(in.data);
-  std::uint8_t error = 0;
-  if (file < 0) {
+  std::uint8_t error = bad_channel;
+  if (error) {
+  } else if (file < 0) {
     error = msg::kBadParameters;
   } else {
     const FileLayout& f = layout.files[static_cast<std::size_t>(file)];
@@ -361,16 +391,23 @@ void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
   const MessageLink link = channel_link(station, m.in.channel);
   const Nanoseconds d = message_frame_time(link, m.in.write ? 2 * m.words : 0);
   const bool ethernet = link == MessageLink::Ethernet;
-  // A MicroLogix's channel off this network reaches nobody (a serial port no other station is on).
-  std::optional<std::size_t> target;
-  if (link == link_ && m.in.channel == network_channel(station))
-    target = ethernet ? station_at_ip(m.target_ip) : station_at(m.target_node);
+  // A MicroLogix's channel off this network reaches nobody (a serial port no other station is on). On
+  // DH-485 and DH+ the target is the station with a channel at the node on the sender's channel's segment
+  // (the 1764-LRP's channel 1 may be on a network of its own); on Ethernet the station at the address.
+  const Station& from = stations_[station];
+  const auto port = static_cast<std::size_t>(m.in.channel & 1);
+  std::optional<std::pair<std::size_t, int>> target;
+  if (link == link_ && from.port_node[port] >= 0) {
+    if (!ethernet) target = port_at(from.port_segment[port], m.target_node);
+    else if (const auto at = station_at_ip(m.target_ip)) target = std::pair{*at, network_channel(*at)};
+  }
   if (!target) {
     // No station acknowledges: on DH-485 and DH+ the link gives up after the frame's time (EST: retries
     // not modelled); on Ethernet the connection is not completed before the channel's MSG Connection
     // Timeout (15 s, 1747-UM011G p. 242): D5H, unless the message timer ends it first (37h).
     Frame f;
     f.kind = FrameKind::NoAck;
+    f.channel = m.in.channel;
     f.serial = m.serial;
     f.error = ethernet ? msg::kConnectionTimeout : msg::kNoResponse;
     post(station, ethernet ? at + msg::kConnectionTimeoutNs : at + d, std::move(f));
@@ -379,6 +416,8 @@ void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
   Frame req;
   req.kind = FrameKind::Request;
   req.from = station;
+  req.channel = target->second;
+  req.reply_channel = m.in.channel;
   req.serial = m.serial;
   req.write = m.in.write;
   req.cif = m.in.device == 1;
@@ -387,11 +426,12 @@ void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
   req.element = m.target_element;
   req.words = m.words;
   req.data = m.data;
-  post(*target, at + d, std::move(req));
+  post(target->first, at + d, std::move(req));
   // The link-level acknowledgement: ST "is set when the processor receives acknowledgment (ACK) from
   // the target device" (RM 12-29), here when the frame arrives.
   Frame ack;
   ack.kind = FrameKind::Ack;
+  ack.channel = m.in.channel;
   ack.serial = m.serial;
   post(station, at + d, std::move(ack));
 }
@@ -401,6 +441,7 @@ void MessageNetwork::answer(std::size_t station, VirtualTime at, const Frame& re
   const DataTableLayout& layout = *rt.compiled().layout;
   Frame reply;
   reply.kind = FrameKind::Reply;
+  reply.channel = req.reply_channel;
   reply.serial = req.serial;
   // A 485CIF request reaches the target's common interface file: an SLC's is the file the control block
   // names (N9, docs/semantics.md "MSG"); a MicroLogix 1000's is N7 (1761-6.2 p. 15-3).
@@ -410,7 +451,17 @@ void MessageNetwork::answer(std::size_t station, VirtualTime at, const Frame& re
   if (file >= 0 && file <= 255 && layout.files[static_cast<std::size_t>(file)].present)
     f = &layout.files[static_cast<std::size_t>(file)];
   const std::optional<FileType> type = message_file_type(req.type_code);
-  if (!f) {
+  // "SLC 500, SLC 5/01, and SLC 5/02 processors do not support O or I file access from a MSG instruction.
+  // SLC 5/03, SLC 5/04 and SLC 5/05 processors do support O and I file access, but only when unprotected"
+  // (1761-6.2 p. 15-3 note 4). softslc has no file protection, so the 5/03-5/05 always answer; the fixed
+  // controllers, the 5/01 and the 5/02 answer 10h, "incorrect command parameters or unsupported command"
+  // (1761-6.3 p. 13-11; the code is not in note 4: decision [U], docs/semantics.md "The MicroLogix 1000 MSG").
+  const ProcessorFamily family = rt.compiled().processor.family;
+  const bool no_io_access =
+      family == ProcessorFamily::Fixed || family == ProcessorFamily::Slc501 || family == ProcessorFamily::Slc502;
+  if (no_io_access && type && (*type == FileType::Output || *type == FileType::Input)) {
+    reply.error = msg::kUnsupportedCommand;
+  } else if (!f) {
     reply.error = msg::kNoSuchFile;
   } else if (!type || *type != f->type) {
     reply.error = msg::kIllegalFileType;
@@ -455,14 +506,18 @@ void MessageNetwork::receive(std::size_t station, VirtualTime at, Frame& f) {
 
 void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t channel_mask) {
   Station& st = stations_[station];
-  // 1. What reached this station by now, in arrival order (the network channel's frames; the NoAck of a
-  // MicroLogix message on its other channel is among them).
-  if (channel_mask & (1u << network_channel(station)))
-    while (!st.inbox.empty() && st.inbox.begin()->first.first <= at) {
-      Frame f = std::move(st.inbox.begin()->second);
-      st.inbox.erase(st.inbox.begin());
-      receive(station, at, f);
+  // 1. What reached this station's serviced channels by now, in arrival order (each frame belongs to the
+  // channel it arrived on: a request to the port at the node it names, an acknowledgement or a reply to
+  // the channel the message went out on). A frame a request posts here arrives after `at`.
+  for (auto it = st.inbox.begin(); it != st.inbox.end() && it->first.first <= at;) {
+    if (!(channel_mask & (1u << (it->second.channel & 1)))) {
+      ++it;
+      continue;
     }
+    Frame f = std::move(it->second);
+    it = st.inbox.erase(it);
+    receive(station, at, f);
+  }
   for (int channel = 0; channel < 2; ++channel)
     if ((channel_mask & (1u << channel)) && !(st.channels[static_cast<std::size_t>(channel)].buffers.empty() &&
                                               st.channels[static_cast<std::size_t>(channel)].queue.empty()))

@@ -5,7 +5,11 @@
 // address and a message by the IP address string in its 51-word control block, RM 12-34, or on a
 // MicroLogix 1100/1400's channel 1 by the IP address in the RI element its MG element names,
 // 1766-RM001A p. 435). A MicroLogix's other channel is off the network: its messages there reach
-// nobody (docs/semantics.md "The MicroLogix MSG on Ethernet"). It keeps, per station and channel, what the
+// nobody (docs/semantics.md "The MicroLogix MSG on Ethernet"). A 1764-LRP's channel 1, its second serial
+// port, has a node of its own, on the network of its channel 0 or on a second DH-485 network (a segment)
+// with stations of its own; every frame belongs to the channel it arrives on, and a servicing takes the
+// frames of the channels it services (docs/semantics.md "Channel 1 of the 1500 LRP"). It keeps, per
+// station and channel, what the
 // processor keeps for MSG (1747-RM001G ch. 12): four message buffers and a 10-position overflow
 // queue on the SLC 5/03-5/05 (one buffer on the 5/02), the message timers, and the frames in
 // flight. The MSG instruction's state is its control block in the data table; the interpreter
@@ -67,6 +71,8 @@ inline constexpr std::uint8_t kBadParameters = 0x04;     // "does not understand
                                                           // control block may have been inadvertently modified"
 inline constexpr std::uint8_t kNoResponse = 0x07;        // "Target node does not respond"
 inline constexpr std::uint8_t kNoSuchFile = 0x10;        // "... or the data file specified does not exist"
+inline constexpr std::uint8_t kUnsupportedCommand = 0x10;  // the same code: "incorrect command parameters or
+                                                            // unsupported command" (1761-6.3 p. 13-11)
 inline constexpr std::uint8_t kNodeTooHigh = 0x16;       // "Target ... address is higher than the maximum node address"
 inline constexpr std::uint8_t kBroadcast = 0x18;         // "Broadcast (Node Address 255) is not supported" (the
                                                           // MicroLogix 1000's table, 1761-6.3 p. 13-11)
@@ -168,7 +174,15 @@ class MessageNetwork {
   // network (the peers a leader's RuntimeOptions named). Returns the station's index.
   // `ip` is the station's IP address on Ethernet (0: none configured, the processor's default).
   std::size_t attach(Runtime& rt, int node, std::string name, std::unique_ptr<Runtime> owned = nullptr,
-                     std::uint32_t ip = 0);
+                     std::uint32_t ip = 0, int segment = 0);
+  // Puts channel `channel` of `station` on the DH-485 network `segment` at `node` as well: the 1764-LRP's
+  // channel 1, its second serial port (1762-RM001C p. 21-12: "For controllers with 2 channels (1764-LRP
+  // processor installed), the channel can be 0 or 1"). Segments are the DH-485 networks of one test, all
+  // in this network's virtual time and lockstep; 0 is the network the leader's channel 0 is on
+  // (docs/semantics.md "Channel 1 of the 1500 LRP").
+  void attach_port(std::size_t station, int channel, int node, int segment);
+  // The station with a channel at `node` on `segment` (a DH-485 or DH+ network), if any.
+  std::optional<std::size_t> station_on(int segment, int node) const;
 
   MessageLink link() const { return link_; }
   std::size_t size() const { return stations_.size(); }
@@ -218,6 +232,8 @@ class MessageNetwork {
   struct Frame {
     FrameKind kind = FrameKind::Request;
     std::size_t from = 0;        // the station that sent it
+    int channel = 0;             // the receiving station's channel it arrives on (serviced with that channel)
+    int reply_channel = 0;       // Request: the sender's channel, where the reply goes
     std::uint64_t serial = 0;    // the message it belongs to
     bool write = false;
     bool cif = false;            // a 485CIF request: the target answers from its common interface file
@@ -235,6 +251,10 @@ class MessageNetwork {
     std::uint32_t ip = 0;
     std::string name;
     std::array<Channel, 2> channels;
+    // Each channel's node on this network and the segment (DH-485 network) it is on; -1: the channel is
+    // not on it (a MicroLogix 1100/1400's other channel, a 1764-LRP's channel 1 given no network).
+    std::array<int, 2> port_node{-1, -1};
+    std::array<int, 2> port_segment{0, 0};
     std::map<std::pair<VirtualTime, std::uint64_t>, Frame> inbox;  // by (arrival, sequence)
     std::optional<VirtualTime> service_due;
   };
@@ -259,16 +279,18 @@ class MessageNetwork {
   std::uint16_t status(std::size_t station, const MessageInstruction& in) const;
   void set_status(std::size_t station, const MessageInstruction& in, std::uint16_t w0);
   void set_word(std::size_t station, std::uint32_t index, std::uint16_t value);
-  std::optional<std::size_t> station_at(int node) const;
+  // The station and its channel at `node` on `segment`.
+  std::optional<std::pair<std::size_t, int>> port_at(int segment, int node) const;
   std::optional<std::size_t> station_at_ip(std::uint32_t ip) const;
   std::uint8_t check_ethernet_block(std::size_t station, const MessageInstruction& in, Message& m);
   std::uint8_t check_routing_element(std::size_t station, const MessageInstruction& in, Message& m);
   // The channel of `station` this network's link is on: 0 on the SLC 5/02 and on a MicroLogix on DH-485
   // (its serial port), 1 on the SLC 5/03-5/05 and on a MicroLogix 1100/1400 on Ethernet.
   int network_channel(std::size_t station) const;
-  // The link a message on `channel` of `station` travels: this network's on its network channel; on the
-  // other channel of a MicroLogix 1100/1400 (Ethernet when it is on DH-485, DH-485 when it is on
-  // Ethernet) a link no other station is on (docs/semantics.md "The MicroLogix MSG on Ethernet").
+  // The link a message on `channel` of `station` travels: this network's on a channel that is on it; on
+  // the other channel of a MicroLogix 1100/1400 (Ethernet when it is on DH-485, DH-485 when it is on
+  // Ethernet) a link no other station is on (docs/semantics.md "The MicroLogix MSG on Ethernet"); on a
+  // 1764-LRP's channel 1 given no network, DH-485 with no other station.
   MessageLink channel_link(std::size_t station, int channel) const;
 
   MessageLink link_;

@@ -219,6 +219,8 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   std::vector<FieldProcessFactory> processes = std::move(options.field_processes);
   auto make_channel = std::move(options.ascii_channel);
   const std::vector<PeerController> peers = std::move(options.peers);
+  const int channel1_node = options.channel1_node;
+  const std::string channel1_network = options.channel1_network;
   r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
   Runtime& rt = *r.runtime;
   RepeatFacts facts;
@@ -245,8 +247,8 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
     }
     rt.processes_.push_back(std::move(p));
   }
-  if (!peers.empty()) {
-    if (std::string why = rt.join_peers(peers); !why.empty()) {
+  if (!peers.empty() || channel1_node != 0) {
+    if (std::string why = rt.join_peers(peers, channel1_node, channel1_network); !why.empty()) {
       CompileError e;
       e.message = why;
       r.errors.push_back(std::move(e));
@@ -259,8 +261,11 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
 // The MSG network of a leader and its peers (docs/semantics.md "MSG"): one link, every peer a
 // processor on that link; on DH-485 and DH+ every node unique and in the link's range, on Ethernet
 // every IP address given and unique. A MicroLogix 1100/1400 is on Ethernet when it has an IP address
-// (its channel 1), on DH-485 otherwise (station_link).
-std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
+// (its channel 1), on DH-485 otherwise (station_link). A 1764-LRP leader may put its channel 1 on DH-485
+// too, at its own node, on this network or on a second one that the peers given its name are on
+// (`segment` 1; docs/semantics.md "Channel 1 of the 1500 LRP"): node numbers are unique per network.
+std::string Runtime::join_peers(const std::vector<PeerController>& peers, int channel1_node,
+                                const std::string& channel1_network) {
   const MessageLink link = station_link(program_->processor, ip_ != 0);
   if (link == MessageLink::None)
     return "a MSG network needs SLC 500 or MicroLogix processors (DH-485, DH+ or Ethernet); " +
@@ -281,8 +286,33 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
            "an IP address is for an SLC 5/05, or a MicroLogix 1100 or 1400 on its channel 1, on Ethernet";
   auto net = std::make_unique<MessageNetwork>(link);
   net->attach(*this, node_, "", nullptr, ip_);
+  auto taken = [&](int segment, int node) -> std::string {
+    const std::optional<std::size_t> i = net->station_on(segment, node);
+    if (!i) return {};
+    return *i == 0 ? std::string("this controller's") : "peer " + net->name(*i) + "'s";
+  };
+  if (channel1_node != 0) {
+    // "For controllers with 2 channels (1764-LRP processor installed), the channel can be 0 or 1"
+    // (1762-RM001C p. 21-12): only the LRP has a second serial port.
+    if (program_->processor.micrologix != MicroLogixModel::ML1500LRP)
+      return "channel 1: a second serial port on DH-485 is the 1764-LRP's (1762-RM001C p. 21-12); the " +
+             program_->processor.display_name + " has none";
+    if (auto e = node_error("this controller's channel 1", channel1_node); !e.empty()) return e;
+    const int segment = channel1_network.empty() ? 0 : 1;
+    if (auto who = taken(segment, channel1_node); !who.empty())
+      return "this controller's channel 1: node " + std::to_string(channel1_node) + " is already " + who;
+    net->attach_port(0, 1, channel1_node, segment);
+  }
   for (const PeerController& p : peers) {
     if (!p.program) return "peer " + p.name + ": no program";
+    // A peer on a named network is on the one the leader's channel 1 names; no other is reachable.
+    if (!p.network.empty() && (channel1_node == 0 || p.network != channel1_network))
+      return "peer " + p.name + ": network " + p.network + " is not one this controller is on (its channel 1 " +
+             (channel1_node == 0 ? std::string("is on no network") : channel1_network.empty()
+                                                                        ? std::string("is on this network")
+                                                                        : "is on network " + channel1_network) +
+             ")";
+    const int segment = p.network.empty() ? 0 : 1;
     RuntimeOptions po = p.options ? *p.options : RuntimeOptions{};
     po.peers.clear();
     po.node = p.node;
@@ -309,13 +339,12 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers) {
         return "peer " + p.name + ": this network is " + std::string(to_string(link)) +
                ", which names stations by node number (node N), not IP address";
       if (auto e = node_error("peer " + p.name, p.node); !e.empty()) return e;
-      for (std::size_t i = 0; i < net->size(); ++i)
-        if (net->node(i) == p.node)
-          return "peer " + p.name + ": node " + std::to_string(p.node) + " is already " +
-                 (i == 0 ? std::string("this controller's") : "peer " + net->name(i) + "'s");
+      if (auto who = taken(segment, p.node); !who.empty())
+        return "peer " + p.name + ": node " + std::to_string(p.node) + " is already " + who +
+               (segment ? " on network " + p.network : std::string());
     }
     Runtime& peer = *pr.runtime;
-    const std::size_t station = net->attach(peer, p.node, p.name, std::move(pr.runtime), p.ip);
+    const std::size_t station = net->attach(peer, p.node, p.name, std::move(pr.runtime), p.ip, segment);
     peer.network_ = net.get();
     peer.station_ = station;
   }

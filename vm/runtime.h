@@ -74,6 +74,13 @@ struct RuntimeOptions {
   // On Ethernet (SLC 5/05 channel 1) the controller is named by its IP address instead (A.B.C.D as a
   // number, A in the high byte; 0: none configured, the processor's default, so its MSGs end with D0h).
   std::uint32_t ip = 0;
+  // The 1764-LRP's channel 1, its second serial port, on DH-485 (docs/semantics.md "The MicroLogix MSG
+  // (1100-1500)", "Channel 1 of the 1500 LRP"): its node there (0: channel 1 is on no network, and its
+  // MSGs reach nobody), and the network it is on: "" this controller's network (the one its channel 0
+  // and the peers are on), any other name a second DH-485 network of the same virtual time whose
+  // stations are the peers given that name (PeerController::network).
+  int channel1_node = 0;
+  std::string channel1_network;
   std::vector<PeerController> peers;
 };
 
@@ -83,6 +90,9 @@ struct PeerController {
   std::string name;
   int node = 2;
   std::uint32_t ip = 0;  // on Ethernet, instead of the node
+  // The network the peer is on: "" the leader's, a name one the leader's channel 1 names (a 1764-LRP's
+  // second serial port, RuntimeOptions::channel1_network). Node numbers are unique per network.
+  std::string network;
   std::shared_ptr<const Program> program;
   std::shared_ptr<const RuntimeOptions> options;
 };
@@ -305,7 +315,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void message_abort(std::uint32_t block) override;
   void service_communications(std::uint16_t channels, VirtualTime at) override;
   MessageNetwork& network();
-  std::string join_peers(const std::vector<PeerController>& peers);
+  std::string join_peers(const std::vector<PeerController>& peers, int channel1_node,
+                         const std::string& channel1_network);
 
   std::unique_ptr<CompiledProgram> program_;
   std::shared_ptr<const ScanTimeModel> model_;

@@ -264,6 +264,58 @@ TEST(MicroLogix1000Msg, ErrorCodesAsTheManualLists) {
   ASSERT_TRUE(line.until("N7:50/13", 100 * kNsPerMs));
 }
 
+// 1761-6.2 p. 15-3 note 4: "SLC 500, SLC 5/01, and SLC 5/02 processors do not support O or I file access
+// from a MSG instruction. SLC 5/03, SLC 5/04 and SLC 5/05 processors do support O and I file access, but
+// only when unprotected." softslc has no file protection: a 5/03 answers; the fixed controller, the 5/01
+// and the 5/02 end the message with 10h, "incorrect command parameters or unsupported command" (p. 13-11;
+// note 4 gives no code: decision [U], docs/semantics.md "The MicroLogix 1000 MSG"). Their N files answer.
+TEST(MicroLogix1000Msg, OAndIFilesOfAnSlcAnswerOnlyOnThe503AndLater) {
+  // softslc's MSG takes an O or I target's element as the word offset into the target's image (O:0 is the
+  // first output word, here slot 2's on the modular chassis); the note's rule is what this test is about.
+  struct Target {
+    const char* catalog;
+    const char* header;
+    const char* first_output;  // the target's first output word, as the target's program names it
+    bool answers;
+  };
+  const Target targets[] = {
+      // The fixed controller with I/O in its expansion chassis (softslc has no model of its embedded I/O).
+      {"1747-L20", "START 1747-L20\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nSLOT 2 1746-OB16 SCAN_IN 0 SCAN_OUT 1\n", "O:2.0",
+       false},
+      {"1747-L511", "START 1747-L511\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nSLOT 2 1746-OB16 SCAN_IN 0 SCAN_OUT 1\n", "O:2.0",
+       false},
+      {"1747-L524", "START 1747-L524\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nSLOT 2 1746-OB16 SCAN_IN 0 SCAN_OUT 1\n", "O:2.0",
+       false},
+      {"1747-L532", kHeader.data(), "O:2.0", true},
+  };
+  for (const Target& t : targets) {
+    const std::string rungs = std::string("SOR XIC B3:0/0 MSG READ 500CPU N7:50 7 O:0 1 2 O:0 EOR\n") +
+                              "SOR XIC B3:0/1 MSG READ 500CPU N7:60 7 I:0 1 2 I:0 EOR\n" +
+                              "SOR XIC B3:0/2 MSG READ 500CPU N7:70 7 N7:0 1 2 N10:0 EOR";
+    Line line(ml1000(rungs), program_text("SOR XIC B3:0/15 CLR N10:9 EOR", t.header));
+    line.setb(t.first_output, 0x55);
+    line.setb("N10:0", 9);
+    line.run();
+    line.set("B3:0/0", 1);
+    line.set("B3:0/1", 1);
+    line.set("B3:0/2", 1);
+    ASSERT_TRUE(line.until("N7:70/13", 100 * kNsPerMs)) << t.catalog;
+    ASSERT_TRUE(line.a->run_until(
+        [](const Runtime& r) { return (r.value("N7:50").as_int() & (kDN | kER)) && (r.value("N7:60").as_int() & (kDN | kER)); },
+        100 * kNsPerMs))
+        << t.catalog;
+    EXPECT_EQ(line.ai("N7:0"), 9) << t.catalog << ": its N files answer";
+    if (t.answers) {
+      EXPECT_EQ(line.bits("N7:50") & (kDN | kER | 0xFF), kDN) << t.catalog;
+      EXPECT_EQ(line.bits("N7:60") & (kDN | kER | 0xFF), kDN) << t.catalog;
+      EXPECT_EQ(line.ai("O:0"), 0x55) << t.catalog;
+    } else {
+      EXPECT_EQ(line.bits("N7:50") & (kDN | kER | 0xFF), kER | 0x10) << t.catalog;
+      EXPECT_EQ(line.bits("N7:60") & (kDN | kER | 0xFF), kER | 0x10) << t.catalog;
+    }
+  }
+}
+
 TEST(MicroLogix1000Msg, CifReachesN7OfAnMl1000AndN9OfAnSlc) {
   // 1761-6.2 p. 15-3: a CIF message to a MicroLogix 1000 reaches its N7, to an SLC 500 its N9; the
   // target's file, at the word offset given.

@@ -150,8 +150,10 @@ TEST(MicroLogixMsgEthernetCheck, ChannelOneNamesItsRiElement) {
       // The 1400 assigns its channel 1 timeout: 15 + 3 + 15 s (1766-RM001A p. 421).
       {"Bul.1766", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N10:0 5 RI12:0 N7:0 5 EOR",
        "the MicroLogix 1400 assigns a channel 1 MSG's timeout itself"},
-      // The 1500 LRP's channel 1 is its second serial port; the 1200 has one channel; neither has RI files.
-      {"1764-LRP", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N10:0 5 RI12:0 N7:0 5 EOR", "channel 1 of the 1764-LRP"},
+      // The 1500 LRP's channel 1 is its second serial port, on DH-485 (1762-RM001C p. 21-12: a node number
+      // names the target); the 1200 has one channel; neither has RI files.
+      {"1764-LRP", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N10:0 5 RI12:0 N7:0 5 EOR",
+       "on the MicroLogix 1500 LRP's channel 1 (DH-485) the target is a node number, 1-31"},
       {"1764-LRP", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N10:0 5 RI12:0 N7:0 5 EOR",
        "RI (routing information) files exist on the MicroLogix 1100 and 1400 only"},
       {"Bul.1762", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N10:0 5 RI12:0 N7:0 5 EOR", "its MSG channel is always 0"},

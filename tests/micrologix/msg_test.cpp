@@ -114,9 +114,8 @@ TEST(MicroLogixMsg, CheckRefusesWhatTheChannelCannotSend) {
       {"Bul.1763", "SOR MSG MG11:0 READ 500CPU REMOTE 0 N7:0 5 2 N10:0 5 EOR", "MSG REMOTE"},
       {"Bul.1763", "SOR MSG MG11:0 READ PLC5 LOCAL 0 N7:0 5 2 N10:0 5 EOR", "MSG PLC5 on DH-485"},
       // Channel 1: Ethernet on the 1100/1400, with an RI element where the node is (msg_ethernet_test.cpp),
-      // the LRP's second port, none on the 1200.
+      // the LRP's second port (lrp_channel1_test.cpp), none on the 1200.
       {"Bul.1766", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "names its RI routing element where channel 0 names the target node"},
-      {"1764-LRP", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "channel 1 of the 1764-LRP"},
       {"Bul.1762", "SOR MSG MG11:0 READ 500CPU LOCAL 1 N7:0 5 2 N10:0 5 EOR", "its MSG channel is always 0"},
       {"Bul.1762", "SOR MSG MG11:0 READ 500CPU LOCAL 0 N7:0 5 2 N10:0 256 EOR", "message timeout 256 is out of range 0-255"},
   };

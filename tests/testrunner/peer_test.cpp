@@ -61,13 +61,45 @@ TEST(PeerTests, LoadErrorsNameTheLine) {
   EXPECT_THAT(run_line("program a.slc\npeer B b.slc node 2\npeer B b.slc node 3\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("t.test:3:6: error: peer 'B' is already defined at line 2"));
   EXPECT_THAT(run_line("program a.slc\n", "test \"t\"\n  peer B b.slc node 2\n  scan 1\n"),
-              HasSubstr("'node', 'ip' and 'peer' lines belong at the top of the file"));
+              HasSubstr("'node', 'ip', 'channel' and 'peer' lines belong at the top of the file"));
   EXPECT_THAT(run_line("program a.slc\npeer B b.slc\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("incomplete 'peer' line: write peer NAME FILE.slc node N"));
   EXPECT_THAT(run_line("program a.slc\npeer B b.slc node 2\n", "test \"t\"\n  force B.I:1/0 = 1\n"),
               HasSubstr("cannot be forced from a test yet"));
   EXPECT_THAT(run_line("program a.slc\npeer B nothing.slc node 2\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("peer 'B' did not load"));
+}
+
+// A 1764-LRP's channel 1, its second serial port (docs/testing.md "Several controllers", docs/semantics.md
+// "Channel 1 of the 1500 LRP"): `channel 1 node N network NAME` and a peer on that network; node 2 of the
+// network PANEL answers the LRP's channel 1 read, and the errors name their line.
+constexpr const char* kLrp =
+    "START 1764-LRP\nLADDER 2 MAIN\nSOR XIO MG11:0/EN MSG MG11:0 READ 500CPU LOCAL 1 N10:0 1 2 N7:0 5 EOR\n";
+
+TEST(PeerTests, AnLrpsChannel1IsOnTheNetworkItsLineNames) {
+  auto run = [](const std::string& head, const std::string& body) {
+    Sandbox box;
+    box.write("lrp.slc", kLrp);
+    box.write("a.slc", kA);
+    box.write("b.slc", kB);
+    return box.run(head + body);
+  };
+  const std::string test = "test \"t\"\n  set B.SPEED = 77\n  run until N10:0 == 77 within 50ms\n";
+  EXPECT_EQ(run("program lrp.slc\nnode 1\nchannel 1 node 5 network PANEL\npeer B b.slc node 2 network PANEL\n", test),
+            "PASS t.test: t\n");
+  // Channel 1 on the file's network: node 2 there is B too.
+  EXPECT_EQ(run("program lrp.slc\nchannel 1 node 5\npeer B b.slc node 2\n", test), "PASS t.test: t\n");
+  EXPECT_THAT(run("program lrp.slc\nchannel 2 node 5\n", test), HasSubstr("t.test:2:9: error: only channel 1 has a 'channel' line"));
+  EXPECT_THAT(run("program a.slc\nchannel 1 node 5\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("channel 1: a second serial port on DH-485 is the 1764-LRP's"));
+  EXPECT_THAT(run("program a.slc\nchannel 1 node 5\n", "test \"t\"\n  scan 1\n"),
+              HasSubstr("t.test:2:1: error: the MSG network did not build"));
+  EXPECT_THAT(run("program lrp.slc\nchannel 1 node 5\nchannel 1 node 6\n", test),
+              HasSubstr("t.test:3:1: error: a second 'channel 1' line (the first is at line 2)"));
+  EXPECT_THAT(run("program lrp.slc\nchannel 1 node 5 network PANEL\npeer B b.slc node 2 network OTHER\n", test),
+              HasSubstr("peer B: network OTHER is not one this controller is on (its channel 1 is on network PANEL)"));
+  EXPECT_THAT(run("program lrp.slc\nchannel 1 node 5 network PANEL\npeer B b.slc node 5 network PANEL\n", test),
+              HasSubstr("peer B: node 5 is already this controller's on network PANEL"));
 }
 
 // Two SLC 5/05s on Ethernet: E reads F's N7:0 into N10:0; the block's IP address string (words 14-20 of

@@ -165,6 +165,7 @@ struct PeerSpec {
   std::string path;  // as written, relative to the test file
   int node = 2;
   std::uint32_t ip = 0;  // Ethernet: the peer's IP address (0: named by node)
+  std::string network;   // `network NAME`: the DH-485 network the program's channel 1 names ("" the file's)
   Location loc;      // of the name
   Location path_loc;
 };
@@ -183,6 +184,10 @@ struct TestCase {
   Location node_loc;
   std::uint32_t ip = 0;  // `ip A.B.C.D`: the program's IP address on Ethernet (0: none)
   std::vector<PeerSpec> peers;
+  // `channel 1 node N [network NAME]`: a 1764-LRP program's channel 1 on DH-485 (0: on no network).
+  int channel1_node = 0;
+  std::string channel1_network;
+  Location channel1_loc;
   std::shared_ptr<const LoadedProgram> program;  // set by the loader
   // Tests start in Run; a `mode` step written first sets the starting mode instead.
   Mode initial_mode = Mode::Run;

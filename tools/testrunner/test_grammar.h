@@ -51,6 +51,8 @@ struct kw_processor : TAO_PEGTL_KEYWORD("processor") {};
 struct kw_node : TAO_PEGTL_KEYWORD("node") {};
 struct kw_peer : TAO_PEGTL_KEYWORD("peer") {};
 struct kw_ip : TAO_PEGTL_KEYWORD("ip") {};
+struct kw_channel : TAO_PEGTL_KEYWORD("channel") {};
+struct kw_network : TAO_PEGTL_KEYWORD("network") {};
 struct kw_test : TAO_PEGTL_KEYWORD("test") {};
 struct kw_with : TAO_PEGTL_KEYWORD("with") {};
 struct kw_row : TAO_PEGTL_KEYWORD("row") {};
@@ -219,7 +221,15 @@ struct ip_address : seq<plus<digit>, star<one<'.'>, plus<digit>>, token_end> {};
 struct ip_line : seq<kw_ip, ws, must<ip_address>> {};
 struct peer_name : seq<pg::identifier, token_end> {};
 struct peer_path : path {};
-struct peer_node_part : seq<kw_node, ws, must<node_number>> {};
+// A second DH-485 network (docs/testing.md "Several controllers"): `channel 1 node N [network NAME]` puts a
+// 1764-LRP program's channel 1, its second serial port, at node N of the file's network or of the network
+// NAME; `peer NAME PATH node N network NAME` puts a peer on that network instead of the file's.
+struct network_name : seq<pg::identifier, token_end> {};
+struct network_part : seq<ws, kw_network, ws, must<network_name>> {};
+struct channel_number : digits {};
+struct channel_node : seq<kw_node, ws, must<node_number>> {};
+struct channel_line : seq<kw_channel, ws, must<channel_number>, ws, must<channel_node>, opt<network_part>> {};
+struct peer_node_part : seq<kw_node, ws, must<node_number>, opt<network_part>> {};
 struct peer_ip_part : seq<kw_ip, ws, must<ip_address>> {};
 struct peer_node : sor<peer_node_part, peer_ip_part> {};
 struct peer_line : seq<kw_peer, ws, must<peer_name>, ws, must<peer_path>, ws, must<peer_node>> {};
@@ -305,7 +315,7 @@ struct device_line : seq<kw_device, ws, must<device_line_name>, ws, must<device_
 // Anything else that starts a line: reported by its action as an unknown statement.
 struct unknown_statement : plus<not_one<' ', '\t', '#'>> {};
 
-struct statement : sor<program_line, bench_line, node_line, ip_line, peer_line, test_line, row_line, set_line, force_line, unforce_line, scan_line,
+struct statement : sor<program_line, bench_line, node_line, ip_line, peer_line, channel_line, test_line, row_line, set_line, force_line, unforce_line, scan_line,
                        run_line, expect_line, mode_line, power_line, clear_line, snapshot_line, restore_line,
                        device_line, unknown_statement> {};
 struct line_end : eof {};

@@ -81,10 +81,10 @@ class Checker {
     std::vector<ProgramCache::Peer> peers;
     for (const auto& p : tc.peers) {
       const auto [peer_actual, peer_display] = locate(p.path);
-      peers.push_back({p.name, peer_actual, peer_display, p.node, p.ip});
+      peers.push_back({p.name, peer_actual, peer_display, p.node, p.ip, p.network});
     }
-    auto& entry =
-        cache_.load(actual, display, bench, bench_display, processor ? &*processor : nullptr, peers, tc.node, tc.ip);
+    auto& entry = cache_.load(actual, display, bench, bench_display, processor ? &*processor : nullptr, peers, tc.node,
+                              tc.ip, {tc.channel1_node, tc.channel1_network});
     if (!entry.program) {
       if (!entry.errors.empty() && reported_.insert(display + "\n" + bench_display).second)
         out_.program_diagnostics += entry.errors;
@@ -95,6 +95,7 @@ class Checker {
         if (entry.failed_peer == "*") {
           // The network's error names the peer it is about ("peer SRV: ..."): point at that line.
           Location where = tc.peers.empty() ? tc.program_loc : tc.peers.front().loc;
+          if (tc.channel1_loc.line && entry.errors.find("channel 1") != std::string::npos) where = tc.channel1_loc;
           for (const auto& p : tc.peers)
             if (entry.errors.find("error: peer " + p.name + ": ") != std::string::npos) {
               where = p.loc;
@@ -451,13 +452,15 @@ int width_of(const Address& a) {
 ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const std::string& display,
                                         const std::filesystem::path& bench, const std::string& bench_display,
                                         const ProcessorModel* pasted_processor, const std::vector<Peer>& peers,
-                                        int node, std::uint32_t ip) {
+                                        int node, std::uint32_t ip, const ChannelOneSpec& channel1) {
   std::string key = cache_key(path) + "\n" + (bench.empty() ? std::string() : cache_key(bench)) + "\n" +
                     (pasted_processor ? pasted_processor->catalog + ":" + pasted_processor->series : std::string());
-  if (!peers.empty() || ip != 0) {
-    key += "\nnode " + std::to_string(node) + " ip " + std::to_string(ip);
+  if (!peers.empty() || ip != 0 || channel1.node != 0) {
+    key += "\nnode " + std::to_string(node) + " ip " + std::to_string(ip) + " channel 1 node " +
+           std::to_string(channel1.node) + " network " + channel1.network;
     for (const auto& p : peers)
-      key += "\npeer " + p.name + " " + std::to_string(p.node) + " " + std::to_string(p.ip) + " " + cache_key(p.path);
+      key += "\npeer " + p.name + " " + std::to_string(p.node) + " " + std::to_string(p.ip) + " " + p.network + " " +
+             cache_key(p.path);
   }
   if (auto it = entries_.find(key); it != entries_.end()) return it->second;
   Entry& e = entries_[key];
@@ -530,16 +533,19 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
     peer.name = p.name;
     peer.node = p.node;
     peer.ip = p.ip;
+    peer.network = p.network;
     peer.program = std::make_shared<const Program>(std::move(*plr.program));
     peer.options = std::make_shared<const RuntimeOptions>(std::move(peer_setup.options));
     setup.options.peers.push_back(std::move(peer));
   }
   setup.options.node = node;
   setup.options.ip = ip;
+  setup.options.channel1_node = channel1.node;
+  setup.options.channel1_network = channel1.network;
   RuntimeResult rr = Runtime::create(*lr.program, setup.options);
   if (!rr.ok()) {
     for (const auto& err : rr.errors) e.errors += display + ": error: " + err.to_string() + "\n";
-    if (!peers.empty()) e.failed_peer = "*";
+    if (!peers.empty() || channel1.node != 0) e.failed_peer = "*";
     return e;
   }
   auto loaded = std::make_shared<LoadedProgram>();

@@ -32,6 +32,12 @@
 
 namespace softslc::testing {
 
+// The program's channel 1 on DH-485 (`channel 1 node N [network NAME]`, a 1764-LRP's second port).
+struct ChannelOneSpec {
+  int node = 0;  // 0: on no network
+  std::string network;
+};
+
 class ProgramCache {
  public:
   struct Entry {
@@ -48,7 +54,9 @@ class ProgramCache {
     std::string display;
     int node = 2;
     std::uint32_t ip = 0;
+    std::string network;  // "" the program's network, else the one its channel 1 names
   };
+
   // Loads the program at `path` (shown as `display`) with the bench at `bench` (shown as
   // `bench_display`; an empty path means no bench) once per pair: the program is parsed and
   // checked, the modules set up from its SLOT lines and the bench (modules/module_setup.h), and a
@@ -62,7 +70,8 @@ class ProgramCache {
   // each peer's program is loaded with its SLOT lines, and the probe is the network's leader.
   Entry& load(const std::filesystem::path& path, const std::string& display, const std::filesystem::path& bench = {},
               const std::string& bench_display = {}, const ProcessorModel* pasted_processor = nullptr,
-              const std::vector<Peer>& peers = {}, int node = 1, std::uint32_t ip = 0);
+              const std::vector<Peer>& peers = {}, int node = 1, std::uint32_t ip = 0,
+              const ChannelOneSpec& channel1 = ChannelOneSpec());
   // The processor of pasted-rung programs whose test file names none (`softslc test --processor`).
   void set_default_pasted_processor(std::optional<ProcessorModel> p) { default_pasted_processor_ = std::move(p); }
   // The probe runtime of a loaded program.

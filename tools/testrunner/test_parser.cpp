@@ -31,7 +31,7 @@ using namespace grammar;
 // ---- Parsed lines ------------------------------------------------------------------------------------
 
 struct ParsedLine {
-  enum class Kind : std::uint8_t { Empty, Program, Bench, Node, Ip, Peer, Test, Row, Step };
+  enum class Kind : std::uint8_t { Empty, Program, Bench, Node, Ip, Peer, Channel, Test, Row, Step };
   Kind kind = Kind::Empty;
   Location loc;  // the statement's first token
   std::string path;
@@ -44,6 +44,8 @@ struct ParsedLine {
   Location node_loc;
   std::uint32_t ip = 0;   // ip A.B.C.D, peer ... ip A.B.C.D
   Location ip_loc;
+  std::string network;    // channel 1 node N network NAME, peer ... node N network NAME
+  Location network_loc;
   std::string test_name;
   Location name_loc;  // the opening quote of the test name
   std::vector<std::pair<std::string, Location>> columns;
@@ -454,6 +456,24 @@ template <> struct action<program_line> : line_kind_action<ParsedLine::Kind::Pro
 template <> struct action<node_line> : line_kind_action<ParsedLine::Kind::Node> {};
 template <> struct action<ip_line> : line_kind_action<ParsedLine::Kind::Ip> {};
 template <> struct action<peer_line> : line_kind_action<ParsedLine::Kind::Peer> {};
+template <> struct action<channel_line> : line_kind_action<ParsedLine::Kind::Channel> {};
+// Only channel 1 has a line of its own: channel 0 is the program's `node` (the 1764-LRP's second serial
+// port is channel 1, 1762-RM001C p. 21-12).
+template <> struct action<channel_number> {
+  template <typename Input>
+  static void apply(const Input& in, LineState&) {
+    if (in.string() != "1")
+      fail_at(in, 0, "only channel 1 has a 'channel' line (a 1764-LRP's second serial port); channel 0 is the "
+                     "program's 'node N'");
+  }
+};
+template <> struct action<network_name> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    s.out.network = in.string();
+    s.out.network_loc = loc_of(in);
+  }
+};
 template <> struct action<ip_address> {
   template <typename Input>
   static void apply(const Input& in, LineState& s) {
@@ -680,7 +700,8 @@ constexpr std::pair<std::string_view, std::string_view> kUsage[] = {
     {"bench", "bench FILE.bench"},
     {"node", "node N"},
     {"ip", "ip A.B.C.D"},
-    {"peer", "peer NAME FILE.slc node N  or  peer NAME FILE.slc ip A.B.C.D"},
+    {"peer", "peer NAME FILE.slc node N [network NAME]  or  peer NAME FILE.slc ip A.B.C.D"},
+    {"channel", "channel 1 node N [network NAME]"},
     {"test", "test \"name\"  or  test \"name\" with COLUMN..."},
     {"set", "set ADDRESS = VALUE"},
     {"force", "force I:1/0 = 1"},
@@ -1015,10 +1036,22 @@ class Driver {
       }
       case ParsedLine::Kind::Node:
       case ParsedLine::Kind::Ip:
+      case ParsedLine::Kind::Channel:
       case ParsedLine::Kind::Peer: {
         // The MSG network is the file's: every test of the file runs on it.
         if (pending_) {
-          error(pl.loc, "'node', 'ip' and 'peer' lines belong at the top of the file, before the first test");
+          error(pl.loc, "'node', 'ip', 'channel' and 'peer' lines belong at the top of the file, before the first test");
+          return;
+        }
+        if (pl.kind == ParsedLine::Kind::Channel) {
+          if (file_channel1_loc_.line) {
+            error(pl.loc, "a second 'channel 1' line (the first is at line " + std::to_string(file_channel1_loc_.line) +
+                              ")");
+            return;
+          }
+          file_channel1_node_ = static_cast<int>(pl.node);
+          file_channel1_network_ = pl.network;
+          file_channel1_loc_ = pl.loc;
           return;
         }
         if (pl.kind == ParsedLine::Kind::Ip) {
@@ -1051,6 +1084,7 @@ class Driver {
         peer.path_loc = pl.path_loc;
         peer.node = static_cast<int>(pl.node);
         peer.ip = pl.ip;
+        peer.network = pl.network;
         file_peers_.push_back(std::move(peer));
         return;
       }
@@ -1205,6 +1239,9 @@ class Driver {
     tc.node_loc = file_node_loc_;
     tc.ip = file_ip_;
     tc.peers = file_peers_;
+    tc.channel1_node = file_channel1_node_;
+    tc.channel1_network = file_channel1_network_;
+    tc.channel1_loc = file_channel1_loc_;
     bool steps_seen = false, ok = true;
     std::optional<Location> own_program, own_bench;
     for (auto& pl : lines) {
@@ -1281,6 +1318,9 @@ class Driver {
   std::uint32_t file_ip_ = 0;
   Location file_ip_loc_;
   std::vector<PeerSpec> file_peers_;
+  int file_channel1_node_ = 0;
+  std::string file_channel1_network_;
+  Location file_channel1_loc_;
   std::optional<PendingTest> pending_;
   std::size_t steps_ = 0;         // test lines so far, table rows expanded (kMaxStepsPerTestFile)
   bool too_many_steps_ = false;   // the limit was passed: the rest of the file is not read

@@ -28,8 +28,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "modules/module_setup.h"
-#include "parser/loader.h"
+#include "tools/controller/controller.h"
 #include "vm/runtime.h"
 
 namespace softslc::test {
@@ -44,29 +43,14 @@ std::string program(const std::string& rungs, const std::string& processor = "Bu
   return "START " + processor + "\nLADDER 2\n" + rungs + "\nDATA N7:0\n% N7:0 % 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n";
 }
 
-std::unique_ptr<Runtime> build(const std::string& text, const std::string& bench, std::string* errors) {
-  LoadResult lr = load_program(text, "mb.slc");
-  if (!lr.ok()) {
-    *errors = lr.render_diagnostics();
-    return nullptr;
-  }
-  ModuleSetup s = load_module_setup_text(*lr.program, bench, "mb.bench");
-  if (!s.ok()) {
-    *errors = s.render("mb.slc", lr.source);
-    return nullptr;
-  }
-  RuntimeResult rr = Runtime::create(*lr.program, s.options);
-  if (!rr.ok()) {
-    *errors = rr.render_errors();
-    return nullptr;
-  }
-  return std::move(rr.runtime);
-}
-
+// Errors come as the Controller's exception, rendered gcc-style with the file names given here.
 std::string errors_of(const std::string& text, const std::string& bench = "") {
-  std::string errors;
-  build(text, bench, &errors);
-  return errors;
+  try {
+    Controller::from_text(text, bench, "mb.slc", "mb.bench");
+  } catch (const ControllerError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 constexpr const char* kBench =
@@ -74,14 +58,11 @@ constexpr const char* kBench =
     "modbus METER slave=2 holding=4 functions=3,16\n";
 
 struct Plc {
-  std::unique_ptr<Runtime> rt;
-  explicit Plc(const std::string& rungs, const std::string& bench = kBench) {
-    std::string errors;
-    rt = build(program(rungs), bench, &errors);
-    if (!rt) throw std::runtime_error(errors);
-    if (!rt->set_mode(Mode::Run)) throw std::runtime_error("Run");
-  }
-  Runtime* operator->() { return rt.get(); }
+  Controller c;
+  Runtime* rt;
+  explicit Plc(const std::string& rungs, const std::string& bench = kBench)
+      : c(Controller::from_text(program(rungs), bench, "mb.slc", "mb.bench")), rt(&c.runtime()) {}
+  Runtime* operator->() { return rt; }
   std::int64_t i(const std::string& a) { return rt->value(a).as_int(); }
   std::uint16_t w(const std::string& a) { return static_cast<std::uint16_t>(rt->value(a).as_int()); }
   void set(const std::string& a, std::int64_t v) {

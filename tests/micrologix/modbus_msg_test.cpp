@@ -28,6 +28,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "parser/formatter.h"
+#include "parser/loader.h"
 #include "tools/controller/controller.h"
 #include "vm/runtime.h"
 
@@ -134,6 +136,20 @@ TEST(ModbusMsg, CheckNamesWhatIsWrongWhereItIs) {
     const std::string e = errors_of(program(c.rung));
     EXPECT_NE(e.find(std::string("mb.slc:") + c.expected), std::string::npos) << c.rung << "\n" << e;
   }
+}
+
+TEST(ModbusMsg, FmtWritesTheCommandInTwoDigitsAsRsLogixShowsIt) {
+  // RSLogix: "Modbus Command: 03 Read Holding Registers" (the command numbers of 1763-RM001B p. 366).
+  LoadResult first = load_program(program("SOR MSG MG11:0 3 MODBUS LOCAL 0 N7:0 5 1 1 2 EOR\n"
+                                          "SOR MSG MG11:1 16 MODBUS LOCAL 0 N7:5 2 0 7 2 EOR"),
+                                  "mb.slc");
+  ASSERT_TRUE(first.ok()) << first.render_diagnostics();
+  const std::string formatted = format_program(*first.program);
+  EXPECT_NE(formatted.find("MSG MG11:0 03 MODBUS LOCAL 0 N7:0 5 1 1 2"), std::string::npos) << formatted;
+  EXPECT_NE(formatted.find("MSG MG11:1 16 MODBUS LOCAL 0 N7:5 2 0 7 2"), std::string::npos) << formatted;
+  LoadResult second = load_program(formatted, "mb.slc");
+  ASSERT_TRUE(second.ok()) << second.render_diagnostics();
+  EXPECT_EQ(format_program(*second.program), formatted);
 }
 
 TEST(ModbusMsg, TheSetupGoesIntoTheMgElement) {

@@ -98,8 +98,8 @@ std::string_view to_string(OperandKind k) {
     case OperandKind::WordDest: return "integer word address (no F)";
     case OperandKind::Expression: return "CPT expression";
     case OperandKind::String: return "string element (STf:e)";
-    case OperandKind::MessageCommand: return "READ or WRITE";
-    case OperandKind::MessageDevice: return "target device (500CPU, 485CIF or PLC5)";
+    case OperandKind::MessageCommand: return "READ or WRITE (a Modbus MSG: its command, 01-06, 15 or 16)";
+    case OperandKind::MessageDevice: return "target device (500CPU, 485CIF, PLC5 or MODBUS)";
     case OperandKind::MessageRoute: return "LOCAL or REMOTE";
     case OperandKind::MessageBlock: return "integer control block (the control block length)";
     case OperandKind::MessageData: return "data table element address";
@@ -112,7 +112,7 @@ std::string_view to_string(OperandKind k) {
 
 namespace {
 constexpr std::string_view kCommandWords[] = {"READ", "WRITE"};
-constexpr std::string_view kDeviceWords[] = {"500CPU", "485CIF", "PLC5"};
+constexpr std::string_view kDeviceWords[] = {"500CPU", "485CIF", "PLC5", "MODBUS"};
 constexpr std::string_view kRouteWords[] = {"LOCAL", "REMOTE"};
 }  // namespace
 

@@ -156,6 +156,40 @@ constexpr std::uint16_t routing_ip_word(std::uint32_t ip, int word) {
 static_assert(routing_ip(0x790A, 0x0B1E) == 0x0A791E0Bu, "1766-RM001A p. 435: 10.121.30.11");
 static_assert(routing_ip_word(0x0A791E0Bu, 1) == 0x790A && routing_ip_word(0x0A791E0Bu, 2) == 0x0B1E);
 
+// The MSG's target device MODBUS ("Target Device: Modbus Device"): its code, the keyword's position among the
+// target devices (instructions/instruction_table.cpp: 500CPU 0, 485CIF 1, PLC5 2, MODBUS 3).
+inline constexpr int kModbusDeviceCode = 3;
+
+// The eight Modbus commands of the MicroLogix MSG (1763-RM001B p. 366, "Modbus Command Types"): 01 Read Coil
+// Status, 02 Read Input Status (bits), 03 Read Holding Registers, 04 Read Input Registers (words), 05 Write
+// Single Coil, 06 Write Single Register, 15 Write Multiple Coils, 16 Write Multiple Registers.
+namespace modbus {
+constexpr bool is_command(int f) { return (f >= 1 && f <= 6) || f == 15 || f == 16; }
+constexpr bool is_bit_command(int f) { return f == 1 || f == 2 || f == 5 || f == 15; }
+constexpr bool is_write_command(int f) { return f == 5 || f == 6 || f == 15 || f == 16; }
+constexpr bool is_single_command(int f) { return f == 5 || f == 6; }
+// Slave addresses: 1-247, 0 a broadcast (writes only).
+inline constexpr int kMaxSlave = 247;
+// Exception codes a slave answers with (Modbus application protocol), and the MSG error code they give:
+// 80h + the exception code, "81H Modbus Error 1: Illegal Function", "82H ... Illegal Data Address", ...
+// (1747-RM001G p. 12-42; AG-UM008C p. 3-55 "Received Exception Code" for the MicroLogix 1100/1200/1500).
+// The simulated slaves answer exception 01 (illegal function) and 02 (illegal data address), server/modbus.h's
+// kIllegalFunction and kIllegalDataAddress (the Modbus application protocol's codes).
+inline constexpr std::uint8_t kExceptionErrorBase = 0x80;
+// 12h "local channel configuration protocol error" (1766-RM001A p. 466): a Modbus MSG on a channel 0 that is
+// not a Modbus RTU master, or a PCCC MSG on channel 0 when it is one (docs/semantics.md, decision).
+inline constexpr std::uint8_t kChannelProtocol = 0x12;
+// Frame sizes in bytes, address and CRC included (Modbus over serial line, RTU).
+constexpr int request_bytes(int f, int n) {
+  return f == 15 ? 9 + (n + 7) / 8 : f == 16 ? 9 + 2 * n : 8;
+}
+constexpr int reply_bytes(int f, int n) {
+  return f == 1 || f == 2 ? 5 + (n + 7) / 8 : f == 3 || f == 4 ? 5 + 2 * n : 8;
+}
+inline constexpr int kExceptionReplyBytes = 5;
+inline constexpr int kBitsPerCharacter = 11;
+}  // namespace modbus
+
 constexpr std::string_view to_string(MessageLink link) {
   switch (link) {
     case MessageLink::Dh485: return "DH-485";

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "modules/process/plant.h"
+#include "modules/modbus/modbus_node.h"
 #include "modules/serial/serial_device.h"
 #include "parser/loader.h"
 #include "vm/compiler.h"
@@ -24,6 +25,7 @@ std::map<int, const BenchNode*> bind_bench_nodes(const Program& program, const B
   for (const auto& n : bench.nodes) {
     if (n.kind == "process") continue;  // a simulated plant wired to data-table words, not to a slot
     if (n.kind == "serial") continue;   // channel 0 and its device, not a slot
+    if (n.kind == "modbus") continue;   // a Modbus slave on channel 0, not a slot
     const BenchAttribute* a = n.find("slot");
     if (!a) {
       diags.error(n.pos.line, n.pos.column,
@@ -143,6 +145,36 @@ void add_serial_channel(const Program& program, const BenchFile& bench, ModuleSe
   s.bench_diagnostics.sort_by_position();
 }
 
+// The `modbus` nodes (modules/modbus/modbus_node.h): channel 0 of a MicroLogix 1100 or 1400 as a Modbus RTU
+// master with its slaves. Channel 0 is one port: a `serial` node and `modbus` nodes exclude each other.
+void add_modbus_channel(const Program& program, const BenchFile& bench, ModuleSetup& s) {
+  std::vector<const BenchNode*> slaves;
+  const BenchNode* serial = nullptr;
+  for (const auto& n : bench.nodes) {
+    if (n.kind == "serial" && !serial) serial = &n;
+    if (n.kind == "modbus") slaves.push_back(&n);
+  }
+  if (slaves.empty()) return;
+  const BenchNode& first = *slaves.front();
+  if (serial) {
+    s.bench_diagnostics.error(first.pos.line, first.pos.column,
+                              first.label() + ": channel 0 is already wired to " + serial->label() + " at line " +
+                                  std::to_string(serial->pos.line) + " (User mode); a Modbus slave needs it as a "
+                                  "Modbus RTU master");
+    return;
+  }
+  if (!program.processor.has_routing_files()) {
+    s.bench_diagnostics.error(first.pos.line, first.pos.column,
+                              first.label() + ": a Modbus RTU master channel 0 with a MSG that uses it is the "
+                              "MicroLogix 1100's and 1400's (1763-RM001B p. 366, 1766-RM001A); this program's "
+                              "processor is " + program.processor.display_name);
+    return;
+  }
+  if (auto config = read_modbus_nodes(slaves, s.bench_diagnostics))
+    s.options.modbus_channel = [c = *config] { return std::make_unique<ModbusMaster>(c); };
+  s.bench_diagnostics.sort_by_position();
+}
+
 }  // namespace
 
 ModuleSetup setup_modules(const Program& program, const BenchFile* bench, const ModuleRegistry& registry) {
@@ -198,6 +230,7 @@ ModuleSetup setup_modules(const Program& program, const BenchFile* bench, const 
   };
   if (bench) add_processes(program, *bench, s);
   if (bench) add_serial_channel(program, *bench, s);
+  if (bench) add_modbus_channel(program, *bench, s);
   return s;
 }
 

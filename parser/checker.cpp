@@ -743,7 +743,10 @@ class Checker {
         static constexpr FileType kTypes[] = {FileType::Output, FileType::Input, FileType::Status, FileType::Bit,
                                               FileType::Timer,  FileType::Counter, FileType::Control, FileType::Integer,
                                               FileType::Float,  FileType::String, FileType::Ascii};
-        if (!op.is_address() || op.address.has_bit() || op.address.is_indirect() || op.address.indexed ||
+        // A Modbus bit command's data is a bit address (check_modbus_message holds which take one).
+        const bool modbus_bit = in.opcode == Opcode::MSG_ML && op.is_address() && op.address.bit >= 0 &&
+                                !op.address.indirect_bit();
+        if (!op.is_address() || (op.address.has_bit() && !modbus_bit) || op.address.is_indirect() || op.address.indexed ||
             std::find(std::begin(kTypes), std::end(kTypes), op.address.type) == std::end(kTypes) ||
             (is_structured(op.address.type) && op.address.word >= 0) ||
             (op.address.type == FileType::String && op.address.word > 0))
@@ -939,6 +942,13 @@ class Checker {
 
   // READ/WRITE, 500CPU/485CIF/PLC5, LOCAL/REMOTE: words of the MSG box (RM 12-5), never symbols.
   void check_keyword(const Instruction& in, const Operand& op, const OperandSpec& os) {
+    // A MicroLogix Modbus MSG names its Modbus command where the others say READ or WRITE: check_modbus_message.
+    if (os.kind == OperandKind::MessageCommand && in.opcode == Opcode::MSG_ML && op.kind == Operand::Kind::Integer) return;
+    if (os.kind == OperandKind::MessageDevice && in.opcode != Opcode::MSG_ML && op.kind == Operand::Kind::Symbol &&
+        op.spelling == "MODBUS")
+      return error(op.pos, "MSG MODBUS is the MicroLogix 1100/1400 form (MSG MG11:0 03 MODBUS LOCAL 0 ...); the "
+                           "SLC 5/03-5/05's Modbus RTU master on channel 0 (1747-RM001G p. 12-35) is not simulated "
+                           "by softslc, nor has the MicroLogix 1000 one");
     std::string choices;
     for (auto w : keyword_words(os.kind)) choices += (choices.empty() ? "" : ", ") + std::string(w);
     if (op.kind != Operand::Kind::Symbol || !keyword_code(os.kind, op.spelling))
@@ -1117,6 +1127,15 @@ class Checker {
     const Operand& channel = ops[4];
     const Operand& node = ops[7];
     const auto& proc = program_.processor;
+    if (device.kind == Operand::Kind::Symbol && device.spelling == "MODBUS") return check_modbus_message(in);
+    if (ops[1].kind == Operand::Kind::Integer)
+      return error(ops[1].pos, "MSG command " + ops[1].spelling + ": a Modbus command (01-06, 15, 16) goes with target "
+                               "device MODBUS; a " + (device.kind == Operand::Kind::Symbol ? device.spelling : "PCCC") +
+                               " message is READ or WRITE");
+    if (ops[5].is_address() && ops[5].address.has_bit())
+      return error(ops[5].pos, "MSG data table address " + ops[5].text() + " is a bit: a bit address is the data of a "
+                               "Modbus coil or input command only (01, 02, 05, 15); this message moves elements from "
+                               "a word address such as N7:0");
     if (ops[3].kind == Operand::Kind::Symbol && ops[3].spelling == "REMOTE")
       return error(ops[3].pos, "MSG REMOTE (a message through a bridge to another link, 1762-RM001C p. 21-13) is not "
                                "simulated by softslc; the simulated network is one link: use LOCAL");
@@ -1150,6 +1169,70 @@ class Checker {
     if (long_message_data(data)) return;
     check_message_data(ops[1], dev, data, ops[6], ops[8], false);
   }
+  // The MicroLogix 1100/1400 Modbus RTU master MSG (docs/semantics.md "The MicroLogix MSG over Modbus RTU"):
+  //   MSG MG11:0 <command 01-06, 15, 16> MODBUS LOCAL 0 <data> <size> <slave 0-247> <Modbus address 1-65536> <timeout>
+  // The eight commands of 1763-RM001B p. 366; the slave address and the 1-based data address of the setup screen
+  // (1747-RM001G p. 12-22, the same screen: "MB Data Address (1-65536)"); B and N data only, a bit address for the
+  // coil and input commands, a word address for the register commands (1747-RM001G p. 12-18: the MicroLogix
+  // page was not reached [U]).
+  void check_modbus_message(const Instruction& in) {
+    const auto& ops = in.operands;
+    const Operand& command = ops[1];
+    const Operand& device = ops[2];
+    const Operand& data = ops[5];
+    const Operand& size = ops[6];
+    const Operand& slave = ops[7];
+    const Operand& target = ops[8];
+    const auto& proc = program_.processor;
+    if (!proc.has_routing_files())
+      return error(device.pos, "MSG MODBUS: the " + proc.display_name + " has no Modbus RTU master MSG; MG sub-element 2 "
+                               "(the messaging type, 2 = Modbus master on the 1100 and 1400, 1763-RM001B p. 347) is "
+                               "reserved on the MicroLogix 1200 and 1500 (1762-RM001C p. 21-4)");
+    if (command.kind != Operand::Kind::Integer || !modbus::is_command(static_cast<int>(command.integer)))
+      return error(command.pos, "MSG MODBUS command '" + command.text() + "': expected a Modbus command, 01 Read Coil "
+                                "Status, 02 Read Input Status, 03 Read Holding Registers, 04 Read Input Registers, 05 "
+                                "Write Single Coil, 06 Write Single Register, 15 Write Multiple Coils or 16 Write "
+                                "Multiple Registers (1763-RM001B p. 366)");
+    const int f = static_cast<int>(command.integer);
+    if (ops[3].kind != Operand::Kind::Symbol || ops[3].spelling != "LOCAL")
+      return error(ops[3].pos, "MSG MODBUS is LOCAL: a Modbus message goes to a slave on the channel's own line");
+    if (ops[4].kind == Operand::Kind::Integer && ops[4].integer != 0)
+      return error(ops[4].pos, "MSG MODBUS on channel " + ops[4].spelling + ": the Modbus RTU master is channel 0, the "
+                               "serial port (channel 1 of the " + proc.display_name + " is Ethernet)");
+    claim_message_element(ops[0]);
+    const bool bits = modbus::is_bit_command(f);
+    if (data.is_address()) {
+      const FileType t = data.address.type;
+      if (t != FileType::Bit && t != FileType::Integer)
+        error(data.pos, "MSG MODBUS data " + data.text() + ": only B and N files are valid for Modbus command messages "
+                        "(1747-RM001G p. 12-18)");
+      else if (bits && !data.address.has_bit())
+        error(data.pos, "MSG MODBUS " + command.spelling + " moves bits (coils or inputs): its data table address is a "
+                        "bit address such as " + data.text() + "/0 (1747-RM001G p. 12-18)");
+      else if (!bits && data.address.has_bit())
+        error(data.pos, "MSG MODBUS " + command.spelling + " moves registers: its data table address is a word address "
+                        "such as " + std::string(file_letter(t)) + std::to_string(data.address.file) + ":" +
+                        std::to_string(data.address.element) + ", not the bit " + data.text() + " (1747-RM001G p. 12-18)");
+    }
+    if (modbus::is_single_command(f) && size.kind == Operand::Kind::Integer && size.integer != 1)
+      error(size.pos, "MSG MODBUS " + command.spelling + " writes one " + (bits ? "coil" : "register") + ": its size in "
+                      "elements is 1 (1763-RM001B p. 366: \"writing 1 " + (bits ? "bit" : "word") + "\")");
+    if (slave.kind != Operand::Kind::Integer)
+      return error(slave.pos, "MSG MODBUS target " + slave.text() + ": the target is the slave address, 1-247 (0: a "
+                              "broadcast write)");
+    if (slave.integer > modbus::kMaxSlave)
+      error(slave.pos, "MSG MODBUS slave address " + slave.spelling + " is out of range 1-247 (0: a broadcast write)");
+    else if (slave.integer == 0 && !modbus::is_write_command(f))
+      error(slave.pos, "MSG MODBUS slave address 0 is a broadcast, which only a write command (05, 06, 15, 16) can "
+                       "send: no slave answers a broadcast");
+    if (target.kind != Operand::Kind::Integer || target.integer < 1 || target.integer > 65536)
+      return error(target.pos, "MSG MODBUS target address " + target.text() + ": expected the Modbus data address, "
+                               "1-65536, without its 0x/1x/3x/4x prefix (1747-RM001G p. 12-22)");
+    if (size.kind == Operand::Kind::Integer && target.integer + size.integer - 1 > 65536)
+      error(target.pos, "MSG MODBUS " + size.spelling + " elements from Modbus address " + target.spelling +
+                        " run past 65536, the end of the Modbus address space");
+  }
+
   // "Each MSG instruction must use a unique Element in a MSG File" (1762-RM001C p. 21-4).
   void claim_message_element(const Operand& element) {
     if (!element.is_address()) return;

@@ -53,7 +53,14 @@ void format_elements(const std::vector<RungElement>& elems, std::string& out) {
     }
     out += spec(e.instruction.opcode).mnemonic;
     out += ' ';
-    for (const auto& op : e.instruction.operands) out += format_operand(op) + ' ';
+    const auto& ops = e.instruction.operands;
+    for (std::size_t i = 0; i < ops.size(); ++i) {
+      // A MicroLogix Modbus MSG's command in two digits, as RSLogix shows it ("03 Read Holding Registers").
+      const bool modbus_command = e.instruction.opcode == Opcode::MSG_ML && i == 1 && ops.size() > 2 &&
+                                  ops[1].kind == Operand::Kind::Integer && ops[1].integer >= 0 && ops[1].integer < 10 &&
+                                  ops[2].kind == Operand::Kind::Symbol && ops[2].spelling == "MODBUS";
+      out += (modbus_command ? "0" : "") + format_operand(ops[i]) + ' ';
+    }
   }
 }
 

@@ -1,6 +1,7 @@
 #include "vm/compiler.h"
 
 #include "vm/message_network.h"
+#include "vm/modbus_master.h"
 #include "vm/state_file.h"
 
 #include <algorithm>
@@ -254,7 +255,13 @@ class Compiler {
       // MSG: the control block (its length operand) and `size` elements of the local data.
       case Opcode::MSG: return i == 3 ? len(4) : i == 6 ? std::max<std::uint32_t>(len(7), 1) : 1;
       case Opcode::MSG_502: return i == 2 ? len(3) : i == 4 ? std::max<std::uint32_t>(len(5), 1) : 1;
-      case Opcode::MSG_ML: return i == 5 ? std::max<std::uint32_t>(len(6), 1) : 1;
+      case Opcode::MSG_ML:
+        if (i != 5) return 1;
+        // A Modbus bit command (01, 02, 05, 15) moves `size` bits from the data's bit on.
+        if (in.operands.size() > 5 && in.operands[1].kind == Operand::Kind::Integer &&
+            modbus::is_bit_command(static_cast<int>(in.operands[1].integer)))
+          return static_cast<std::uint32_t>((std::max(in.operands[5].address.bit, 0) + std::max<std::int64_t>(len(6), 1) + 15) / 16);
+        return std::max<std::uint32_t>(len(6), 1);
       default: return 1;
     }
   }
@@ -647,6 +654,8 @@ class Compiler {
     const Operand& t = in.operands[8];
     const bool cif = in.operands[2].kind == Operand::Kind::Symbol && in.operands[2].spelling == "485CIF";
     const FileType local = in.operands[5].address.type;
+    if (in.operands[2].kind == Operand::Kind::Symbol && in.operands[2].spelling == "MODBUS")
+      return init_modbus_message(in, ops);
     init_literal(ops[0], mg::kChannel, literal(in, 4));
     init_literal(ops[0], mg::kNode, literal(in, 7));
     init_literal(ops[0], mg::kTimeout, literal(in, 9));
@@ -661,6 +670,22 @@ class Compiler {
     // 8-15 its file, 0-7 its element (1766-RM001A p. 400); the processor reads the IP address there.
     if (const Operand& ri = in.operands[7]; ri.is_address() && ri.address.type == FileType::Routing)
       init_literal(ops[0], mg::kRoutingPath, (ri.address.file << 8) | ri.address.element);
+  }
+
+  // The Modbus RTU master MSG's setup in the MG element (1763-RM001B pp. 347-350, 1766-RM001A pp. 399-401): word
+  // 2 messaging type 2 (Modbus master), 3 the function code, 8 CHN, 9 NOD (the slave address), 10 MTO, 11 the
+  // number of elements, 12 the local starting bit for coils and inputs, 13 the Modbus target data address - 1.
+  void init_modbus_message(const Instruction& in, const std::vector<std::uint32_t>& ops) {
+    init_literal(ops[0], mg::kMessagingType, 2);
+    init_literal(ops[0], mg::kCommand, literal(in, 1));
+    init_literal(ops[0], mg::kChannel, literal(in, 4));
+    init_literal(ops[0], mg::kNode, literal(in, 7));
+    init_literal(ops[0], mg::kTimeout, literal(in, 9));
+    init_literal(ops[0], mg::kByteCount, literal(in, 6));
+    const Address& data = in.operands[5].address;
+    init_literal(ops[0], mg::kTargetFileType, data.bit >= 0 ? data.bit : 0);
+    init_literal(ops[0], mg::kTargetFile, literal(in, 8) - 1);
+    init_literal(ops[0], mg::kStatus, 1u << mg::kRangeBit);
   }
 
   void init_literal(std::uint32_t op_word, std::uint32_t sub, std::int64_t value) {
@@ -1039,6 +1064,9 @@ class Compiler {
         case OperandKind::MessageRoute:
           if (auto code = op.kind == Operand::Kind::Symbol ? keyword_code(os.kind, op.spelling) : std::nullopt)
             w = bc::imm(*code);
+          else if (os.kind == OperandKind::MessageCommand && op.kind == Operand::Kind::Integer &&
+                   modbus::is_command(static_cast<int>(op.integer)))
+            w = bc::imm(static_cast<std::int32_t>(op.integer));  // a Modbus MSG's command (check holds the form)
           else
             error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + ": '" + op.text() + "' is not one of its words");
           break;
@@ -1047,7 +1075,11 @@ class Compiler {
         case OperandKind::MessageElement:
           if (op.is_address() && !is_mfile(op.address.type) && !needs_dyn(op.address, false)) {
             bool f = false;
-            w = value_operand(op, false, true, f, pos);
+            // A Modbus bit command's data is a bit address (B3:0/4): the word here, the bit in MG word 12
+            // (init_micrologix_message).
+            Operand word_op = op;
+            if (os.kind == OperandKind::MessageData && in.opcode == Opcode::MSG_ML) word_op.address.bit = -1;
+            w = value_operand(word_op, false, true, f, pos);
           } else {
             error(pos, std::string(sp.mnemonic) + " " + std::string(os.label) + " must be a direct data table address");
           }

@@ -8,6 +8,7 @@
 
 #include "vm/compiler.h"
 #include "vm/ascii_channel.h"
+#include "vm/modbus_master.h"
 #include "vm/pid.h"
 
 #include <algorithm>
@@ -1536,15 +1537,18 @@ void Interpreter::micrologix_message(const std::uint32_t* o, bool rung, Nanoseco
   if (rung && !enabled) {
     MessageInstruction m;
     m.micrologix = true;
-    m.write = bc::imm_of(o[1]) == 1;
     m.device = bc::imm_of(o[2]);
+    // Target device MODBUS: the command operand holds the Modbus command (01-06, 15, 16), not READ/WRITE.
+    if (m.device == kModbusDeviceCode) m.modbus_function = bc::imm_of(o[1]);
+    m.write = m.modbus_function != 0 ? modbus::is_write_command(m.modbus_function) : bc::imm_of(o[1]) == 1;
     m.channel = bc::imm_of(o[4]);
     m.block = element;
     m.data = bc::payload_of(o[5]);
     m.elements = bc::imm_of(o[6]);
     m.at = scan_start_ + now_in_scan;
     // The false-to-true figures of 1762-RM001C Table 21.1 / 1766-RM001A p. 398 ("264 us + 1.6 us per word").
-    charge_transition(Op::MSG_ML, m.write ? 1 : 0, message_words(m.data, static_cast<std::uint16_t>(m.elements)));
+    const int counted = modbus::is_bit_command(m.modbus_function) ? (m.elements + 15) / 16 : m.elements;
+    charge_transition(Op::MSG_ML, m.write ? 1 : 0, message_words(m.data, static_cast<std::uint16_t>(counted)));
     chassis_.message_start(m);
   } else if ((control & msg::kTO) && enabled && !done) {
     chassis_.message_abort(element);

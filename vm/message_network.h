@@ -157,6 +157,9 @@ struct MessageInstruction {
   // SLCs, which answer a PLC5 typed command as a 500CPU one; 485CIF's target is in the control block
   // (N9, the offset): so the network needs no more than the block (docs/semantics.md "MSG and SVC").
   int device = 0;
+  // A MicroLogix 1100/1400 Modbus RTU master message (target device MODBUS): its Modbus command, 01-06, 15 or
+  // 16 (1763-RM001B p. 366); 0 for every PCCC message. It goes to the channel's ModbusMaster (vm/modbus_master.h).
+  int modbus_function = 0;
   int channel = 0;
   std::uint32_t block = 0;   // data-table word index of control block word 0
   std::uint32_t data = 0;    // data-table word index of this controller's data address

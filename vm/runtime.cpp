@@ -218,6 +218,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   auto compiled = std::make_unique<CompiledProgram>(std::move(*cr.program));
   std::vector<FieldProcessFactory> processes = std::move(options.field_processes);
   auto make_channel = std::move(options.ascii_channel);
+  auto make_modbus = std::move(options.modbus_channel);
   const std::vector<PeerController> peers = std::move(options.peers);
   const int channel1_node = options.channel1_node;
   const std::string channel1_network = options.channel1_network;
@@ -234,6 +235,10 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
       rt.ascii_channel_->attach(*rt.process_host_);
       rt.interp_->set_ascii_port(rt.ascii_channel_.get());
     }
+  }
+  if (make_modbus) {
+    rt.modbus_channel_ = make_modbus();
+    if (rt.modbus_channel_) rt.modbus_channel_->attach(*rt.process_host_);
   }
   for (const auto& make : processes) {
     std::unique_ptr<FieldProcess> p = make ? make() : nullptr;
@@ -379,8 +384,19 @@ MessageNetwork& Runtime::network() {
   return *network_;
 }
 
-void Runtime::message_start(const MessageInstruction& m) { network().start(station_, m); }
-void Runtime::message_abort(std::uint32_t block) { network().abort(station_, block); }
+// A Modbus MSG goes to channel 0's Modbus RTU master; on a channel 0 that is not one it ends with 12h, "local
+// channel configuration protocol error", as does a PCCC (DH-485) MSG on a channel 0 that is one
+// (1766-RM001A p. 466; docs/semantics.md "The MicroLogix MSG over Modbus RTU").
+void Runtime::message_start(const MessageInstruction& m) {
+  if (m.modbus_function != 0 && modbus_channel_) return modbus_channel_->start(m);
+  if (m.modbus_function != 0 || (m.micrologix && m.channel == 0 && modbus_channel_))
+    return ModbusMaster::refuse(*process_host_, m, modbus::kChannelProtocol);
+  network().start(station_, m);
+}
+void Runtime::message_abort(std::uint32_t block) {
+  if (modbus_channel_ && modbus_channel_->abort(block)) return;
+  network().abort(station_, block);
+}
 void Runtime::service_communications(std::uint16_t channels, VirtualTime at) {
   network().service_now(station_, at, channels);
 }
@@ -1339,6 +1355,12 @@ RuntimeStatus Runtime::inject(std::string_view device, std::string_view fault, s
     if (st.kind == DeviceStatus::Kind::Refused)
       return RuntimeStatus::failure("device " + f.device + ": " + st.message);
   }
+  if (modbus_channel_) {
+    DeviceStatus st = modbus_channel_->inject(f);
+    if (st.kind == DeviceStatus::Kind::Done) return {};
+    if (st.kind == DeviceStatus::Kind::Refused)
+      return RuntimeStatus::failure("device " + f.device + ": " + st.message);
+  }
   if (ascii_channel_ && ascii_channel_->device().name() == f.device) {
     DeviceStatus st = ascii_channel_->device().inject(f);
     if (st.kind == DeviceStatus::Kind::Done) return {};
@@ -1379,6 +1401,8 @@ std::optional<std::vector<std::int64_t>> Runtime::observe(std::string_view devic
       if (auto v = m->observe(device, what)) return v;
   for (const auto& p : processes_)
     if (auto v = p->observe(device, what)) return v;
+  if (modbus_channel_)
+    if (auto v = modbus_channel_->observe(device, what)) return v;
   if (ascii_channel_ && ascii_channel_->device().name() == device) {
     // The channel's own counts, then what the device offers.
     if (what == "buffered") return std::vector<std::int64_t>{static_cast<std::int64_t>(ascii_channel_->buffered())};
@@ -1395,6 +1419,8 @@ std::vector<std::string> Runtime::devices() const {
       for (auto& n : m->device_names()) out.push_back(std::move(n));
   for (const auto& p : processes_) out.push_back(p->name());
   if (ascii_channel_) out.push_back(ascii_channel_->device().name());
+  if (modbus_channel_)
+    for (auto& n : modbus_channel_->device_names()) out.push_back(std::move(n));
   // The inputs of the MicroLogix high-speed counters, which need no bench (vm/ml_hsc.h).
   for (int c = 0; c < interp_->hsc().counters(); ++c) out.push_back("HSC" + std::to_string(c));
   return out;

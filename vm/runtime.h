@@ -36,6 +36,7 @@
 
 #include "parser/program.h"
 #include "vm/ascii_channel.h"
+#include "vm/modbus_master.h"
 #include "vm/bytecode.h"
 #include "vm/compiler.h"
 #include "vm/coverage.h"
@@ -67,6 +68,9 @@ struct RuntimeOptions {
   // Channel 0 in User (ASCII) mode with the device wired to it (vm/ascii_channel.h); empty: the
   // channel stays in System mode and the ASCII channel instructions end with ER.
   std::function<std::unique_ptr<AsciiChannel>()> ascii_channel;
+  // Channel 0 of a MicroLogix 1100/1400 as a Modbus RTU master with its slaves (vm/modbus_master.h); empty:
+  // channel 0 is no Modbus master and a Modbus MSG ends with 12h.
+  std::function<std::unique_ptr<ModbusMaster>()> modbus_channel;
   // MSG (docs/semantics.md "MSG"): this controller's node on its network, and the other controllers
   // on it. With peers, the runtime created is the network's leader: it owns the peers, drives them in
   // lockstep with its own scans, and passes its mode changes on to them.
@@ -245,6 +249,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   EventQueue& events() { return events_; }
   // Channel 0 in User mode, or nullptr.
   AsciiChannel* ascii_channel() const { return ascii_channel_.get(); }
+  // Channel 0 as a Modbus RTU master, or nullptr.
+  ModbusMaster* modbus_channel() const { return modbus_channel_.get(); }
   const CompiledProgram& compiled() const { return *program_; }
   DataTable& data() { return data_; }
   const DataTable& data() const { return data_; }
@@ -329,6 +335,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::unique_ptr<ProcessHost> process_host_;
   std::vector<std::unique_ptr<FieldProcess>> processes_;
   std::unique_ptr<AsciiChannel> ascii_channel_;
+  std::unique_ptr<ModbusMaster> modbus_channel_;
   std::array<Module*, kMaxSlots> modules_{};
   // The modules in slot order with their image-transfer costs, for the input and output scans.
   struct ScannedModule {

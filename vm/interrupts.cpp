@@ -306,6 +306,15 @@ bool Interpreter::run_dii(Nanoseconds& elapsed) {
   return apply_dii_config();
 }
 
+bool Interpreter::discrete_input_card(int slot) {
+  const std::uint32_t bit = 1u << slot;
+  if (!(dii_card_asked_ & bit)) {
+    dii_card_asked_ |= bit;
+    if (chassis_.discrete_input_card(slot)) dii_card_ |= bit;
+  }
+  return (dii_card_ & bit) != 0;
+}
+
 bool Interpreter::apply_dii_config() {
   if (!dii_supported_) return true;
   const int file = static_cast<std::int16_t>(w_[s46_]);
@@ -321,7 +330,7 @@ bool Interpreter::apply_dii_config() {
     return false;
   }
   const int slot = static_cast<std::int16_t>(w_[s46_ + 1]);
-  if (slot < 1 || slot > 30 || !chassis_.discrete_input_card(slot)) {
+  if (slot < 1 || slot > 30 || !discrete_input_card(slot)) {
     raise(fault::kInvalidDiiConfig, "S:47 names DII input slot " + std::to_string(slot) +
                                         ", which holds no discrete input card (1-30, RM 11-18)");
     return false;

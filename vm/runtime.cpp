@@ -1253,6 +1253,20 @@ MAccess Runtime::read_m(int slot, MFile f, int word, std::uint16_t& value) {
   return a;
 }
 
+MAccess Runtime::read_m_block(int slot, MFile f, int word, std::span<std::uint16_t> out, std::size_t& done) {
+  done = 0;
+  Module* m = module(slot);
+  if (!m) return MAccess::NoSuchWord;
+  if (probing_) [[unlikely]] reach(slot);
+  for (; done < out.size(); ++done) {
+    const int k = word + static_cast<int>(done);
+    const MAccess a = m->read_m(f, k, out[done]);
+    if (a != MAccess::Ok) return a;
+    if (probing_) [[unlikely]] m_reads_.push_back({slot, f, k, out[done]});
+  }
+  return MAccess::Ok;
+}
+
 MAccess Runtime::write_m(int slot, MFile f, int word, std::uint16_t value) {
   Module* m = module(slot);
   if (!m) return MAccess::NoSuchWord;

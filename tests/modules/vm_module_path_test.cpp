@@ -165,20 +165,17 @@ TEST(VmModulePath, BlockWriteIsCheckedLikeWordWrites) {
 TEST(VmModulePath, MBlockReadIsReadMWordByWord) {
   const auto fill = [](Recorder& r, const std::string& action, bool refuse) {
     r.action = action;
-    for (int k = 0; k < 4; ++k) r.words(MFile::M1)[static_cast<std::size_t>(100 + k)] = static_cast<std::uint16_t>(500 + k);
+    for (int k = 0; k < 4; ++k) r.write_m(MFile::M1, 100 + k, static_cast<std::uint16_t>(500 + k));
     if (refuse) r.forbid(MFile::M1, 102);
   };
-  Fixture ok("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR
-", [&](Recorder& r) { fill(r, "read-m-block", false); });
+  Fixture ok("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [&](Recorder& r) { fill(r, "read-m-block", false); });
   ASSERT_TRUE(ok.rt->set_mode(Mode::Run));
   ok.rt->scan(1);
   EXPECT_FALSE(ok.rt->fault().has_value());
   EXPECT_EQ(ok.rec->m_got, 4u);
   EXPECT_EQ(ok.rec->block, (std::array<std::uint16_t, 4>{500, 501, 502, 503}));
-  Fixture block("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR
-", [&](Recorder& r) { fill(r, "read-m-block", true); });
-  Fixture word("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR
-", [&](Recorder& r) { fill(r, "read-m-words", true); });
+  Fixture block("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [&](Recorder& r) { fill(r, "read-m-block", true); });
+  Fixture word("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [&](Recorder& r) { fill(r, "read-m-words", true); });
   for (Fixture* x : {&block, &word}) {
     ASSERT_TRUE(x->rt->set_mode(Mode::Run));
     x->rt->scan(1);

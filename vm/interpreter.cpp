@@ -1837,7 +1837,8 @@ void Interpreter::bit_compare(Op op, const std::uint32_t* o, bool rung) {
 
 // ---- The dispatch loop -----------------------------------------------------------------------------------------
 
-ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds elapsed, bool first_pass,
+// Hot: run at every scan (vm/runtime.cpp, "The scan cycle", says why it is marked).
+[[gnu::hot]] ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds elapsed, bool first_pass,
                                             Nanoseconds watchdog) {
   first_pass_ = first_pass;
   begin_pass(scan_start, watchdog);
@@ -1921,7 +1922,7 @@ constexpr std::array<bool, 256> kNoFastPathOp{};
 
 }  // namespace
 
-bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
+[[gnu::hot]] bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
   struct BranchFrame {
     bool entry;  // the rung condition at BST: every leg starts from it
     bool acc;    // OR of the legs finished so far

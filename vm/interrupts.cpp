@@ -350,7 +350,8 @@ bool Interpreter::apply_dii_config() {
   return true;
 }
 
-bool Interpreter::configure_dii(bool entering_run) {
+// Hot: run at every scan (vm/runtime.cpp, "The scan cycle", says why it is marked).
+[[gnu::hot]] bool Interpreter::configure_dii(bool entering_run) {
   clear_fault();
   w_ = table_.words();
   if (!dii_supported_) return true;
@@ -474,7 +475,7 @@ void Interpreter::io_interrupt_control(Op op, const std::uint32_t* o, Nanosecond
   }
 }
 
-bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
+[[gnu::hot]] bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
   clear_fault();
   w_ = table_.words();
   if (sti_file_word_ >= 0) return configure_function_file_sti(now, entering_run);
@@ -542,7 +543,7 @@ void Interpreter::stop_interrupts() {
   }
 }
 
-ProgramScanResult Interpreter::service_interrupts_between(VirtualTime scan_start, Nanoseconds elapsed,
+[[gnu::hot]] ProgramScanResult Interpreter::service_interrupts_between(VirtualTime scan_start, Nanoseconds elapsed,
                                                           Nanoseconds watchdog) {
   // Nothing timing or waiting (most scans): update_limit would leave the limit at the watchdog and
   // nothing would run, so no pass is begun.

@@ -8,12 +8,11 @@
 // before calling it, so a callback always sees now() == its own time and time never goes
 // backwards.
 //
-// Storage: a binary min-heap on (time, sequence) in one vector that keeps its capacity
-// (std::push_heap / std::pop_heap), so a module scheduling its next event every few microseconds
-// of virtual time costs no allocation (a std::map cost two nodes per event, and was most of the
-// SN scanner's simulation time). A cancel finds the event by a linear search and rebuilds the
-// heap: cancels are rare and the queue holds a few events per module. Keys are unique, so the
-// order events run in does not depend on how the heap is arranged.
+// Storage: an EventHeap (vm/event_heap.h, shared with the DeviceNet network's Timeline): a binary
+// min-heap of (time, sequence, slot) keys with the callbacks in reused slots, each an EventCallback
+// that keeps a module's small captures in place, so a module scheduling its next event every few
+// microseconds of virtual time costs no allocation (a std::function per event was about 12% of a
+// busy 1747-SN program's simulation time, docs/performance.md "Executed scans (s17-scan)").
 //
 // The runtime runs the queue between scans: when a scan ends at time t, every event due at or
 // before t runs (in order) and the clock ends at t. An event therefore changes module state
@@ -22,19 +21,18 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <optional>
 #include <utility>
-#include <vector>
 
+#include "vm/event_heap.h"
 #include "vm/virtual_time.h"
 
 namespace softslc {
 
 class EventQueue {
  public:
-  using Callback = std::function<void(VirtualTime now)>;
-  using EventId = std::uint64_t;
+  using Callback = EventCallback;
+  using EventId = EventHeap::EventId;
 
   explicit EventQueue(VirtualClock& clock) : clock_(clock) {}
   EventQueue(const EventQueue&) = delete;
@@ -45,31 +43,21 @@ class EventQueue {
   // Schedules `cb` `delay` nanoseconds from now (delay >= 0).
   EventId schedule_after(Nanoseconds delay, Callback cb) { return schedule_at(clock_.now() + delay, std::move(cb)); }
   // Removes a pending event. Returns false when it already ran or never existed.
-  bool cancel(EventId id);
+  bool cancel(EventId id) { return heap_.cancel(id); }
 
   // Runs every event due at or before `until`, in (time, sequence) order, including events that
   // callbacks schedule inside that window, then leaves the clock at `until`. Returns how many
   // events ran. `until` before now throws TimeWentBackwards.
   std::size_t run_until(VirtualTime until);
 
-  std::optional<VirtualTime> next_time() const;
+  std::optional<VirtualTime> next_time() const { return heap_.next_time(); }
   std::size_t size() const { return heap_.size(); }
   bool empty() const { return heap_.empty(); }
   VirtualTime now() const { return clock_.now(); }
 
  private:
-  struct Event {
-    VirtualTime at;
-    EventId id;
-    Callback cb;
-  };
-  // The heap's comparator: "a runs after b" (later time, then later sequence), so the heap's
-  // front is the next event to run.
-  static bool runs_after(const Event& a, const Event& b) { return a.at != b.at ? a.at > b.at : a.id > b.id; }
-
   VirtualClock& clock_;
-  std::vector<Event> heap_;
-  EventId next_id_ = 1;
+  EventHeap heap_;
 };
 
 }  // namespace softslc

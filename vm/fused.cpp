@@ -860,7 +860,8 @@ static_assert(std::size(kActions) * 2 * kWordVariants <= 256, "a shape's kernel 
 static_assert(std::size(kActions) == 11, "the word-rung loop has a kernel for every action");
 static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every contact count");
 
-FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed,
+// Hot: run at every scan (vm/runtime.cpp, "The scan cycle", says why it is marked).
+[[gnu::hot]] FusedProgram::Exit FusedProgram::execute(std::int32_t run, std::uint16_t* w, Nanoseconds& elapsed,
                                          std::uint64_t& count, Nanoseconds limit, const FusedScan& scan,
                                          FusedCalls& calls) const {
   const Run* r = &runs_[static_cast<std::size_t>(run)];

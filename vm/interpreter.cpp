@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <new>
 #include <utility>
 
 namespace softslc {
@@ -152,12 +153,7 @@ bool Interpreter::resolve_common(const DynOperand& d, Ref& out, std::uint16_t& c
     return s;
   };
   if (d.mfile) {
-    out = {};
-    out.mfile = true;
-    out.slot = d.element;
-    out.which = d.which;
-    out.word = static_cast<std::uint32_t>(std::max(d.word, 0));
-    out.bit = d.bit;
+    mfile_ref(d, out);
     return true;
   }
   int file = d.type == FileType::Status ? 2 : is_io(d.type) ? fixed_file_number(d.type) : d.file;
@@ -260,7 +256,23 @@ bool Interpreter::resolve_common(const DynOperand& d, Ref& out, std::uint16_t& c
   return true;
 }
 
+// An M0/M1 operand names its slot and word directly (the module checks the word): nothing to
+// compute and no fault possible.
+void Interpreter::mfile_ref(const DynOperand& d, Ref& out) {
+  out = {};
+  out.mfile = true;
+  out.slot = d.element;
+  out.which = d.which;
+  out.word = static_cast<std::uint32_t>(std::max(d.word, 0));
+  out.bit = d.bit;
+}
+
 bool Interpreter::resolve(const DynOperand& d, Ref& out) {
+  // A module instruction's M-file operand (a BTR's M1:1.100) is resolved at every execution.
+  if (d.mfile) {
+    mfile_ref(d, out);
+    return true;
+  }
   std::uint16_t code = 0;
   std::string message;
   if (resolve_common(d, out, code, message)) return true;
@@ -636,6 +648,16 @@ class ModuleCall final : public ModuleInstructionContext {
     in_.w_[ops_[i].word + k] = value;
     return true;
   }
+  bool write_block(std::size_t i, std::uint32_t k, std::span<const std::uint16_t> in) override {
+    if (in.empty()) return true;
+    // As read_block: inside when it starts inside and fits in what remains; else the words up to
+    // the file's end are written and the first word past it faults, as write() would.
+    const bool table = i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table;
+    const std::uint32_t room = table && k < ops_[i].limit ? ops_[i].limit - k : 0;
+    const std::size_t fit = std::min<std::size_t>(in.size(), room);
+    if (fit > 0) std::copy_n(in.begin(), fit, in_.w_ + ops_[i].word + k);
+    return fit == in.size() || check(i, k + static_cast<std::uint32_t>(fit));
+  }
   bool read_m(int slot, MFile f, int word, std::uint16_t& value) override {
     const MAccess a = in_.chassis_.read_m(slot, f, word, value);
     if (a == MAccess::Ok) return true;
@@ -643,6 +665,16 @@ class ModuleCall final : public ModuleInstructionContext {
                                               ":" + std::to_string(slot) + "." + std::to_string(word) + ": " +
                                               in_.refused(a, slot, f, word, false));
     return false;
+  }
+  std::size_t read_m_block(int slot, MFile f, int word, std::span<std::uint16_t> out) override {
+    std::size_t done = 0;
+    const MAccess a = in_.chassis_.read_m_block(slot, f, word, out, done);
+    if (a == MAccess::Ok) return done;
+    const int bad = word + static_cast<int>(done);
+    in_.raise(fault::module_access(slot), std::string(spec(op_).mnemonic) + " reading M" + std::to_string(static_cast<int>(f)) +
+                                              ":" + std::to_string(slot) + "." + std::to_string(bad) + ": " +
+                                              in_.refused(a, slot, f, bad, false));
+    return done;
   }
   bool write_m(int slot, MFile f, int word, std::uint16_t value) override {
     const MAccess a = in_.chassis_.write_m(slot, f, word, value);
@@ -657,12 +689,16 @@ class ModuleCall final : public ModuleInstructionContext {
 
  private:
   bool check(std::size_t i, std::uint32_t k) {
-    if (i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table && k < ops_[i].limit) return true;
+    if (i < ops_.size() && ops_[i].kind == ModuleOperand::Kind::Table && k < ops_[i].limit) [[likely]] return true;
+    out_of_file(i, k);
+    return false;
+  }
+  // check()'s fault, apart so that check() itself is inlined into every access.
+  [[gnu::noinline, gnu::cold]] void out_of_file(std::size_t i, std::uint32_t k) {
     in_.raise(fault::kIndexOutOfRange, std::string(spec(op_).mnemonic) + " " +
                                           (i < spec(op_).operand_count ? std::string(spec(op_).operands[i].label)
                                                                        : std::string("operand")) +
                                           ": word " + std::to_string(k) + " runs past the end of its data file");
-    return false;
   }
 
   Interpreter& in_;
@@ -674,8 +710,13 @@ class ModuleCall final : public ModuleInstructionContext {
 
 void Interpreter::module_instruction(Op op, const std::uint32_t* o, std::uint32_t h, bool rung, Nanoseconds now_in_scan) {
   const DataTableLayout& L = *prog_.layout;
-  std::array<ModuleOperand, 15> ops{};
-  const std::uint32_t n = std::min<std::uint32_t>(bc::count_of(h), static_cast<std::uint32_t>(ops.size()));
+  // The operands the instruction has (a BTR 7 of the 15 a module instruction may have) are
+  // initialised, not all 15: a busy 1747-SN program executes several BTRs per scan.
+  constexpr std::uint32_t kMaxOperands = 15;
+  alignas(ModuleOperand) unsigned char storage[sizeof(ModuleOperand) * kMaxOperands];
+  const std::uint32_t n = std::min<std::uint32_t>(bc::count_of(h), kMaxOperands);
+  ModuleOperand* const ops = reinterpret_cast<ModuleOperand*>(storage);
+  for (std::uint32_t i = 0; i < n; ++i) ::new (static_cast<void*>(ops + i)) ModuleOperand{};
   auto table = [&](ModuleOperand& m, std::uint32_t word) {
     m.kind = ModuleOperand::Kind::Table;
     m.word = word;
@@ -707,7 +748,7 @@ void Interpreter::module_instruction(Op op, const std::uint32_t* o, std::uint32_
       default: break;
     }
   }
-  ModuleCall call(*this, to_opcode(op), rung, scan_start_ + now_in_scan, std::span<const ModuleOperand>(ops.data(), n));
+  ModuleCall call(*this, to_opcode(op), rung, scan_start_ + now_in_scan, std::span<const ModuleOperand>(ops, n));
   chassis_.module_instruction(static_cast<int>(bc::aux_of(h)), call);
 }
 
@@ -1800,7 +1841,8 @@ void Interpreter::bit_compare(Op op, const std::uint32_t* o, bool rung) {
 
 // ---- The dispatch loop -----------------------------------------------------------------------------------------
 
-ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds elapsed, bool first_pass,
+// Hot: run at every scan (vm/runtime.cpp, "The scan cycle", says why it is marked).
+[[gnu::hot]] ProgramScanResult Interpreter::program_scan(VirtualTime scan_start, Nanoseconds elapsed, bool first_pass,
                                             Nanoseconds watchdog) {
   first_pass_ = first_pass;
   begin_pass(scan_start, watchdog);
@@ -1884,7 +1926,7 @@ constexpr std::array<bool, 256> kNoFastPathOp{};
 
 }  // namespace
 
-bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
+[[gnu::hot]] bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
   struct BranchFrame {
     bool entry;  // the rung condition at BST: every leg starts from it
     bool acc;    // OR of the legs finished so far
@@ -2191,6 +2233,23 @@ bool Interpreter::run_routine(int file, Nanoseconds& elapsed, int max_depth) {
 
       // ---- Move and file ----
       case Op::MOV:
+        // The commonest MOVs, a 16-bit word or an immediate that fits one into a word, inline: the
+        // value always fits, so move()'s rule comes down to the copy and Z and S (C and V clear).
+        // The fused word rungs run the same rule (word_ops); tests/vm/fused_test.cpp compares them.
+        if (rung) {
+          const std::uint32_t src = o[0];
+          const bool fits = bc::mode_of(src) == bc::kWord ||
+                            (bc::mode_of(src) == bc::kImm && bc::imm_of(src) >= INT16_MIN && bc::imm_of(src) <= INT16_MAX);
+          if (fits && bc::mode_of(o[1]) == bc::kWord && !(bc::flags_of(h) & bc::kFlagFloat)) [[likely]] {
+            const auto v = static_cast<std::uint16_t>(bc::mode_of(src) == bc::kWord ? w_[bc::payload_of(src)]
+                                                                                    : bc::imm_of(src));
+            w_[bc::payload_of(o[1])] = v;
+            word_ops::set_arith_flags(w_, s0_, s5_, false, false, v == 0, (v & 0x8000) != 0);
+          } else {
+            move(op, o, h);
+          }
+        }
+        break;
       case Op::MVM:
         if (rung) move(op, o, h);
         break;

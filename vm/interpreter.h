@@ -69,6 +69,16 @@ class ChassisAccess {
   virtual ~ChassisAccess() = default;
   virtual MAccess read_m(int slot, MFile f, int word, std::uint16_t& value) = 0;
   virtual MAccess write_m(int slot, MFile f, int word, std::uint16_t value) = 0;
+  // read_m of words word .. word + out.size() - 1 in order, stopping at the first that is refused:
+  // `done` is how many were read. One call instead of one per word (the runtime finds the module
+  // once); the default reads them one by one.
+  virtual MAccess read_m_block(int slot, MFile f, int word, std::span<std::uint16_t> out, std::size_t& done) {
+    for (done = 0; done < out.size(); ++done) {
+      const MAccess a = read_m(slot, f, word + static_cast<int>(done), out[done]);
+      if (a != MAccess::Ok) return a;
+    }
+    return MAccess::Ok;
+  }
   // The module's reason for refusing an access (Module::m_refusal); empty when it gives none.
   virtual std::string m_refusal(int /*slot*/, MFile, int /*word*/, bool /*write*/) const { return {}; }
   // IIM: copy `count` input words of `slot` from word `first` into the I file under `mask`.
@@ -271,6 +281,8 @@ class Interpreter {
   // "module refused (no such word)", plus the module's reason when it gives one.
   [[gnu::noinline, gnu::cold]] std::string refused(MAccess a, int slot, MFile f, int word, bool write) const;
 
+  // An M0/M1 operand's Ref (slot, file, word, bit), for resolve and resolve_common.
+  static void mfile_ref(const DynOperand& d, Ref& out);
   // The checked run-time resolver. Returns false (and raises) when the address leaves the table.
   bool resolve(const DynOperand& d, Ref& out);
   bool resolve_common(const DynOperand& d, Ref& out, std::uint16_t& code, std::string& message);
@@ -396,6 +408,8 @@ class Interpreter {
   int runnable_isr_slot() const;  // the lowest requesting slot that may run now, 0 = none
   bool run_dii(Nanoseconds& elapsed);
   bool run_isr(int slot, Nanoseconds& elapsed);
+  // chassis_.discrete_input_card(slot), 1 <= slot <= 30, asked once per slot (dii_card_).
+  bool discrete_input_card(int slot);
   bool apply_dii_config();
   bool io_enabled(int slot) const;
   // Forgets slot's request and answers its module (RPI, leaving Run).
@@ -510,6 +524,11 @@ class Interpreter {
   int priority_ = 0;
   DiiState dii_;
   bool dii_supported_ = false;     // the status file has S:46-S:52 (SLC 5/03-5/05)
+  // The chassis' answers to discrete_input_card, per slot (bit n: slot n), asked once each: the
+  // DII's configuration is applied at every end of scan (RM 11-24), and the answer depends only on
+  // the chassis, which does not change while the runtime exists.
+  std::uint32_t dii_card_asked_ = 0;
+  std::uint32_t dii_card_ = 0;
   bool io_supported_ = false;      // the processor has the I/O event interrupt (SLC 5/02-5/05)
   bool indirect_bit_runs_on_ = false;  // MicroLogix: N7:0/[N10:0] past bit 15 counts on into N7:1 ...
   std::uint32_t s25_ = 0, s27_ = 0, s32_ = 0, s46_ = 0;

@@ -306,6 +306,15 @@ bool Interpreter::run_dii(Nanoseconds& elapsed) {
   return apply_dii_config();
 }
 
+bool Interpreter::discrete_input_card(int slot) {
+  const std::uint32_t bit = 1u << slot;
+  if (!(dii_card_asked_ & bit)) {
+    dii_card_asked_ |= bit;
+    if (chassis_.discrete_input_card(slot)) dii_card_ |= bit;
+  }
+  return (dii_card_ & bit) != 0;
+}
+
 bool Interpreter::apply_dii_config() {
   if (!dii_supported_) return true;
   const int file = static_cast<std::int16_t>(w_[s46_]);
@@ -321,7 +330,7 @@ bool Interpreter::apply_dii_config() {
     return false;
   }
   const int slot = static_cast<std::int16_t>(w_[s46_ + 1]);
-  if (slot < 1 || slot > 30 || !chassis_.discrete_input_card(slot)) {
+  if (slot < 1 || slot > 30 || !discrete_input_card(slot)) {
     raise(fault::kInvalidDiiConfig, "S:47 names DII input slot " + std::to_string(slot) +
                                         ", which holds no discrete input card (1-30, RM 11-18)");
     return false;
@@ -341,7 +350,8 @@ bool Interpreter::apply_dii_config() {
   return true;
 }
 
-bool Interpreter::configure_dii(bool entering_run) {
+// Hot: run at every scan (vm/runtime.cpp, "The scan cycle", says why it is marked).
+[[gnu::hot]] bool Interpreter::configure_dii(bool entering_run) {
   clear_fault();
   w_ = table_.words();
   if (!dii_supported_) return true;
@@ -465,7 +475,7 @@ void Interpreter::io_interrupt_control(Op op, const std::uint32_t* o, Nanosecond
   }
 }
 
-bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
+[[gnu::hot]] bool Interpreter::configure_sti(VirtualTime now, bool entering_run) {
   clear_fault();
   w_ = table_.words();
   if (sti_file_word_ >= 0) return configure_function_file_sti(now, entering_run);
@@ -533,7 +543,7 @@ void Interpreter::stop_interrupts() {
   }
 }
 
-ProgramScanResult Interpreter::service_interrupts_between(VirtualTime scan_start, Nanoseconds elapsed,
+[[gnu::hot]] ProgramScanResult Interpreter::service_interrupts_between(VirtualTime scan_start, Nanoseconds elapsed,
                                                           Nanoseconds watchdog) {
   // Nothing timing or waiting (most scans): update_limit would leave the limit at the watchdog and
   // nothing would run, so no pass is begun.

@@ -135,9 +135,26 @@ class ModuleInstructionContext {
       if (!read(i, k + static_cast<std::uint32_t>(j), out[j])) return false;
     return true;
   }
+  // Words k .. k + in.size() - 1 of Table operand i, as in.size() calls of write() would write
+  // them (the words before the first past the file written, then the same fault), in one call: a
+  // BTR copies up to 64 words into its data file.
+  virtual bool write_block(std::size_t i, std::uint32_t k, std::span<const std::uint16_t> in) {
+    for (std::size_t j = 0; j < in.size(); ++j)
+      if (!write(i, k + static_cast<std::uint32_t>(j), in[j])) return false;
+    return true;
+  }
   // Immediate M0/M1 access to the module in `slot` (normally the executing module).
   virtual bool read_m(int slot, MFile f, int word, std::uint16_t& value) = 0;
   virtual bool write_m(int slot, MFile f, int word, std::uint16_t value) = 0;
+  // Words word .. word + out.size() - 1 of M0/M1, as out.size() calls of read_m() would read them
+  // (the same fault at the first word refused), in one call: a BTR reads its four status words
+  // and its data every time it executes (issue 20). Returns how many words were read: out.size(),
+  // or fewer when one was refused (the fault raised).
+  virtual std::size_t read_m_block(int slot, MFile f, int word, std::span<std::uint16_t> out) {
+    for (std::size_t j = 0; j < out.size(); ++j)
+      if (!read_m(slot, f, word + static_cast<int>(j), out[j])) return j;
+    return out.size();
+  }
   // Adds the access time of one access under `row` (`words` words for the multi-word rows).
   virtual void charge(MFileAccess row, int words) = 0;
   // Raises a major fault; the program scan stops after this instruction.

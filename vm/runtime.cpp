@@ -617,7 +617,15 @@ Nanoseconds Runtime::io_refresh() {
 
 // ---- The scan cycle ----------------------------------------------------------------------------------------
 
-Nanoseconds Runtime::input_scan() {
+// [[gnu::hot]] marks the functions every scan runs (here, and Interpreter::program_scan/run_routine,
+// the end-of-scan STI/DII checks, service_interrupts_between, EventQueue::run_until and
+// FusedProgram::execute): GCC puts them together in .text.hot, so where the rest of the code lands
+// no longer decides which of them share instruction-cache sets. Without it, this branch's changes
+// elsewhere doubled msg/filler's simulated I1 misses (callgrind --cache-sim, 145k -> 272k for 10 s)
+// and the MSG examples ran 5-15% slower with fewer instructions (docs/performance.md "Executed scans
+// (s17-scan)").
+
+[[gnu::hot]] Nanoseconds Runtime::input_scan() {
   const DataTableLayout& L = *program_->layout;
   const FileLayout& in = L.files[1];
   std::uint16_t* w = data_.words();
@@ -646,7 +654,7 @@ std::uint16_t Runtime::forced_output(std::uint32_t i) const {
   return static_cast<std::uint16_t>((v & ~out_force_mask_[i]) | (out_force_value_[i] & out_force_mask_[i]));
 }
 
-ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elapsed) {
+[[gnu::hot]] ProgramScanResult Runtime::program_scan(VirtualTime scan_start, Nanoseconds elapsed) {
   advance_free_running_clock(scan_start + elapsed);
   advance_rtc(scan_start + elapsed);
   // The MicroLogix high-speed counters: loaded on entry to an executing mode, then counted up to
@@ -679,7 +687,7 @@ void Runtime::advance_rtc(VirtualTime now) {
   rtc_second_ = second;
 }
 
-Nanoseconds Runtime::output_scan() {
+[[gnu::hot]] Nanoseconds Runtime::output_scan() {
   const DataTableLayout& L = *program_->layout;
   // Outputs are energised only in Run; Program, Test and Faulted de-energise them.
   const bool live = mode_ == Mode::Run;
@@ -699,7 +707,7 @@ Nanoseconds Runtime::output_scan() {
   return cost;
 }
 
-Nanoseconds Runtime::housekeeping(Nanoseconds scan_time, bool executed) {
+[[gnu::hot]] Nanoseconds Runtime::housekeeping(Nanoseconds scan_time, bool executed) {
   if (!executed) return model_->housekeeping_cost();
   // RM B-19, B-42: S:3 low byte = this scan in 10 ms ticks; S:22 max, S:23 running average
   // (avg*7 + scan)/8, both in 10 ms units unless S:33/13 selects 1 ms; S:35 = last scan.
@@ -721,7 +729,7 @@ Nanoseconds Runtime::housekeeping(Nanoseconds scan_time, bool executed) {
   return model_->housekeeping_cost();
 }
 
-void Runtime::scan_once(bool single_scan_step) {
+[[gnu::hot]] void Runtime::scan_once(bool single_scan_step) {
   const VirtualTime start = clock_.now();
   Nanoseconds used = input_scan();
   input_scan_ns_ = used;
@@ -797,13 +805,13 @@ std::int64_t Runtime::run_for(Nanoseconds duration) {
   return n;
 }
 
-std::int64_t Runtime::advance_toward(VirtualTime end) {
+[[gnu::hot]] std::int64_t Runtime::advance_toward(VirtualTime end) {
   if (probe_due()) return probe_and_repeat(end);
   scan_once(false);
   return 1;
 }
 
-bool Runtime::probe_due() {
+[[gnu::hot]] bool Runtime::probe_due() {
   if (!program_repeatable_ || !skip_repeated_ || mode_ != Mode::Run || fault_ || first_pass_ || scan_observer_ ||
       (network_ && network_->size() > 1) || coverage_)
     return false;
@@ -1296,6 +1304,20 @@ MAccess Runtime::read_m(int slot, MFile f, int word, std::uint16_t& value) {
   const MAccess a = m->read_m(f, word, value);
   if (probing_ && a == MAccess::Ok) [[unlikely]] m_reads_.push_back({slot, f, word, value});
   return a;
+}
+
+MAccess Runtime::read_m_block(int slot, MFile f, int word, std::span<std::uint16_t> out, std::size_t& done) {
+  done = 0;
+  Module* m = module(slot);
+  if (!m) return MAccess::NoSuchWord;
+  if (probing_) [[unlikely]] reach(slot);
+  for (; done < out.size(); ++done) {
+    const int k = word + static_cast<int>(done);
+    const MAccess a = m->read_m(f, k, out[done]);
+    if (a != MAccess::Ok) return a;
+    if (probing_) [[unlikely]] m_reads_.push_back({slot, f, k, out[done]});
+  }
+  return MAccess::Ok;
 }
 
 MAccess Runtime::write_m(int slot, MFile f, int word, std::uint16_t value) {

@@ -306,6 +306,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void raise_major_fault(std::uint16_t code, std::string message) override;
   // ChassisAccess.
   MAccess read_m(int slot, MFile f, int word, std::uint16_t& value) override;
+  MAccess read_m_block(int slot, MFile f, int word, std::span<std::uint16_t> out, std::size_t& done) override;
   MAccess write_m(int slot, MFile f, int word, std::uint16_t value) override;
   std::string m_refusal(int slot, MFile f, int word, bool write) const override;
   void immediate_input(int slot, int first, int count, std::uint16_t mask) override;

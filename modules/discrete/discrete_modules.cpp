@@ -46,9 +46,12 @@ std::uint16_t DiscreteModule::out_points(int word) const {
 
 void DiscreteModule::output_scan(std::span<const std::uint16_t> image) {
   // Every scan delivers the image: the masked copy reuses one buffer, so a scan allocates nothing.
-  masked_.resize(image.size());
-  for (std::size_t w = 0; w < image.size(); ++w)
-    masked_[w] = static_cast<std::uint16_t>(image[w] & out_points(static_cast<int>(w)));
+  if (out_mask_.size() != image.size()) {
+    out_mask_.resize(image.size());
+    for (std::size_t w = 0; w < image.size(); ++w) out_mask_[w] = out_points(static_cast<int>(w));
+    masked_.resize(image.size());
+  }
+  for (std::size_t w = 0; w < image.size(); ++w) masked_[w] = static_cast<std::uint16_t>(image[w] & out_mask_[w]);
   if (spec_.output_delay <= 0 || !host()) {
     DiscreteIoModule::output_scan(masked_);
     return;

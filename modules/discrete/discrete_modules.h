@@ -47,6 +47,9 @@ class DiscreteModule : public DiscreteIoModule {
   DiscreteModuleSpec spec_;
   std::vector<std::uint16_t> last_delivered_;
   std::vector<std::uint16_t> masked_;  // the image under the output points (output_scan's buffer)
+  // out_points(w) for each word of the image output_scan was last given (the image's size is the
+  // slot's, so it is built once): the mask is not looked up per word at every output scan.
+  std::vector<std::uint16_t> out_mask_;
 };
 
 }  // namespace softslc

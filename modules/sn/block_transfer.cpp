@@ -1,6 +1,9 @@
 #include "modules/sn/block_transfer.h"
 
 #include <algorithm>
+#include <array>
+#include <iterator>
+#include <span>
 #include <functional>
 #include <map>
 
@@ -55,8 +58,7 @@ void execute_block_transfer(ModuleInstructionContext& ctx) {
   // Read its answer.
   std::uint16_t st[4];
   ctx.charge(MFileAccess::CopFromM, 4);
-  for (int k = 0; k < 4; ++k)
-    if (!ctx.read_m(slot, MFile::M1, base + k, st[k])) return;
+  if (ctx.read_m_block(slot, MFile::M1, base, st) != std::size(st)) return;
   const bool had_done = (cb[0] & kDN) != 0;
   cb[0] = static_cast<std::uint16_t>((cb[0] & ~kStatusBits) | (st[0] & kStatusBits));
   if (cb[0] & kDN) cb[2] = st[kTransmittedCount];
@@ -68,7 +70,14 @@ void execute_block_transfer(ModuleInstructionContext& ctx) {
     // the BTR data file."
     const int n = std::clamp<int>(static_cast<std::int16_t>(st[kTransmittedCount]), 0, kMaxWords);
     ctx.charge(MFileAccess::CopFromM, n);
-    for (int k = 0; k < n; ++k) {
+    // The words that fit the data file in one M1 read, then copied: the same words written as word
+    // by word, also when a read is refused (the words before it are written, then the fault). A
+    // word past the data file's end is read and then faults on its write, as word by word.
+    const auto fits = std::min<std::uint32_t>(ops[2].limit, static_cast<std::uint32_t>(n));
+    std::array<std::uint16_t, kMaxWords> data{};
+    const std::size_t got = ctx.read_m_block(slot, MFile::M1, base + kDataOffset, std::span(data.data(), fits));
+    if (!ctx.write_block(2, 0, std::span<const std::uint16_t>(data.data(), got)) || got < fits) return;
+    for (int k = static_cast<int>(fits); k < n; ++k) {
       std::uint16_t v = 0;
       if (!ctx.read_m(slot, MFile::M1, base + kDataOffset + k, v)) return;
       if (!ctx.write(2, static_cast<std::uint32_t>(k), v)) return;

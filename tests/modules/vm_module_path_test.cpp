@@ -29,7 +29,17 @@ struct Recorder : MemoryModule {
     if (action == "read-2-past-end") ctx.read(2, seen[2].limit, v);
     if (action == "read-block") block_ok = ctx.read_block(2, 0, block);
     if (action == "read-block-past-end") block_ok = ctx.read_block(2, seen[2].limit - 2, block);
+    if (action == "write-block") block_ok = ctx.write_block(2, 0, block);
+    if (action == "write-block-past-end") block_ok = ctx.write_block(2, seen[2].limit - 2, block);
+    if (action == "write-words-past-end")
+      for (std::uint32_t k = 0; k < block.size(); ++k)
+        if (!(block_ok = ctx.write(2, seen[2].limit - 2 + k, block[k]))) break;
+    if (action == "read-m-block") m_got = ctx.read_m_block(1, MFile::M1, 100, block);
+    if (action == "read-m-words")
+      for (std::size_t k = 0; k < block.size(); ++k, ++m_got)
+        if (!ctx.read_m(1, MFile::M1, 100 + static_cast<int>(k), block[k])) break;
   }
+  std::size_t m_got = 0;
   bool refuse_run = false;
   void on_mode_change(Mode from, Mode to) override {
     MemoryModule::on_mode_change(from, to);
@@ -115,6 +125,68 @@ TEST(VmModulePath, BlockReadIsCheckedLikeWordReads) {
   EXPECT_NE(block.rt->fault()->message.find("word 4 runs past the end"), std::string::npos) << block.rt->fault()->message;
   ASSERT_TRUE(word.rt->fault().has_value());
   EXPECT_EQ(word.rt->fault()->message, block.rt->fault()->message);
+}
+
+// write_block is write() for a run of words: the same words written, and where the run leaves the
+// operand's file the words before the end written and the same fault (002Ah, naming the first word
+// past the end).
+TEST(VmModulePath, BlockWriteIsCheckedLikeWordWrites) {
+  const auto with = [](const std::string& action) {
+    return [action](Recorder& r) {
+      r.action = action;
+      r.block = {700, 701, 702, 703};
+    };
+  };
+  Fixture ok("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", with("write-block"));
+  ASSERT_TRUE(ok.rt->set_mode(Mode::Run));
+  ok.rt->scan(1);
+  EXPECT_FALSE(ok.rt->fault().has_value());
+  EXPECT_TRUE(ok.rec->block_ok);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(ok.rt->value("N11:" + std::to_string(k)).as_int(), 700 + k);
+  Fixture block("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", with("write-block-past-end"));
+  Fixture word("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", with("write-words-past-end"));
+  for (Fixture* x : {&block, &word}) {
+    ASSERT_TRUE(x->rt->set_mode(Mode::Run));
+    x->rt->scan(1);
+    ASSERT_TRUE(x->rt->fault().has_value());
+    EXPECT_FALSE(x->rec->block_ok);
+    EXPECT_EQ(x->rt->fault()->code, 0x002A);
+    // N11 has the 4 words of the BTR's length: the first two of the run are written.
+    EXPECT_EQ(x->rt->value("N11:2").as_int(), 700);
+    EXPECT_EQ(x->rt->value("N11:3").as_int(), 701);
+  }
+  EXPECT_NE(block.rt->fault()->message.find("word 4 runs past the end"), std::string::npos) << block.rt->fault()->message;
+  EXPECT_EQ(word.rt->fault()->message, block.rt->fault()->message);
+}
+
+// read_m_block is read_m() for a run of M0/M1 words (a BTR's status words and data): the same
+// words, and where a word is refused the words before it read, the same fault (xx55h, naming the
+// refused word) and the count of words read.
+TEST(VmModulePath, MBlockReadIsReadMWordByWord) {
+  const auto fill = [](Recorder& r, const std::string& action, bool refuse) {
+    r.action = action;
+    for (int k = 0; k < 4; ++k) r.write_m(MFile::M1, 100 + k, static_cast<std::uint16_t>(500 + k));
+    if (refuse) r.forbid(MFile::M1, 102);
+  };
+  Fixture ok("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [&](Recorder& r) { fill(r, "read-m-block", false); });
+  ASSERT_TRUE(ok.rt->set_mode(Mode::Run));
+  ok.rt->scan(1);
+  EXPECT_FALSE(ok.rt->fault().has_value());
+  EXPECT_EQ(ok.rec->m_got, 4u);
+  EXPECT_EQ(ok.rec->block, (std::array<std::uint16_t, 4>{500, 501, 502, 503}));
+  Fixture block("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [&](Recorder& r) { fill(r, "read-m-block", true); });
+  Fixture word("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\n", [&](Recorder& r) { fill(r, "read-m-words", true); });
+  for (Fixture* x : {&block, &word}) {
+    ASSERT_TRUE(x->rt->set_mode(Mode::Run));
+    x->rt->scan(1);
+    ASSERT_TRUE(x->rt->fault().has_value());
+    EXPECT_EQ(x->rec->m_got, 2u);
+    EXPECT_EQ(x->rec->block[0], 500);
+    EXPECT_EQ(x->rec->block[1], 501);
+  }
+  EXPECT_EQ(block.rt->fault()->code, word.rt->fault()->code);
+  EXPECT_EQ(block.rt->fault()->message, word.rt->fault()->message);
+  EXPECT_NE(block.rt->fault()->message.find("M1:1.102"), std::string::npos) << block.rt->fault()->message;
 }
 
 TEST(VmModulePath, DataTableAccessIsCheckedAndFaultsStopTheScan) {

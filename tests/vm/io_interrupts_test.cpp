@@ -203,6 +203,18 @@ TEST(Dii, SlotWithoutADiscreteInputCardFaults) {
   }
 }
 
+// The chassis is asked whether a slot holds a discrete input card once per slot (the DII's
+// configuration is applied at every end of scan): a program that moves S:47 to another slot while
+// running is still checked against that slot's card.
+TEST(Dii, ASlotChangedWhileRunningIsCheckedForItsOwnCard) {
+  Plc plc = dii_plc(0x01, 0x01, 0);
+  plc.run_scans(3);
+  ASSERT_EQ(plc.fault_code(), 0);
+  plc.set("S:47", 2);  // an output card
+  plc.run_scans(1);
+  EXPECT_EQ(plc.fault_code(), 0x0043);
+}
+
 TEST(Dii, NegativePresetFaultsAtTheEndOfTheScanThatLoadsIt) {
   Plc plc = dii_plc(0x01, 0x01, 0, "");
   plc.run_scans(1);

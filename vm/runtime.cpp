@@ -289,6 +289,12 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers, int ch
   if (!ethernet && ip_ != 0)
     return "this controller is on " + std::string(to_string(link)) + ", which names stations by node number: "
            "an IP address is for an SLC 5/05, or a MicroLogix 1100 or 1400 on its channel 1, on Ethernet";
+  // A channel 0 that the bench makes a Modbus RTU master (docs/semantics.md "The MicroLogix MSG over
+  // Modbus RTU") is not a DH-485 station: a 1100/1400 so configured meets other controllers only on its
+  // channel 1, Ethernet.
+  if (!ethernet && modbus_channel_)
+    return "this controller's channel 0 is a Modbus RTU master (the bench's modbus nodes), so it is on no "
+           "DH-485 network; give it an IP address (ip A.B.C.D) to meet its peers on Ethernet, channel 1";
   auto net = std::make_unique<MessageNetwork>(link);
   net->attach(*this, node_, "", nullptr, ip_);
   auto taken = [&](int segment, int node) -> std::string {

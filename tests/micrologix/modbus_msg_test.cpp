@@ -28,6 +28,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "modules/module_setup.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
 #include "tools/controller/controller.h"
@@ -351,6 +352,35 @@ TEST(ModbusMsg, AChannelThatIsNoModbusMasterEndsWith12h) {
   q.set("B3:0/0", 1);
   q->scan(1);
   EXPECT_EQ(q.i("MG11:0.ERR"), 0x12);
+}
+
+// A Modbus master's channel 0 speaks Modbus, not DH-485: a test that puts the controller on a DH-485
+// network with peers is refused (it used to stay a DH-485 station there and answer the peers'
+// messages); on Ethernet, channel 1, it meets them.
+TEST(ModbusMsg, AModbusMastersChannel0IsOnNoDh485Network) {
+  auto with_peer = [](std::uint32_t ip, const std::string& peer_processor, std::uint32_t peer_ip) {
+    LoadResult lr = load_program(program("SOR XIC B3:0/0 OTE B3:0/1 EOR"), "mb.slc");
+    if (!lr.ok()) throw std::runtime_error(lr.render_diagnostics());
+    ModuleSetup setup = load_module_setup_text(*lr.program, kBench, "mb.bench");
+    if (!setup.ok()) throw std::runtime_error("the bench did not load");
+    LoadResult plr = load_program("START " + peer_processor + "\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n", "peer.slc");
+    if (!plr.ok()) throw std::runtime_error(plr.render_diagnostics());
+    PeerController p;
+    p.name = "PEER";
+    p.node = 2;
+    p.ip = peer_ip;
+    p.program = std::make_shared<const Program>(std::move(*plr.program));
+    p.options = std::make_shared<const RuntimeOptions>();
+    setup.options.ip = ip;
+    setup.options.peers.push_back(std::move(p));
+    RuntimeResult r = Runtime::create(*lr.program, setup.options);
+    return r.ok() ? std::string() : r.render_errors();
+  };
+  const std::string dh485 = with_peer(0, "Bul.1763", 0);
+  EXPECT_NE(dh485.find("channel 0 is a Modbus RTU master (the bench's modbus nodes), so it is on no DH-485 network"),
+            std::string::npos)
+      << dh485;
+  EXPECT_EQ(with_peer(0xC0A8011E, "1747-L552", 0xC0A80114), "");  // 192.168.1.30 and an SLC 5/05 at .20
 }
 
 TEST(ModbusMsg, TheBenchNodesAreChecked) {

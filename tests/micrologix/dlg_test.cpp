@@ -16,6 +16,7 @@
 
 #include <string>
 
+#include "load_errors.h"
 #include "parser/formatter.h"
 #include "parser/loader.h"
 #include "tools/controller/controller.h"
@@ -23,12 +24,9 @@
 namespace softslc {
 namespace {
 
-constexpr Nanoseconds kMs = 1'000'000;
+using test::load_errors;
 
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
-}
+constexpr Nanoseconds kMs = 1'000'000;
 
 // The manuals' queue 0 (Date, Time, Delimiter ',': N7:11 L14:0 T4:5.ACC I1:3.0 B3:2), logged by
 // DLG 0 on B3:0/0, on a MicroLogix 1400 with an input module in slot 3 for I1:3.0.

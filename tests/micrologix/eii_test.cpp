@@ -16,6 +16,7 @@
 
 #include <string>
 
+#include "load_errors.h"
 #include "function_file_test_util.h"
 #include "parser/address.h"
 #include "parser/formatter.h"
@@ -25,10 +26,7 @@
 namespace softslc {
 namespace {
 
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
-}
+using test::load_errors;
 
 // A MicroLogix 1100 whose EII:0 runs LAD 3 (which counts its runs in N7:0 and copies UIX to B3:1/0),
 // EII:1 LAD 4 (which counts in N7:1). `eii` is the DATA EII:0 block's rows; `main` file 2's rungs.

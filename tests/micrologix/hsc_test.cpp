@@ -14,6 +14,7 @@
 
 #include <string>
 
+#include "load_errors.h"
 #include "parser/address.h"
 #include "function_file_test_util.h"
 #include "parser/formatter.h"
@@ -24,10 +25,7 @@
 namespace softslc {
 namespace {
 
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
-}
+using test::load_errors;
 
 // A MicroLogix 1100 with `rungs` in file 2 and DATA HSC:0 `hsc` (13 values as RSLogix exports them).
 std::string hsc_program(const std::string& hsc, const std::string& rungs = "SOR XIC B3:0/0 OTE HSC:0/FE EOR\n",

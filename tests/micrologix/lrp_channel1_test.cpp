@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "load_errors.h"
 #include "../vm/message_line.h"
 
 namespace softslc::test {
@@ -28,11 +29,6 @@ namespace {
 
 std::string ml_program(std::string_view processor, std::string_view rungs) {
   return "START " + std::string(processor) + "\nLADDER 2\n" + std::string(rungs) + "\n";
-}
-
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
 }
 
 PeerController peer(std::string name, int node, std::string_view text, std::string network = "",

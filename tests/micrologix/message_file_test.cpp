@@ -16,6 +16,7 @@
 
 #include <string>
 
+#include "load_errors.h"
 #include "function_file_test_util.h"
 #include "parser/address.h"
 #include "parser/formatter.h"
@@ -27,10 +28,7 @@
 namespace softslc {
 namespace {
 
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
-}
+using test::load_errors;
 
 std::string rung_errors(const std::string& processor, const std::string& rung) {
   return load_errors("START " + processor + "\nLADDER 2\n" + rung + "\n");

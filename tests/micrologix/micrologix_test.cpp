@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "load_errors.h"
 #include "instructions/module_catalog.h"
 #include "instructions/processor.h"
 #include "parser/checker.h"
@@ -30,15 +31,12 @@
 namespace softslc {
 namespace {
 
+using test::load_errors;
+
 const std::string kBsgs = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rslogix500/59-BSGS.SLC";
 const std::string kBsgs1001 = std::string(SOFTSLC_SHARED_DIR) + "/fixtures/rslogix500/59-BSGS-v1.0-1001-rungs.SLC";
 
 // The diagnostics of loading `text` (empty when it loads clean of errors).
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
-}
-
 // ---- Expansion and embedded I/O point counts -----------------------------------------------------------
 
 struct PointCase {

@@ -29,6 +29,7 @@
 
 #include <string>
 
+#include "load_errors.h"
 #include "../vm/message_line.h"
 #include "vm/timing_profile.h"
 
@@ -36,11 +37,6 @@ namespace softslc::test {
 namespace {
 
 std::string ml1000(std::string_view rungs) { return "START Bul.1761\nLADDER 2\n" + std::string(rungs) + "\n"; }
-
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
-}
 
 struct Line : MessageLine {
   using MessageLine::MessageLine;

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "load_errors.h"
 #include "parser/formatter.h"
 #include "vm/message_network.h"
 #include "vm/profile_scan_time_model.h"
@@ -55,11 +56,6 @@ std::string ri_data(const std::string& element, std::uint16_t subtype, std::uint
 // The same for an IP address, its words as the manual lays them out.
 std::string ri_to(const std::string& element, std::uint32_t ip, std::uint16_t subtype = 0x10) {
   return ri_data(element, subtype, routing_ip_word(ip, 1), routing_ip_word(ip, 2));
-}
-
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
 }
 
 std::shared_ptr<const Program> load_peer(const std::string& text) {

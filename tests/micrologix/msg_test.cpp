@@ -27,6 +27,7 @@
 #include <memory>
 #include <string>
 
+#include "load_errors.h"
 #include "../vm/message_line.h"
 #include "vm/profile_scan_time_model.h"
 #include "vm/scantime.h"
@@ -37,11 +38,6 @@ namespace {
 
 std::string ml_program(std::string_view processor, std::string_view rungs) {
   return "START " + std::string(processor) + "\nLADDER 2\n" + std::string(rungs) + "\n";
-}
-
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
 }
 
 // A leader (node 1) and a peer "B" (node 2) on one DH-485 link, each a full program text.

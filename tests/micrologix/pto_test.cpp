@@ -17,6 +17,7 @@
 #include <string>
 #include <utility>
 
+#include "load_errors.h"
 #include "parser/address.h"
 #include "function_file_test_util.h"
 #include "parser/formatter.h"
@@ -28,12 +29,9 @@
 namespace softslc {
 namespace {
 
-constexpr std::int64_t kMs = 1'000'000;
+using test::load_errors;
 
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
-}
+constexpr std::int64_t kMs = 1'000'000;
 
 // A MicroLogix 1100 whose PTO:0 runs while B3:0/0 is true, with `pto0` as PTO:0's DATA row
 // (OUT bits ER OF OFS JF TOP OPP ADP).

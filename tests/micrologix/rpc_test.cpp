@@ -16,6 +16,7 @@
 
 #include <string>
 
+#include "load_errors.h"
 #include "parser/loader.h"
 #include "tools/controller/controller.h"
 #include "vm/scantime.h"
@@ -24,10 +25,7 @@
 namespace softslc {
 namespace {
 
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
-}
+using test::load_errors;
 
 // N7:0 as the unsigned 16-bit word RPC wrote.
 unsigned checksum_read(Controller& plc, const char* address = "N7:0") {

@@ -15,6 +15,7 @@
 #include <string>
 #include <utility>
 
+#include "load_errors.h"
 #include "parser/loader.h"
 #include "tools/controller/controller.h"
 #include "vm/scantime.h"
@@ -23,10 +24,7 @@
 namespace softslc {
 namespace {
 
-std::string load_errors(const std::string& text) {
-  LoadResult r = load_program(text, "t.slc");
-  return r.ok() ? std::string() : r.render_diagnostics();
-}
+using test::load_errors;
 
 std::string svc_program(const std::string& processor, const std::string& rungs) {
   return "START " + processor + "\nLADDER 2\n" + rungs;

@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "tests/benchmarks/generated_rung.h"
@@ -42,33 +43,45 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void BM_Simulate(benchmark::State& state, const fs::path& program, const std::optional<fs::path>& bench) {
-  std::optional<Controller> plc;
-  try {
-    plc.emplace(Controller::load(program, bench));
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-    return;
-  }
+// Runs the runtime `start` builds in slices of 100 ms of virtual time and reports virtual seconds per CPU
+// second. `start` is called again (outside the timing) after 100 s of virtual time; it returns null
+// after SkipWithError when what it builds does not build.
+void run_in_slices(benchmark::State& state, const std::function<Runtime*()>& start) {
   constexpr Nanoseconds kSlice = milliseconds(100);
   constexpr Nanoseconds kRestartAfter = milliseconds(100'000);
+  Runtime* rt = start();
+  if (!rt) return;
   Nanoseconds simulated = 0;
   for (auto _ : state) {
-    if (plc->now() >= kRestartAfter) {
+    if (rt->now() >= kRestartAfter) {
       state.PauseTiming();
-      plc.emplace(Controller::load(program, bench));
+      rt = start();
       state.ResumeTiming();
+      if (!rt) return;
     }
-    const VirtualTime before = plc->now();
-    plc->run_for(kSlice);
-    if (plc->fault()) {
-      state.SkipWithError(("faults: " + plc->fault()->to_string()).c_str());
+    const VirtualTime before = rt->now();
+    rt->run_for(kSlice);
+    if (rt->fault()) {
+      state.SkipWithError(("faults: " + rt->fault()->to_string()).c_str());
       return;
     }
-    simulated += plc->now() - before;
+    simulated += rt->now() - before;
   }
   state.counters["x_realtime"] = benchmark::Counter(static_cast<double>(simulated) / 1e9, benchmark::Counter::kIsRate);
-  state.counters["scan_us"] = static_cast<double>(plc->runtime().stats().avg()) / 1e3;
+  state.counters["scan_us"] = static_cast<double>(rt->stats().avg()) / 1e3;
+}
+
+void BM_Simulate(benchmark::State& state, const fs::path& program, const std::optional<fs::path>& bench) {
+  std::optional<Controller> plc;
+  run_in_slices(state, [&]() -> Runtime* {
+    try {
+      plc.emplace(Controller::load(program, bench));
+    } catch (const std::exception& e) {
+      state.SkipWithError(e.what());
+      return nullptr;
+    }
+    return &plc->runtime();
+  });
 }
 
 void BM_SimulateNetwork(benchmark::State& state, const fs::path& test_file) {
@@ -85,35 +98,16 @@ void BM_SimulateNetwork(benchmark::State& state, const fs::path& test_file) {
     return;
   }
   const std::shared_ptr<const testing::LoadedProgram> program = with_peers->program;
-  auto fresh = [&]() -> std::unique_ptr<Runtime> {
+  std::unique_ptr<Runtime> rt;
+  run_in_slices(state, [&]() -> Runtime* {
     RuntimeResult r = Runtime::create(program->program, program->modules);
-    if (!r.ok() || !r.runtime->set_mode(Mode::Run)) return nullptr;  // the leader takes its peers along
-    return std::move(r.runtime);
-  };
-  std::unique_ptr<Runtime> rt = fresh();
-  if (!rt) {
-    state.SkipWithError("the network did not build");
-    return;
-  }
-  constexpr Nanoseconds kSlice = milliseconds(100);
-  constexpr Nanoseconds kRestartAfter = milliseconds(100'000);
-  Nanoseconds simulated = 0;
-  for (auto _ : state) {
-    if (rt->now() >= kRestartAfter) {
-      state.PauseTiming();
-      rt = fresh();
-      state.ResumeTiming();
+    if (!r.ok() || !r.runtime->set_mode(Mode::Run)) {  // the leader takes its peers along
+      state.SkipWithError("the network did not build");
+      return nullptr;
     }
-    const VirtualTime before = rt->now();
-    rt->run_for(kSlice);
-    if (rt->fault()) {
-      state.SkipWithError(("faults: " + rt->fault()->to_string()).c_str());
-      return;
-    }
-    simulated += rt->now() - before;
-  }
-  state.counters["x_realtime"] = benchmark::Counter(static_cast<double>(simulated) / 1e9, benchmark::Counter::kIsRate);
-  state.counters["scan_us"] = static_cast<double>(rt->stats().avg()) / 1e3;
+    rt = std::move(r.runtime);
+    return rt.get();
+  });
 }
 
 std::string generate_program(int rungs) {

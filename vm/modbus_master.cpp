@@ -77,6 +77,7 @@ void ModbusMaster::start(const MessageInstruction& in) {
     if (old.in.block == in.block) {
       if (old.timer) host_->cancel_event(*old.timer);
       if (old.line_event) host_->cancel_event(*old.line_event);
+      if (old.second) host_->cancel_event(*old.second);
       if (old.on_line) {
         line_busy_ = false;
         line_free_at_ = std::max(line_free_at_, in.at + character_time(7) / 2);
@@ -122,16 +123,34 @@ void ModbusMaster::start(const MessageInstruction& in) {
   // MTO, whole seconds from the rung's false-to-true transition, 0 = never (1762-RM001C p. 21-12): ER, TO, 37h.
   if (const int seconds = host_->read_word(in.block + mg::kTimeout) & 0xFF; seconds > 0) {
     const std::uint64_t serial = m.serial;
-    m.timer = host_->schedule_at(std::max(in.at + seconds * kNsPerS, host_->now()), [this, serial](VirtualTime t) {
+    m.timer = host_->schedule_at(std::max(in.at + seconds * kNsPerS, host_->now()), [this, serial, seconds](VirtualTime t) {
       if (Message* x = find(serial)) {
         x->timer.reset();
+        // Word 19 shows the whole timeout, as the DH-485 channel's end-of-scan count does when it expires.
+        host_->write_word(x->in.block + mg::kElapsed, static_cast<std::uint16_t>(seconds));
         finish(serial, msg::kTimedOut, msg::kTO, t);
       }
     });
   }
+  const std::uint64_t serial = m.serial;
   messages_.push_back(std::move(m));
+  count_seconds(serial, in.at, 0);
   enter_buffers();
   next_on_line(in.at);
+}
+
+// MG word 19, "time since message started" in seconds (1762-RM001C p. 21-4): 0 when the message starts,
+// one more at each whole second while it is in the channel, and left as it was when it ends. The DH-485
+// channel counts at each end of scan (vm/message_network.cpp); here the count is an event at each second,
+// so the scans after it see the same value without the channel acting at every scan.
+void ModbusMaster::count_seconds(std::uint64_t serial, VirtualTime started, std::int64_t seconds) {
+  Message* m = find(serial);
+  if (!m) return;
+  host_->write_word(m->in.block + mg::kElapsed, static_cast<std::uint16_t>(std::min<std::int64_t>(seconds, 32767)));
+  m->second = host_->schedule_at(started + (seconds + 1) * kNsPerS, [this, serial, started, seconds](VirtualTime) {
+    if (Message* x = find(serial)) x->second.reset();
+    count_seconds(serial, started, seconds + 1);
+  });
 }
 
 ModbusMaster::Message* ModbusMaster::find(std::uint64_t serial) {
@@ -210,6 +229,7 @@ void ModbusMaster::finish(std::uint64_t serial, std::uint8_t error, std::uint16_
   if (!m) return;
   if (m->timer) host_->cancel_event(*m->timer);
   if (m->line_event) host_->cancel_event(*m->line_event);
+  if (m->second) host_->cancel_event(*m->second);
   if (m->on_line && line_busy_ && error) {
     // The message on the line ended without its reply: the line is free after the end-of-frame silence.
     line_busy_ = false;

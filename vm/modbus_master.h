@@ -85,7 +85,7 @@ class ModbusMaster {
     bool buffered = false;
     bool on_line = false;
     std::vector<std::uint16_t> data;  // a write's data (one entry per element), taken when it enters a buffer
-    std::optional<EventQueue::EventId> timer, line_event;
+    std::optional<EventQueue::EventId> timer, line_event, second;
   };
   struct Reply {
     std::uint8_t exception = 0;
@@ -98,6 +98,7 @@ class ModbusMaster {
   void request_sent(std::uint64_t serial, VirtualTime at);
   void reply_arrived(std::uint64_t serial, const Reply& r, VirtualTime at);
   void finish(std::uint64_t serial, std::uint8_t error, std::uint16_t extra_bits, VirtualTime at);
+  void count_seconds(std::uint64_t serial, VirtualTime started, std::int64_t seconds);
   Reply serve(Slave& s, const Message& m, bool broadcast);
   std::uint16_t status(const MessageInstruction& in) const;
   void set_status(const MessageInstruction& in, std::uint16_t w0);

@@ -315,6 +315,33 @@ TEST(ModbusMsg, ASlaveThatNeverAnswersTimesOutAndHoldsTheLine) {
   ASSERT_TRUE(p.until(1, kDN, 100'000'000));
 }
 
+// MG word 19, "time since message started" in seconds (1762-RM001C p. 21-4; 1763-RM001B p. 348): it counts
+// while the message waits (slave 9 never answers, MTO 5 s), shows the whole timeout when it expires, stays
+// after the message ends, and starts from 0 with the next message.
+TEST(ModbusMsg, WordNineteenCountsTheSecondsSinceTheMessageStarted) {
+  Plc p("SOR XIC B3:0/0 MSG MG11:0 03 MODBUS LOCAL 0 N7:0 1 9 1 5 EOR");
+  p.set("MG11:0.19", 77);  // what an earlier message left
+  p.set("B3:0/0", 1);
+  p->scan(1);
+  const VirtualTime started = p->now();
+  EXPECT_EQ(p.i("MG11:0.19"), 0);
+  p->run_for(2'500'000'000 - (p->now() - started));
+  EXPECT_EQ(p.i("MG11:0.19"), 2);
+  ASSERT_TRUE(p.until(0, kER, 3'000'000'000));
+  EXPECT_EQ(p.i("MG11:0.ERR"), 0x37);
+  EXPECT_EQ(p.i("MG11:0.19"), 5);
+  p->run_for(3'000'000'000);
+  EXPECT_EQ(p.i("MG11:0.19"), 5);
+  p.set("B3:0/0", 0);
+  p->scan(1);
+  p.set("MG11:0.NOD", 1);  // slave 1 answers within the first second
+  p.set("B3:0/0", 1);
+  p->scan(1);
+  EXPECT_EQ(p.i("MG11:0.19"), 0);
+  ASSERT_TRUE(p.until(0, kDN, 100'000'000));
+  EXPECT_EQ(p.i("MG11:0.19"), 0);
+}
+
 TEST(ModbusMsg, TheToBitAbortsAndBadSetupsEndAtOnce) {
   Plc p("SOR XIC B3:0/0 MSG MG11:0 03 MODBUS LOCAL 0 N7:0 1 9 1 0 EOR");
   p.set("B3:0/0", 1);

@@ -11,6 +11,20 @@ namespace softslc::ladder {
 
 namespace {
 
+// A MicroLogix Modbus MSG (`MSG MG11:0 03 MODBUS LOCAL 0 N7:0 5 1 1 2`) holds its Modbus command, slave
+// address and Modbus data address in the places of the read/write command, the target node and the
+// target address (docs/semantics.md "The MicroLogix MSG over Modbus RTU"): the box names them as
+// RSLogix's setup screen does ("Modbus Command", "MB Data Address").
+std::string_view modbus_label(const Instruction& in, std::size_t i, std::string_view label) {
+  if (in.opcode != Opcode::MSG_ML || in.operands.size() < 9 || in.operands[2].text() != "MODBUS") return label;
+  switch (i) {
+    case 1: return "modbus command";
+    case 7: return "slave address";
+    case 8: return "MB data address";
+    default: return label;
+  }
+}
+
 constexpr int kMaxDescriptionLines = 4;
 constexpr int kMinLabelWidth = 12;
 
@@ -189,7 +203,7 @@ class Layouter {
       const auto specs = s.operand_specs();
       for (std::size_t i = 0; i < in.operands.size(); ++i) {
         const Operand& o = in.operands[i];
-        std::string label = i < specs.size() ? std::string(specs[i].label) : std::string();
+        std::string label = i < specs.size() ? std::string(modbus_label(in, i, specs[i].label)) : std::string();
         if (!label.empty()) label[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(label[0])));
         // A timer's or counter's preset and accumulator are written in the export as numbers but
         // are words of the element: online, RSLogix shows the element's live values there.

@@ -50,7 +50,7 @@ struct TwoNetworks {
   Runtime* line = nullptr;
   Runtime* hmi = nullptr;
   explicit TwoNetworks(std::string_view a_rungs, std::string_view hmi_rungs = "SOR XIC B3:0/15 CLR N11:9 EOR",
-                       RuntimeOptions a_opts = {}, std::string channel1_network = "PANEL") {
+                       RuntimeOptions a_opts = {}, const std::string& channel1_network = "PANEL") {
     a_opts.node = 1;
     a_opts.channel1_node = 5;
     a_opts.channel1_network = channel1_network;

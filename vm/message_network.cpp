@@ -103,18 +103,14 @@ void MessageNetwork::set_word(std::size_t station, std::uint32_t index, std::uin
 
 std::uint16_t MessageNetwork::status(std::size_t station, const MessageInstruction& in) const {
   if (!in.micrologix) return word(station, in.block);
-  return static_cast<std::uint16_t>((word(station, in.block + mg::kControl) & msg::kMgControlBits) |
-                                    (word(station, in.block + mg::kStatus) & msg::kMgStatusBits) |
-                                    (word(station, in.block + mg::kError) & msg::kErrorCode));
+  return msg::mg_status_word(in.block, [&](std::uint32_t i) { return word(station, i); });
 }
 
 void MessageNetwork::set_status(std::size_t station, const MessageInstruction& in, std::uint16_t w0) {
   if (!in.micrologix) return set_word(station, in.block, w0);
-  const std::uint32_t control = in.block + mg::kControl, st = in.block + mg::kStatus;
-  set_word(station, control,
-           static_cast<std::uint16_t>((word(station, control) & ~msg::kMgControlBits) | (w0 & msg::kMgControlBits)));
-  set_word(station, st, static_cast<std::uint16_t>((word(station, st) & ~msg::kMgStatusBits) | (w0 & msg::kMgStatusBits)));
-  set_word(station, in.block + mg::kError, static_cast<std::uint16_t>(w0 & msg::kErrorCode));
+  msg::set_mg_status_word(
+      in.block, w0, [&](std::uint32_t i) { return word(station, i); },
+      [&](std::uint32_t i, std::uint16_t v) { set_word(station, i, v); });
 }
 
 int MessageNetwork::network_channel(std::size_t station) const {
@@ -232,8 +228,9 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& instru
   // The control block as the processor reads it: a file type of the local file, a count that fits the
   // local file and one message, a node the link has (RM 12-41: 04h, 16h).
   const int file = layout.file_containing(in.data);
-  std::uint8_t error = bad_channel;
-  if (error) {
+  std::uint8_t error = bad_channel;  // found first: a message with no channel is built no further
+  if (bad_channel != 0) {
+    // nothing more to check
   } else if (file < 0) {
     error = msg::kBadParameters;
   } else {

@@ -99,6 +99,22 @@ inline constexpr std::uint8_t kBadMessageFile = 0x21;
 inline constexpr std::uint16_t kMgControlBits = kEN | kTO;
 inline constexpr std::uint16_t kMgStatusBits = kST | kDN | kER | kEW;
 
+// The MG element at `block` as the SLC control word (bits above, the code in the low byte), read with
+// read(index) and written with write(index, value) on whatever holds the table: a station of the
+// network, or the process host of a channel that acts in events (the Modbus master).
+template <class Read>
+std::uint16_t mg_status_word(std::uint32_t block, Read read) {
+  return static_cast<std::uint16_t>((read(block + mg::kControl) & kMgControlBits) |
+                                    (read(block + mg::kStatus) & kMgStatusBits) | (read(block + mg::kError) & kErrorCode));
+}
+template <class Read, class Write>
+void set_mg_status_word(std::uint32_t block, std::uint16_t w0, Read read, Write write) {
+  const std::uint32_t control = block + mg::kControl, st = block + mg::kStatus;
+  write(control, static_cast<std::uint16_t>((read(control) & ~kMgControlBits) | (w0 & kMgControlBits)));
+  write(st, static_cast<std::uint16_t>((read(st) & ~kMgStatusBits) | (w0 & kMgStatusBits)));
+  write(block + mg::kError, static_cast<std::uint16_t>(w0 & kErrorCode));
+}
+
 inline constexpr int kBuffersPerChannel = 4;  // RM 12-5: "up to four message instructions per channel"
 inline constexpr int kQueuePositions = 10;    // RM 12-41: "Each channel has its own 10-position MSG queue"
 

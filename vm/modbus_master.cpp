@@ -17,22 +17,6 @@ std::optional<std::int64_t> whole_number(const std::string& text) {
   return std::stoll(text);
 }
 
-// The MG element's bits in the SLC control word's layout (EN and TO of word 16, ST DN ER EW of word 17, the code
-// of word 18), as the interpreter and the PCCC network read them.
-std::uint16_t mg_status(const FieldProcessHost& host, const MessageInstruction& in) {
-  return static_cast<std::uint16_t>((host.read_word(in.block + mg::kControl) & msg::kMgControlBits) |
-                                    (host.read_word(in.block + mg::kStatus) & msg::kMgStatusBits) |
-                                    (host.read_word(in.block + mg::kError) & msg::kErrorCode));
-}
-
-void set_mg_status(FieldProcessHost& host, const MessageInstruction& in, std::uint16_t w0) {
-  const std::uint32_t control = in.block + mg::kControl, st = in.block + mg::kStatus;
-  host.write_word(control, static_cast<std::uint16_t>((host.read_word(control) & ~msg::kMgControlBits) |
-                                                      (w0 & msg::kMgControlBits)));
-  host.write_word(st, static_cast<std::uint16_t>((host.read_word(st) & ~msg::kMgStatusBits) | (w0 & msg::kMgStatusBits)));
-  host.write_word(in.block + mg::kError, static_cast<std::uint16_t>(w0 & msg::kErrorCode));
-}
-
 }  // namespace
 
 ModbusMaster::ModbusMaster(ModbusChannelConfig config) : config_(std::move(config)) {
@@ -45,13 +29,21 @@ Nanoseconds ModbusMaster::character_time(std::uint64_t k) const {
   return static_cast<Nanoseconds>(k * modbus::kBitsPerCharacter * 1'000'000'000ULL / static_cast<std::uint64_t>(config_.baud));
 }
 
-std::uint16_t ModbusMaster::status(const MessageInstruction& in) const { return mg_status(*host_, in); }
-void ModbusMaster::set_status(const MessageInstruction& in, std::uint16_t w0) { set_mg_status(*host_, in, w0); }
+std::uint16_t ModbusMaster::status(const MessageInstruction& in) const {
+  return msg::mg_status_word(in.block, [this](std::uint32_t i) { return host_->read_word(i); });
+}
+void ModbusMaster::set_status(const MessageInstruction& in, std::uint16_t w0) {
+  msg::set_mg_status_word(
+      in.block, w0, [this](std::uint32_t i) { return host_->read_word(i); },
+      [this](std::uint32_t i, std::uint16_t v) { host_->write_word(i, v); });
+}
 
 void ModbusMaster::refuse(FieldProcessHost& host, const MessageInstruction& m, std::uint8_t code) {
-  std::uint16_t w0 = mg_status(host, m);
+  auto read = [&host](std::uint32_t i) { return host.read_word(i); };
+  std::uint16_t w0 = msg::mg_status_word(m.block, read);
   w0 = static_cast<std::uint16_t>(w0 & ~(msg::kST | msg::kDN | msg::kER | msg::kEW | msg::kTO | msg::kErrorCode));
-  set_mg_status(host, m, static_cast<std::uint16_t>(w0 | msg::kEN | msg::kER | code));
+  msg::set_mg_status_word(m.block, static_cast<std::uint16_t>(w0 | msg::kEN | msg::kER | code), read,
+                          [&host](std::uint32_t i, std::uint16_t v) { host.write_word(i, v); });
 }
 
 // Element i of the local data: bit (start bit + i) of the words from the data address for the bit commands

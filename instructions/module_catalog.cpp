@@ -67,12 +67,20 @@ constexpr std::array kModules{
     // unit of each bulletin (1761-L32, 1762-L40, 1763-L16, 1764-28 base, 1766-L32). Image words:
     // MicroLogix 1400 I:0 8 words, O:0 6 words as RSLogix 500 exports them (59-BSGS.SLC, SLOT 0);
     // MicroLogix 1100 I:0.4-I:0.5 embedded analog inputs; the others their digital words only
-    // (docs/program-format.md, "MicroLogix embedded I/O", says which of these are decisions).
+    // (docs/program-format.md, "Embedded I/O", says which of these are decisions).
     ModuleCatalogEntry{"Bul.1761", "MicroLogix 1000 embedded I/O", 0, 2, 1, 0, 0, false, 20, 12, true},
     ModuleCatalogEntry{"Bul.1762", "MicroLogix 1200 embedded I/O", 0, 2, 1, 0, 0, false, 24, 16, true},
     ModuleCatalogEntry{"Bul.1763", "MicroLogix 1100 embedded I/O", 0, 6, 1, 0, 0, false, 10, 6, true},
     ModuleCatalogEntry{"Bul.1764", "MicroLogix 1500 embedded I/O", 0, 1, 1, 0, 0, false, 16, 12, true},
     ModuleCatalogEntry{"Bul.1766", "MicroLogix 1400 embedded I/O", 0, 8, 6, 0, 0, false, 20, 12, true},
+    // Fixed SLC 500 controllers (1747-L20x/L30x/L40x): slot 0 is the controller's own I/O, named by the
+    // catalog prefix every suffix shares (the suffix is the I/O voltage type). 1747-PT1 (1747-NP002)
+    // p. 4-4: "a fixed I/O controller has 24 inputs and 16 outputs" at I:0, I:0.1 and O:0, so inputs
+    // 16-23 are bits 0-7 of I:0.1 (p. 4-5: I:0.1/7 is "Controller input 23"). The 20- and 30-point
+    // splits (12/8, 18/12) are decisions [U]: docs/program-format.md "Embedded I/O".
+    ModuleCatalogEntry{"1747-L20", "SLC 500 fixed controller I/O (20 points)", 0, 1, 1, 0, 0, false, 12, 8},
+    ModuleCatalogEntry{"1747-L30", "SLC 500 fixed controller I/O (30 points)", 0, 2, 1, 0, 0, false, 18, 12},
+    ModuleCatalogEntry{"1747-L40", "SLC 500 fixed controller I/O (40 points)", 0, 2, 1, 0, 0, false, 24, 16},
     // Specialty modules.
     ModuleCatalogEntry{"1747-SN", "Remote I/O scanner", 13608, 32, 32, 3300, 3300, true},
     ModuleCatalogEntry{"1747-BSN", "Backup Remote I/O scanner", 13608, 32, 32, 3300, 3300, true},

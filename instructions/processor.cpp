@@ -299,6 +299,8 @@ std::string ProcessorModel::timing_key() const {
 }
 
 std::string ProcessorModel::embedded_io_catalog() const {
+  // A fixed controller's row is the catalog prefix its suffixes share (1747-L20A, -L20B ...: "1747-L20").
+  if (family == ProcessorFamily::Fixed) return catalog.substr(0, std::string_view("1747-L20").size());
   switch (micrologix) {
     case MicroLogixModel::None: return {};
     case MicroLogixModel::ML1000: return "Bul.1761";

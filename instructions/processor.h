@@ -114,8 +114,8 @@ struct ProcessorModel {
   // "5/02B", "5/02C", "5/03", "5/04", "5/05", and "ML1000", "ML1100", "ML1200", "ML1400",
   // "ML1500" for the MicroLogix controllers; empty for the fixed controllers and the 5/01.
   std::string timing_key() const;
-  // The module catalog row of this controller's embedded I/O (slot 0): "Bul.1766" etc.; empty
-  // on the SLC 500 processors, whose slot 0 holds only the processor.
+  // The module catalog row of this controller's embedded I/O (slot 0): "Bul.1766", "1747-L40"
+  // etc.; empty on the modular SLC 500 processors, whose slot 0 holds only the processor.
   std::string embedded_io_catalog() const;
 };
 

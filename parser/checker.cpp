@@ -87,8 +87,8 @@ class Checker {
 
   // ---- Chassis ---------------------------------------------------------------------------------------
 
-  // A MicroLogix's slot 0 is the controller's own I/O: when the program has no SLOT 0 line, slot 0
-  // comes with the processor (its catalog row in instructions/module_catalog.cpp).
+  // A MicroLogix's or fixed SLC 500's slot 0 is the controller's own I/O: when the program has no
+  // SLOT 0 line, slot 0 comes with the processor (its catalog row in instructions/module_catalog.cpp).
   void add_embedded_io() {
     const std::string catalog = program_.processor.embedded_io_catalog();
     if (catalog.empty() || program_.find_slot(0)) return;
@@ -113,6 +113,12 @@ class Checker {
         error(slot.pos, "slot 0 of a " + program_.processor.display_name + " is the controller's embedded I/O (" +
                             embedded + "), not '" + slot.catalog + "'; expansion I/O starts at slot 1");
       if (slot.slot < 0 || slot.slot > 30) error(slot.pos, "slot number must be 0-30");
+      // 1747-PT1 p. 4-5: a fixed controller's slot numbers are 0 (its own I/O) and 1-2, the left and
+      // right slots of its two-slot expansion rack.
+      if (program_.processor.family == ProcessorFamily::Fixed && slot.slot > 2 && slot.slot <= 30)
+        error(slot.pos, "slot " + std::to_string(slot.slot) + ": the " + program_.processor.display_name + " (" +
+                            program_.processor.catalog +
+                            ") has its own I/O in slot 0 and a two-slot expansion rack, slots 1 and 2 (1747-PT1 p. 4-5)");
       if (slot.scan_in > 255 || slot.scan_out > 255) error(slot.pos, "SCAN_IN/SCAN_OUT must be 0-255 words");
       auto entry = find_module_catalog(slot.catalog);
       bool is_processor = slot.slot == 0 && resolve_processor(slot.catalog).has_value();

@@ -76,7 +76,8 @@ std::uint16_t expected_mask(int points, int w) {
 TEST(MicroLogixCatalog, EveryDiscreteRowIsListedHere) {
   // A new non-specialty row must come with its expected counts in kPointCases (or be embedded I/O).
   for (const auto& e : module_catalog_entries()) {
-    if (e.specialty || e.catalog.substr(0, 4) == "Bul.") continue;
+    // Embedded I/O rows (MicroLogix bulletins, fixed SLC 500 controllers) have tests of their own.
+    if (e.specialty || e.catalog.substr(0, 4) == "Bul." || e.catalog.substr(0, 6) == "1747-L") continue;
     bool listed = false;
     for (const auto& c : kPointCases) listed |= e.catalog == c.catalog;
     EXPECT_TRUE(listed) << e.catalog;
@@ -136,7 +137,8 @@ TEST(MicroLogixProcessor, CatalogsResolveToTheirControllers) {
                         Case{"Bul.1764", "MicroLogix 1500", "ML1500", "Bul.1764", true, true},
                         Case{"1764-LSP", "MicroLogix 1500 LSP", "ML1500", "Bul.1764", true, true},
                         Case{"1764-LRP", "MicroLogix 1500 LRP", "ML1500", "Bul.1764", true, true},
-                        Case{"1747-L551", "SLC 5/05", "5/05", "", false, false}}) {
+                        Case{"1747-L551", "SLC 5/05", "5/05", "", false, false},
+                        Case{"1747-L40B", "SLC 500 fixed controller", "", "1747-L40", false, false}}) {
     SCOPED_TRACE(c.catalog);
     auto p = resolve_processor(c.catalog);
     ASSERT_TRUE(p.has_value());
@@ -177,6 +179,75 @@ TEST(MicroLogixProcessor, EmbeddedIoComesWithTheProcessor) {
 TEST(MicroLogixProcessor, SlotZeroOfAMicroLogixIsItsEmbeddedIo) {
   EXPECT_NE(load_errors("START Bul.1766\nSLOT 0 1762-IQ16 SCAN_IN 1 SCAN_OUT 0\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n")
                 .find("embedded I/O"),
+            std::string::npos);
+}
+
+// ---- Fixed SLC 500 controllers: their own I/O in slot 0, a two-slot expansion rack ----------------------
+
+// 1747-PT1 (1747-NP002) p. 4-4: "a fixed I/O controller has 24 inputs and 16 outputs", inputs 0-15 in
+// I:0 and 16-23 in I:0.1, outputs 0-15 in O:0; p. 4-5: I:0.1/7 is "Controller input 23", O:0/4
+// "Controller output 4". That is the 40-point controller. The 20- and 30-point splits, 12 inputs and 8
+// outputs and 18 and 12, are softslc's decision [U] (docs/program-format.md "Embedded I/O").
+TEST(FixedController, ItsOwnIoComesWithTheProcessor) {
+  struct Case {
+    const char* catalog;
+    int in_points, out_points, in_words;
+  };
+  for (const Case& c : {Case{"1747-L20A", 12, 8, 1}, Case{"1747-L30B", 18, 12, 2}, Case{"1747-L40C", 24, 16, 2}}) {
+    SCOPED_TRACE(c.catalog);
+    const std::string text = std::string("START ") + c.catalog + "\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n";
+    Controller plc = Controller::from_text(text);
+    for (int w = 0; w < c.in_words; ++w) {
+      for (int b = 0; b < 16; ++b) {
+        const std::string a = "I:0." + std::to_string(w) + "/" + std::to_string(b);
+        if ((expected_mask(c.in_points, w) >> b) & 1) {
+          EXPECT_NO_THROW(plc.set(a, 1)) << a;
+        } else {
+          EXPECT_THROW(plc.set(a, 1), ControllerError) << a << " is not an input of the controller";
+        }
+      }
+      plc.scan(1);
+      EXPECT_EQ(plc.get_int("I:0." + std::to_string(w)) & 0xFFFF, expected_mask(c.in_points, w));
+    }
+    EXPECT_THROW(plc.set("I:0." + std::to_string(c.in_words), 1), ControllerError) << "one word past the inputs";
+    plc.set("O:0.0", -1);
+    plc.scan(1);
+    EXPECT_EQ(*plc.runtime().module(0)->field_output(0), expected_mask(c.out_points, 0));
+    // fmt does not write the slot the processor brings.
+    LoadResult r = load_program(text, "t.slc");
+    ASSERT_TRUE(r.ok()) << r.render_diagnostics();
+    EXPECT_EQ(format_program(*r.program).find("SLOT 0"), std::string::npos);
+  }
+}
+
+TEST(FixedController, RunsThePt1AddressingExample) {
+  // PT1 p. 4-4's system: the 40-point controller, a 6-input 6-output module in slot 1 of the expansion
+  // rack, an 8-output module in slot 2; p. 4-5's addresses I:0.1/7 (controller input 23), I:1/4,
+  // O:0/4, O:2/7.
+  const std::string text =
+      "START 1747-L40A\nSLOT 1 1746-IO12 SCAN_IN 1 SCAN_OUT 1\nSLOT 2 1746-OB8 SCAN_IN 0 SCAN_OUT 1\nLADDER 2\n"
+      "SOR XIC I:0.1/7 OTE O:0/4 EOR\nSOR XIC I:1/4 OTE O:2/7 EOR\n";
+  Controller plc = Controller::from_text(text);
+  plc.set("I:0.1/7", 1);
+  plc.set("I:1/4", 1);
+  plc.scan(2);
+  EXPECT_EQ(*plc.runtime().module(0)->field_output(0), 0x0010);
+  EXPECT_EQ(*plc.runtime().module(2)->field_output(0), 0x0080);
+  // The same program on a 20-point controller: it has no input word I:0.1 (12 inputs).
+  std::string l20 = text;
+  l20.replace(l20.find("1747-L40A"), 9, "1747-L20A");
+  EXPECT_NE(load_errors(l20).find("I:0.1/7"), std::string::npos) << load_errors(l20);
+}
+
+TEST(FixedController, HasATwoSlotExpansionRack) {
+  const std::string slot3 = load_errors("START 1747-L30A\nSLOT 3 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n");
+  EXPECT_NE(slot3.find("slot 3: the SLC 500 fixed controller (1747-L30A) has its own I/O in slot 0 and a two-slot "
+                       "expansion rack, slots 1 and 2"),
+            std::string::npos)
+      << slot3;
+  // A modular SLC 5/03 has slots up to 30 and no I/O of its own in slot 0.
+  EXPECT_EQ(load_errors("START 1747-L532\nSLOT 3 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nLADDER 2\nSOR XIC I:3/0 OTE B3:0/1 EOR\n"), "");
+  EXPECT_NE(load_errors("START 1747-L532\nLADDER 2\nSOR XIC I:0/0 OTE B3:0/1 EOR\n").find("slot 0 has no module"),
             std::string::npos);
 }
 

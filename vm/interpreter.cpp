@@ -2059,7 +2059,8 @@ constexpr std::array<bool, 256> kNoFastPathOp{};
             fused_calls.room = static_cast<unsigned>(max_depth - fsp);
             fused_calls.depth = 0;
             const FusedProgram::Exit x =
-                fused_->execute(run, w_, t, n, limit_, FusedScan{scan_start_, first_pass_, timer_executions_}, fused_calls);
+                fused_->execute(run, w_, t, n, limit_, FusedScan{scan_start_, first_pass_, timer_executions_},
+                                fused_calls);
             // The subroutine calls the run took and did not return from: the JSR handler's frames
             // (in a fused run the branch stack is at its base and no MCR zone is off).
             for (unsigned i = 0; i < fused_calls.depth; ++i) {

@@ -178,11 +178,11 @@ bool program_scans_repeatable(const Program& program, RepeatFacts& facts) {
 // them change: no instruction of the program other than its TON, TOF or RTO (and RES, whose effect
 // does not depend on them and which the probe's record of the timer's execution judges) may read or
 // write the element's control word or ACC. Bits EN, TT and DN may be read (they do not change while
-// the timer accumulates below PRE), and PRE may be read. Anything that could reach further — a file
-// operand or a multi-word operand in a T file (COP, FLL, a MSG's data table address ...), an indexed
-// or indirect T address, an indirect reference whose pointer is a timer's control word or ACC, a CPT
-// expression's atom — makes the elements it may reach shared. Known from the program's text, so
-// nothing is checked while it runs.
+// the timer accumulates below PRE), and PRE may be read (a CPT expression's atoms are reads). Anything
+// that could reach further — a file operand or a multi-word operand in a T file (COP, FLL, a MSG's
+// data table address ...), an indexed or indirect T address, an indirect reference whose pointer is a
+// timer's control word or ACC — makes the elements it may reach shared. Known from the program's
+// text, so nothing is checked while it runs.
 struct TimerSharing {
   bool every_file = false;                    // an indirect file number in a T address
   std::array<bool, 256> file{};               // every element of the file may be reached
@@ -1010,8 +1010,9 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint16_t* w = data_.words();
   const DataTableLayout& L = *program_->layout;
   // The probe changed nothing but the runtime's own status words (and the ACC and stamp of timers
-  // carried across their ticks, below), nothing is pending, every module is still passive (the probe's output scan may have handed one an output
-  // image a tool changed, and a drive told to start is no longer settled), and no module it reached
+  // carried across their ticks, below), nothing is pending, every module is still passive (the
+  // probe's output scan may have handed one an output image a tool changed, and a drive told to
+  // start is no longer settled), and no module it reached
   // through M0/M1 or an instruction counted a change: the next scan would do exactly what it did.
   // An event that ran at its end may have changed a field input or a module: that is allowed only
   // when no module instruction of the probe asked the time of its execution (the 1747-SDN's DEM
@@ -1186,17 +1187,19 @@ bool Runtime::sort_timer_executions(Nanoseconds d) {
     const Nanoseconds unit = (x.flags & bc::kFlagB) ? kNsPerMs : kTick;
     const std::int64_t tick = x.at / unit;  // word_ops::timer_tick, unwrapped
     const std::int64_t stamp_lag = (tick - (w[x.word] & bits::kStampMask)) & 0xFF;
-    const bool carried =
-        once && word_ops::timer_clock_use(x.op, x.control, x.acc, x.pre, x.rung, false) == word_ops::TimerClockUse::Advance &&
-        x.word < timer_private_.size() && timer_private_[x.word] && (w[x.word] & bits::kTT) != 0 &&
-        static_cast<std::int16_t>(w[x.word + 2]) < static_cast<std::int16_t>(w[x.word + 1]) &&
-        d < (base1s ? 155 : 255) * unit && stamp_lag < (base1s ? 100 : 1);
+    const bool advanced = word_ops::timer_clock_use(x.op, x.control, x.acc, x.pre, x.rung, false) ==
+                          word_ops::TimerClockUse::Advance;
+    const auto acc = static_cast<std::int16_t>(w[x.word + 2]);
+    const bool carried = once && advanced && x.word < timer_private_.size() && timer_private_[x.word] &&
+                         (w[x.word] & bits::kTT) != 0 && acc < static_cast<std::int16_t>(w[x.word + 1]) &&
+                         d < (base1s ? 155 : 255) * unit && stamp_lag < (base1s ? 100 : 1);
     if (!carried) {
       timing = true;
       continue;
     }
-    accumulating_.push_back({x.word, x.at, unit, tick - stamp_lag, base1s ? 100 : 1, static_cast<std::int16_t>(w[x.word + 2])});
-    before_probe_[x.word] = static_cast<std::uint16_t>((before_probe_[x.word] & ~bits::kStampMask) | (w[x.word] & bits::kStampMask));
+    accumulating_.push_back({x.word, x.at, unit, tick - stamp_lag, base1s ? 100 : 1, acc});
+    before_probe_[x.word] =
+        static_cast<std::uint16_t>((before_probe_[x.word] & ~bits::kStampMask) | (w[x.word] & bits::kStampMask));
     before_probe_[x.word + 2] = w[x.word + 2];
   }
   return timing;

@@ -287,7 +287,8 @@ TEST(Timers, ClockUseFollowsTheTimersBranches) {
                 const word_ops::TimerClockUse use = word_ops::timer_clock_use(op, ctl, acc, pre, rung, first_pass);
                 std::vector<std::array<std::uint16_t, 3>> results;
                 for (const int later : {0, 1, 99, 100, 150, 255}) {
-                  std::array<std::uint16_t, 3> t = {ctl, static_cast<std::uint16_t>(pre), static_cast<std::uint16_t>(acc)};
+                  std::array<std::uint16_t, 3> t = {ctl, static_cast<std::uint16_t>(pre),
+                                                    static_cast<std::uint16_t>(acc)};
                   const auto now8 = static_cast<std::uint8_t>(stamp + later);
                   word_ops::timer(op, t.data(), rung, first_pass, now8, base1s);
                   const std::string what = std::string(mnemonic(op)) + " status " + std::to_string(status) + " stamp " +

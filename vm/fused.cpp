@@ -804,6 +804,8 @@ template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
   // The action's rung-in; it is the rung's last instruction, so the scan time it sees is t.
   [[maybe_unused]] const bool rung = output_on<fixed>(on_bits, on, coils, n, v);
   if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
+    if (scan.timers) [[unlikely]]
+      word_ops::record_timer(*scan.timers, A, w, act[0], rung, scan.scan_start + t, sh.action_flags);
     word_ops::timer(A, w + act[0], rung, scan.first_pass, ticks.at(scan.scan_start + t, sh.action_flags),
                     (sh.action_flags & bc::kFlagA) != 0);
   } else if constexpr (A == Op::CTU || A == Op::CTD) {

@@ -132,13 +132,17 @@ enum class FusedRule : std::uint8_t {
 
 namespace word_ops {
 class TickClock;
+struct TimerExecution;
 }
 
 // What a fused kernel needs of the scan beyond the data table: timers read the tick count at
-// scan_start + their scan time; counters and timers behave differently on the first pass.
+// scan_start + their scan time; counters and timers behave differently on the first pass. During a
+// probe (Runtime::probe_and_repeat) `timers` collects every TON, TOF and RTO execution, as the
+// interpreter's timer handler does; it is null otherwise.
 struct FusedScan {
   VirtualTime scan_start = 0;
   bool first_pass = false;
+  std::vector<word_ops::TimerExecution>* timers = nullptr;
 };
 
 FusedRule fused_rule(Opcode op);

@@ -945,6 +945,9 @@ bool Interpreter::timer(Op op, const std::uint32_t* o, std::uint32_t h, bool run
                                           (pre < 0 ? "PRE (" + std::to_string(pre) + ")" : "ACC (" + std::to_string(acc) + ")"));
     return false;
   }
+  if (timer_executions_) [[unlikely]]
+    word_ops::record_timer(*timer_executions_, op, w_, static_cast<std::uint32_t>(t - w_), rung,
+                           scan_start_ + now_in_scan, bc::flags_of(h));
   // The tick count at this instruction's virtual time (vm/word_ops.h).
   word_ops::timer(op, t, rung, first_pass_, word_ops::timer_tick(scan_start_ + now_in_scan, bc::flags_of(h)),
                   (bc::flags_of(h) & bc::kFlagA) != 0);
@@ -2056,7 +2059,8 @@ constexpr std::array<bool, 256> kNoFastPathOp{};
             fused_calls.room = static_cast<unsigned>(max_depth - fsp);
             fused_calls.depth = 0;
             const FusedProgram::Exit x =
-                fused_->execute(run, w_, t, n, limit_, FusedScan{scan_start_, first_pass_}, fused_calls);
+                fused_->execute(run, w_, t, n, limit_, FusedScan{scan_start_, first_pass_, timer_executions_},
+                                fused_calls);
             // The subroutine calls the run took and did not return from: the JSR handler's frames
             // (in a fused run the branch stack is at its base and no MCR zone is off).
             for (unsigned i = 0; i < fused_calls.depth; ++i) {

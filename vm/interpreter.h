@@ -59,6 +59,10 @@
 
 namespace softslc {
 
+namespace word_ops {
+struct TimerExecution;
+}
+
 // What the interpreter needs from the chassis mid-scan: M0/M1 immediate access and the
 // immediate I/O instructions. The runtime implements it; it is only reached from M-file
 // operands and IIM/IOM, never from the bit-logic path.
@@ -234,6 +238,9 @@ class Interpreter {
   // scans end before it (docs/semantics.md "Repeated scans").
   VirtualTime pid_same_until() const { return pid_same_until_; }
   void reset_pid_same_until() { pid_same_until_ = std::numeric_limits<VirtualTime>::max(); }
+  // While set, every TON, TOF and RTO execution is appended to `v` (a probe's record: repeats across
+  // timer ticks, docs/semantics.md "Timers accumulating across ticks"); nullptr stops it.
+  void record_timer_executions(std::vector<word_ops::TimerExecution>* v) { timer_executions_ = v; }
   const StiTimer& sti() const { return sti_; }
   // The MicroLogix high-speed counters (vm/ml_hsc.h); no counters on a processor without them.
   MicroLogixHsc& hsc() { return hsc_; }
@@ -539,6 +546,7 @@ class Interpreter {
   std::uint64_t module_time_reads_ = 0;
   std::uint64_t between_scan_writes_ = 0;
   VirtualTime pid_same_until_ = std::numeric_limits<VirtualTime>::max();
+  std::vector<word_ops::TimerExecution>* timer_executions_ = nullptr;
   int last_file_ = 2;
   int last_rung_ = -1;
   std::array<std::uint16_t, 64> scratch_{};  // where a faulting operand's access lands

@@ -14,6 +14,7 @@
 #include "parser/loader.h"
 #include "vm/discrete_io.h"
 #include "vm/real_time_clock.h"
+#include "vm/word_ops.h"
 
 namespace softslc {
 
@@ -172,6 +173,104 @@ bool program_scans_repeatable(const Program& program, RepeatFacts& facts) {
   return true;
 }
 
+// Timers accumulating across ticks (docs/semantics.md "Timers accumulating across ticks"). A repeat may
+// carry a timing timer's ACC and stamp forward only when nothing but the timer's own instruction sees
+// them change: no instruction of the program other than its TON, TOF or RTO (and RES, whose effect
+// does not depend on them and which the probe's record of the timer's execution judges) may read or
+// write the element's control word or ACC. Bits EN, TT and DN may be read (they do not change while
+// the timer accumulates below PRE), and PRE may be read (a CPT expression's atoms are reads). Anything
+// that could reach further — a file operand or a multi-word operand in a T file (COP, FLL, a MSG's
+// data table address ...), an indexed or indirect T address, an indirect reference whose pointer is a
+// timer's control word or ACC — makes the elements it may reach shared. Known from the program's
+// text, so nothing is checked while it runs.
+struct TimerSharing {
+  bool every_file = false;                    // an indirect file number in a T address
+  std::array<bool, 256> file{};               // every element of the file may be reached
+  std::vector<std::pair<int, int>> elements;  // (file, element) reached directly
+
+  void pointer(const std::optional<IndirectRef>& r) {
+    if (r && r->type == FileType::Timer && r->word != 1) elements.emplace_back(r->file, r->element);
+  }
+  // An address in an operand of `op` at `index` (spec `os`, null for a CPT expression's atom, a read).
+  void note(const Address& a, Opcode op, std::size_t index, const OperandSpec* os) {
+    pointer(a.indirect_file());
+    pointer(a.indirect_element());
+    pointer(a.indirect_word());
+    pointer(a.indirect_bit());
+    if (a.type != FileType::Timer) return;
+    if (a.is_indirect() && a.indirect_file()) {
+      every_file = true;
+      return;
+    }
+    if (a.file >= file.size()) {
+      every_file = true;
+      return;
+    }
+    if (a.is_indirect() || a.indexed) {
+      file[a.file] = true;
+      return;
+    }
+    if (index == 0 && (op == Opcode::TON || op == Opcode::TOF || op == Opcode::RTO || op == Opcode::RES)) return;
+    const bool single = !os || os->kind == OperandKind::Bit || os->kind == OperandKind::Source ||
+                        os->kind == OperandKind::Dest || os->kind == OperandKind::WordSource ||
+                        os->kind == OperandKind::WordDest;
+    if (!single) {
+      file[a.file] = true;
+      return;
+    }
+    const bool read = !os || os->access == OperandAccess::Read;
+    const bool status_bit = a.word_in_element() == 0 && (a.bit == 13 || a.bit == 14 || a.bit == 15);
+    if (read && (a.word == 1 || status_bit)) return;
+    elements.emplace_back(a.file, a.element);
+  }
+  void walk(const std::vector<RungElement>& elements_of_rung) {
+    for (const RungElement& e : elements_of_rung) {
+      if (e.kind == RungElement::Kind::Branch) {
+        for (const auto& leg : e.legs) walk(leg);
+        continue;
+      }
+      const InstructionSpec& sp = spec(e.instruction.opcode);
+      for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
+        const Operand& operand = e.instruction.operands[i];
+        if (operand.kind == Operand::Kind::Expression) {
+          ExpressionError err;
+          const auto items = parse_expression(operand.spelling, err);
+          if (!items) continue;  // never repeated (expression_reads_only_program_words)
+          for (const ExprItem& it : *items) {
+            NumberValue v;
+            if (it.code != ExprCode::Push || parse_number_text(it.text, v)) continue;
+            if (const auto a = parse_address(it.text)) note(*a, e.instruction.opcode, i, nullptr);
+          }
+          continue;
+        }
+        if (!operand.is_address()) continue;
+        note(operand.address, e.instruction.opcode, i, i < sp.operand_count ? &sp.operands[i] : nullptr);
+      }
+    }
+  }
+};
+
+// For each word of the table, 1 at the control word of a timer element that only its own
+// instructions reach (TimerSharing).
+std::vector<std::uint8_t> private_timers(const Program& program, const DataTableLayout& L) {
+  TimerSharing sharing;
+  for (const ProgramFile& f : program.files)
+    for (const Rung& r : f.rungs) sharing.walk(r.elements);
+  std::vector<std::uint8_t> out(L.total_words, 0);
+  if (sharing.every_file) return out;
+  for (std::size_t n = 0; n < sharing.file.size(); ++n) {
+    const FileLayout& f = L.files[n];
+    if (!f.present || f.type != FileType::Timer || sharing.file[n]) continue;
+    for (std::uint32_t e = f.base; e < f.end(); e += f.words_per_element) out[e] = 1;
+  }
+  for (const auto& [file, element] : sharing.elements) {
+    const FileLayout& f = L.files[static_cast<std::size_t>(file)];
+    if (f.present && f.type == FileType::Timer && element >= 0 && static_cast<std::uint32_t>(element) < f.elements)
+      out[f.base + static_cast<std::uint32_t>(element) * f.words_per_element] = 0;
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string RuntimeResult::render_errors() const {
@@ -228,6 +327,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   rt.program_repeatable_ = program_scans_repeatable(program, facts);
   rt.clock_bits_read_ = facts.clock_bits;
   rt.timer_tick_ns_ = facts.timer_tick;
+  if (rt.program_repeatable_) rt.timer_private_ = private_timers(program, *rt.program_->layout);
   rt.process_host_ = std::make_unique<ProcessHost>(rt);
   if (make_channel) {
     rt.ascii_channel_ = make_channel();
@@ -900,15 +1000,19 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   reached_.clear();
   m_reads_.clear();
   m_writes_.clear();
+  timer_executions_.clear();
+  interp_->record_timer_executions(&timer_executions_);
   scan_once(false);
+  interp_->record_timer_executions(nullptr);
   probing_ = false;
   VirtualTime t = clock_.now();  // the end of the probe, the start of the first repeat
   const Nanoseconds d = t - start;
   const std::uint16_t* w = data_.words();
   const DataTableLayout& L = *program_->layout;
-  // The probe changed nothing but the runtime's own status words, nothing is pending, no timer is
-  // timing, every module is still passive (the probe's output scan may have handed one an output
-  // image a tool changed, and a drive told to start is no longer settled), and no module it reached
+  // The probe changed nothing but the runtime's own status words (and the ACC and stamp of timers
+  // carried across their ticks, below), nothing is pending, every module is still passive (the
+  // probe's output scan may have handed one an output image a tool changed, and a drive told to
+  // start is no longer settled), and no module it reached
   // through M0/M1 or an instruction counted a change: the next scan would do exactly what it did.
   // An event that ran at its end may have changed a field input or a module: that is allowed only
   // when no module instruction of the probe asked the time of its execution (the 1747-SDN's DEM
@@ -931,17 +1035,12 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   }
   const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
   for (int s : kRuntimeStatusWords) before_probe_[L.status_word(s)] = w[L.status_word(s)];
+  // Timers: those that accumulate alone are carried across ticks (their ACC and stamp may differ
+  // after the probe); any other timer that read the clock bounds the repeats to the
+  // tick the probe started in (sort_timer_executions).
+  accumulating_.clear();
+  const bool timing = repeats && sort_timer_executions(d);
   repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);
-  // A timing timer (TT) reads the clock at its rung. The probe changed none, so each read the tick it
-  // is stamped with (or, with the 1.0 s base, less than a unit past it), and a repeat reads the same
-  // while its timer reads stay in that tick: so do the scans that end by the end of the tick the probe
-  // started in (every read of the probe was in it or in a later one).
-  bool timing = false;
-  for (const FileLayout& f : L.files) {
-    if (!repeats || timing) break;
-    if (!f.present || f.type != FileType::Timer) continue;
-    for (std::uint32_t e = f.base; e < f.end() && !timing; e += f.words_per_element) timing = (w[e] & bits::kTT) != 0;
-  }
   const bool across_events = interp_->module_time_reads() == module_time_reads;
   if (repeats && events_at_last_scan_end_ != 0)
     repeats = across_events && process_writes_ == process_writes && probe_reads_the_same();
@@ -956,6 +1055,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const Nanoseconds scan_time = stats_.last;  // what the probe's housekeeping was given
   const std::uint16_t s33_toggle = (data_.status(status::kCommBits) ^ s33_before) & 0x0200u;
   const FileLayout& rtc = L.function_file(FunctionFile::RTC);
+  std::int64_t taken = 0;
   // Takes k scans from t without executing them: each would have advanced S:4 at its program scan
   // (after its input scan), toggled S:33/9 (when the probe did), and gone through housekeeping
   // with the probe's scan time.
@@ -976,6 +1076,9 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     stats_.instructions += per_scan * static_cast<std::uint64_t>(k);
     stats_.repeated += static_cast<std::uint64_t>(k);
     t += k * d;
+    taken += k;
+    // The carried timers' words as the k scans leave them, before any event can read them.
+    if (!accumulating_.empty()) set_accumulated_timers(taken, d);
   };
   // Every repeated scan must end before `horizon`: a timing STI's expiry falls in the middle of the
   // scan that reaches it, a timer's tick ends (a scan may end on it: its reads come before), a timed
@@ -985,8 +1088,15 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   if (sti.file != 0) horizon = sti.due;
   if (pid_timing) horizon = std::min(horizon, pid_until + 1);
   if (timing) horizon = std::min(horizon, (start / timer_tick_ns_ + 1) * timer_tick_ns_ + 1);
+  // A carried timer reaches PRE at a known tick: the scan whose read of it falls in that tick sets DN
+  // (TON, RTO) or clears it (TOF) and is executed. A repeat n scans after the probe reads at
+  // read_at + n d, so it must start before the tick less the read's offset (and end d later).
+  for (const AccumulatingTimer& a : accumulating_) {
+    const std::int64_t pre = static_cast<std::int16_t>(w[a.word + 1]);
+    const VirtualTime reach = (a.stamp0 + (pre - a.acc0) * a.units_per_acc) * a.unit;
+    horizon = std::min(horizon, reach - (a.read_at - start) + d);
+  }
   if (network_quiet) horizon = std::min(horizon, *network_quiet);
-  std::int64_t taken = 0;
   for (;;) {
     // How many scans would repeat it: those that start before `end`, end before the next event,
     // and (with a real-time clock) start their program scan in the same second, so the clock
@@ -1007,7 +1117,6 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
       k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (horizon - t - 1) / d));
     if (k > 0) {
       take(k);
-      taken += k;
       events_.run_until(t);  // none is due before t: this moves the clock
     }
     // The next scan would end at or after the next event. Its program scan is still the probe's
@@ -1017,7 +1126,6 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || same_clock <= k || t + d >= horizon)
       break;
     take(1);
-    taken += 1;
     events_at_last_scan_end_ = events_.run_until(t);
     if (mode_ != Mode::Run || fault_ || !interp_->nothing_pending_between_scans() || !modules_passive() ||
         process_writes_ != process_writes || interp_->between_scan_writes() != between_scan_writes ||
@@ -1042,6 +1150,71 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // 10 ms period instead of three).
   if (sti.file != 0 && t < end && t + d >= sti.due) probe_wait_ = std::max<std::uint32_t>(probe_wait_, 1);
   return 1 + taken;
+}
+
+// Timers accumulating across ticks (docs/semantics.md "Timers accumulating across ticks"). A timer
+// read the clock in the probe when its execution restarted its stamp or advanced its ACC
+// (word_ops::timer_clock_use). One whose element only its own instructions reach (timer_private_),
+// executed once in the probe, advancing, and still timing (TT) after it, is carried: every other
+// instruction of a repeat reads what it read in the probe (the bits EN, TT and DN and PRE stay while
+// ACC < PRE), so the repeat takes the probe's path and executes the timer once, at the same offset
+// in the scan, advancing again. Its words are then a function of the tick of each read: n scans
+// after the probe the stamp is the tick of read_at + n d (for the 1.0 s base, the unwrapped stamp
+// moved by whole seconds) and ACC the probe's plus the units since the probe's stamp. That holds
+// while each scan's advance sees less than 256 ticks since the stamp (the stamp is a byte): d under
+// 255 ticks, or 155 with the 1.0 s base, whose stamp may lag its read by 99. Any other clock read (a
+// restart, a second execution, a timer another instruction reaches) bounds the repeats to the tick
+// the probe started in, the rule before this one. A timer timing that the probe did not execute (its
+// subroutine not called, a JMP over it) is not executed in a repeat either: it reads nothing.
+bool Runtime::sort_timer_executions(Nanoseconds d) {
+  std::uint16_t* const w = data_.words();
+  bool timing = false;
+  std::stable_sort(timer_executions_.begin(), timer_executions_.end(),
+            [](const word_ops::TimerExecution& a, const word_ops::TimerExecution& b) { return a.word < b.word; });
+  for (std::size_t i = 0; i < timer_executions_.size();) {
+    const word_ops::TimerExecution& x = timer_executions_[i];
+    std::size_t end = i;
+    bool reads = false;
+    for (; end < timer_executions_.size() && timer_executions_[end].word == x.word; ++end) {
+      const word_ops::TimerExecution& e = timer_executions_[end];
+      reads = reads || word_ops::timer_clock_use(e.op, e.control, e.acc, e.pre, e.rung, false) !=
+                           word_ops::TimerClockUse::None;
+    }
+    const bool once = end == i + 1;
+    i = end;
+    if (!reads) continue;
+    const bool base1s = (x.flags & bc::kFlagA) != 0;
+    const Nanoseconds unit = (x.flags & bc::kFlagB) ? kNsPerMs : kTick;
+    const std::int64_t tick = x.at / unit;  // word_ops::timer_tick, unwrapped
+    const std::int64_t stamp_lag = (tick - (w[x.word] & bits::kStampMask)) & 0xFF;
+    const bool advanced = word_ops::timer_clock_use(x.op, x.control, x.acc, x.pre, x.rung, false) ==
+                          word_ops::TimerClockUse::Advance;
+    const auto acc = static_cast<std::int16_t>(w[x.word + 2]);
+    const bool carried = once && advanced && x.word < timer_private_.size() && timer_private_[x.word] &&
+                         (w[x.word] & bits::kTT) != 0 && acc < static_cast<std::int16_t>(w[x.word + 1]) &&
+                         d < (base1s ? 155 : 255) * unit && stamp_lag < (base1s ? 100 : 1);
+    if (!carried) {
+      timing = true;
+      continue;
+    }
+    accumulating_.push_back({x.word, x.at, unit, tick - stamp_lag, base1s ? 100 : 1, acc});
+    before_probe_[x.word] =
+        static_cast<std::uint16_t>((before_probe_[x.word] & ~bits::kStampMask) | (w[x.word] & bits::kStampMask));
+    before_probe_[x.word + 2] = w[x.word + 2];
+  }
+  return timing;
+}
+
+// Writes the carried timers' ACC and stamp as n scans after the probe leave them (sort_timer_executions).
+void Runtime::set_accumulated_timers(std::int64_t n, Nanoseconds d) {
+  for (const AccumulatingTimer& a : accumulating_) {
+    const std::int64_t tick = (a.read_at + n * d) / a.unit;
+    const std::int64_t units = (tick - a.stamp0) / a.units_per_acc;
+    const std::int64_t stamp = a.stamp0 + units * a.units_per_acc;
+    data_.set_word(a.word, static_cast<std::uint16_t>((data_.word(a.word) & ~bits::kStampMask) |
+                                                      (static_cast<std::uint16_t>(stamp) & bits::kStampMask)));
+    data_.set_word(a.word + 2, static_cast<std::uint16_t>(a.acc0 + units));
+  }
 }
 
 // S:4 counts ticks of virtual time, brought up to date at each program scan (advance_free_running_clock).

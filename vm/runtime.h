@@ -52,6 +52,10 @@
 
 namespace softslc {
 
+namespace word_ops {
+struct TimerExecution;
+}
+
 // Creates the module for a slot; returning nullptr means "generic discrete I/O".
 using ModuleFactory = std::function<std::unique_ptr<Module>(const SlotConfig&)>;
 
@@ -374,6 +378,27 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // The finest time base of the program's timers (1 ms with a MicroLogix 0.001 s timer, else the
   // 10 ms tick): a timing timer changes nothing while its reads stay in the tick it is stamped with.
   Nanoseconds timer_tick_ns_ = kTick;
+  // Timers accumulating across ticks (docs/semantics.md "Timers accumulating across ticks"): for each
+  // word of the table, 1 at the control word of a timer element whose control word and ACC no
+  // instruction but its own TON/TOF/RTO (and RES) can reach, bits EN, TT and DN and PRE read aside
+  // (set by create); the probe's record of its timer executions; and the timers the repeats carry.
+  std::vector<std::uint8_t> timer_private_;
+  std::vector<word_ops::TimerExecution> timer_executions_;
+  struct AccumulatingTimer {
+    std::uint32_t word;      // the control word; ACC is word + 2
+    VirtualTime read_at;     // when the probe's execution read the tick
+    Nanoseconds unit;        // 10 ms, or 1 ms for the 0.001 s base
+    std::int64_t stamp0;     // the tick the probe left the stamp at, unwrapped
+    std::int64_t units_per_acc;  // ticks per ACC count: 100 for the 1.0 s base, else 1
+    std::int32_t acc0;       // ACC after the probe
+  };
+  std::vector<AccumulatingTimer> accumulating_;
+  // Sorts the probe's timer executions: fills accumulating_ with the timers that may accumulate across
+  // ticks, sets their ACC and stamp in before_probe_ to the probe's, and returns whether any timer read
+  // the clock otherwise, which bounds the repeats to the tick.
+  bool sort_timer_executions(Nanoseconds d);
+  // Writes the carried timers' ACC and stamp as `n` scans after the probe, each `d` long, leave them.
+  void set_accumulated_timers(std::int64_t n, Nanoseconds d);
   std::uint32_t probe_wait_ = 0;
   std::uint32_t probe_backoff_ = 1;
   std::uint32_t probe_failures_ = 0;  // probes in a row that repeated nothing (probe_failed)

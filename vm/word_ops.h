@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <vector>
 
 #include "vm/bytecode.h"
 #include "vm/data_table.h"
@@ -218,6 +219,51 @@ namespace timer_steps {
   }
   t[0] = ctl;
   t[2] = static_cast<std::uint16_t>(acc);
+}
+
+// How an execution of timer() with these inputs uses `now8`: not at all, to restart the stamp, or to
+// advance ACC by the units since the stamp. It follows timer()'s branches one for one (the
+// TimerClockUse test in tests/vm/word_ops_test.cpp runs both on every combination of bits and checks
+// that an execution said not to read the clock gives the same words at any tick, and one said to
+// restart gives the stamp `now8` and leaves ACC). The repeats across ticks rest on it
+// (Runtime::probe_and_repeat, docs/semantics.md "Timers accumulating across ticks").
+enum class TimerClockUse : std::uint8_t { None, Restart, Advance };
+inline TimerClockUse timer_clock_use(Op op, std::uint16_t ctl, int acc, int pre, bool rung, bool first_pass) {
+  switch (op) {
+    case Op::TON:
+    case Op::RTO:
+      if (!rung) return TimerClockUse::None;
+      if (first_pass || !(ctl & bits::kEN)) return TimerClockUse::Restart;
+      return acc < pre ? TimerClockUse::Advance : TimerClockUse::None;
+    case Op::TOF:
+      if (rung || first_pass) return TimerClockUse::None;
+      if (ctl & bits::kEN) return TimerClockUse::Restart;
+      return (ctl & bits::kTT) ? TimerClockUse::Advance : TimerClockUse::None;
+    default: return TimerClockUse::None;
+  }
+}
+
+// One execution of TON, TOF or RTO as a probe records it (Runtime::probe_and_repeat): the element's
+// control word (its index in the table), the control word and ACC as the instruction found them, the
+// rung, the header flags (kFlagA the 1.0 s base, kFlagB the 0.001 s base) and the virtual time at
+// which it read the tick.
+struct TimerExecution {
+  VirtualTime at = 0;
+  std::uint32_t word = 0;
+  std::uint32_t flags = 0;
+  std::uint16_t control = 0;
+  std::int16_t acc = 0;
+  std::int16_t pre = 0;
+  Op op = Op::TON;
+  bool rung = false;
+};
+
+// Records the execution of timer `op` on the element at word `word` of table `w`, before it runs.
+[[gnu::noinline, gnu::cold]] inline void record_timer(std::vector<TimerExecution>& v, Op op, const std::uint16_t* w,
+                                                      std::uint32_t word, bool rung, VirtualTime at,
+                                                      std::uint32_t flags) {
+  v.push_back({at, word, flags, w[word], static_cast<std::int16_t>(w[word + 2]), static_cast<std::int16_t>(w[word + 1]),
+               op, rung});
 }
 
 // CTU or CTD on element c. RM 2-14: count on a false-to-true transition only (CU/CD remember the

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "vm_test_util.h"
+#include "vm/word_ops.h"
 
 namespace softslc::test {
 namespace {
@@ -263,6 +264,60 @@ TEST(Timers, TimerSkippedLongerThanTheStampRangeLosesTime) {
   // About 301 ticks passed; modulo 256 the timer sees about 45.
   EXPECT_GE(gained, 43);
   EXPECT_LE(gained, 48);
+}
+
+// word_ops::timer_clock_use says, for every input of word_ops::timer, whether the execution reads the
+// tick and how: the repeats across ticks carry a timer only when its execution in the probe advanced
+// it (docs/semantics.md "Timers accumulating across ticks"). Checked against timer() itself on every
+// combination of EN/TT/DN, stamps, ACC against PRE, rung and first pass, at ticks around the stamp:
+// None gives the same words at every tick; Restart puts the tick in the stamp and gives the same ACC
+// at every tick; Advance adds the ticks since the stamp (the whole seconds of them for the 1.0 s
+// base, the rest kept in the stamp) to ACC, up to PRE.
+TEST(Timers, ClockUseFollowsTheTimersBranches) {
+  constexpr std::array<std::pair<int, int>, 5> kAccPre = {{{0, 5}, {4, 5}, {5, 5}, {7, 5}, {0, 300}}};
+  int advances = 0, restarts = 0, nones = 0;
+  for (const Op op : {Op::TON, Op::TOF, Op::RTO})
+    for (unsigned status = 0; status < 8; ++status)
+      for (const int stamp : {0, 37, 250})
+        for (const auto& [acc, pre] : kAccPre)
+          for (const bool rung : {false, true})
+            for (const bool first_pass : {false, true})
+              for (const bool base1s : {false, true}) {
+                const auto ctl = static_cast<std::uint16_t>((status << 13) | stamp);
+                const word_ops::TimerClockUse use = word_ops::timer_clock_use(op, ctl, acc, pre, rung, first_pass);
+                std::vector<std::array<std::uint16_t, 3>> results;
+                for (const int later : {0, 1, 99, 100, 150, 255}) {
+                  std::array<std::uint16_t, 3> t = {ctl, static_cast<std::uint16_t>(pre),
+                                                    static_cast<std::uint16_t>(acc)};
+                  const auto now8 = static_cast<std::uint8_t>(stamp + later);
+                  word_ops::timer(op, t.data(), rung, first_pass, now8, base1s);
+                  const std::string what = std::string(mnemonic(op)) + " status " + std::to_string(status) + " stamp " +
+                                           std::to_string(stamp) + " acc " + std::to_string(acc) + " rung " +
+                                           std::to_string(rung) + " first " + std::to_string(first_pass) + " 1s " +
+                                           std::to_string(base1s) + " later " + std::to_string(later);
+                  if (use == word_ops::TimerClockUse::Restart) {
+                    EXPECT_EQ(t[0] & 0xFF, now8) << what;
+                  } else if (use == word_ops::TimerClockUse::Advance) {
+                    const int units = base1s ? later / 100 : later;
+                    EXPECT_EQ(static_cast<std::int16_t>(t[2]), std::min(pre, acc + units)) << what;
+                    EXPECT_EQ(t[0] & 0xFF, (stamp + (base1s ? units * 100 : later)) & 0xFF) << what;
+                  }
+                  results.push_back(t);
+                }
+                for (const auto& r : results) {
+                  if (use == word_ops::TimerClockUse::None) {
+                    EXPECT_EQ(r, results[0]) << mnemonic(op) << " status " << status << " rung " << rung;
+                  } else if (use == word_ops::TimerClockUse::Restart) {
+                    EXPECT_EQ(r[2], results[0][2]) << mnemonic(op) << " status " << status << " rung " << rung;
+                  }
+                }
+                advances += use == word_ops::TimerClockUse::Advance;
+                restarts += use == word_ops::TimerClockUse::Restart;
+                nones += use == word_ops::TimerClockUse::None;
+              }
+  EXPECT_GT(advances, 0);
+  EXPECT_GT(restarts, 0);
+  EXPECT_GT(nones, 0);
 }
 
 }  // namespace

@@ -449,19 +449,7 @@ void MessageNetwork::send_df1(std::size_t station, VirtualTime at, Message& m) {
   const int bytes = static_cast<int>(df1_frame(packet, port.config.error_check).size());
   const Df1Outcome o = df1_transfer(port, far, line_ok, at, bytes, df1_key(packet));
   for (VirtualTime when : o.deliveries) {
-    Frame req;
-    req.kind = FrameKind::Request;
-    req.from = station;
-    req.channel = 0;
-    req.reply_channel = m.in.channel;
-    req.serial = m.serial;
-    req.write = m.in.write;
-    req.cif = c.cif;
-    req.file = m.target_file;
-    req.type_code = m.type_code;
-    req.element = m.target_element;
-    req.words = m.words;
-    req.data = m.data;
+    Frame req = request_frame(station, m, 0);
     req.df1 = true;
     req.dst = c.dst;
     req.src = c.src;
@@ -552,6 +540,23 @@ void MessageNetwork::post(std::size_t to, VirtualTime arrival, Frame f) {
   stations_[to].inbox.emplace(std::pair{arrival, next_frame_++}, std::move(f));
 }
 
+MessageNetwork::Frame MessageNetwork::request_frame(std::size_t station, const Message& m, int channel) {
+  Frame req;
+  req.kind = FrameKind::Request;
+  req.from = station;
+  req.channel = channel;
+  req.reply_channel = m.in.channel;
+  req.serial = m.serial;
+  req.write = m.in.write;
+  req.cif = m.in.device == 1;
+  req.file = m.target_file;
+  req.type_code = m.type_code;
+  req.element = m.target_element;
+  req.words = m.words;
+  req.data = m.data;
+  return req;
+}
+
 void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
   m.sent = true;
   const MessageLink link = channel_link(station, m.in.channel);
@@ -580,20 +585,7 @@ void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
     post(station, ethernet ? at + msg::kConnectionTimeoutNs : at + d, std::move(f));
     return;
   }
-  Frame req;
-  req.kind = FrameKind::Request;
-  req.from = station;
-  req.channel = target->second;
-  req.reply_channel = m.in.channel;
-  req.serial = m.serial;
-  req.write = m.in.write;
-  req.cif = m.in.device == 1;
-  req.file = m.target_file;
-  req.type_code = m.type_code;
-  req.element = m.target_element;
-  req.words = m.words;
-  req.data = m.data;
-  post(target->first, at + d, std::move(req));
+  post(target->first, at + d, request_frame(station, m, target->second));
   // The link-level acknowledgement: ST "is set when the processor receives acknowledgment (ACK) from
   // the target device" (RM 12-29), here when the frame arrives.
   Frame ack;

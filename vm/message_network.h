@@ -318,6 +318,8 @@ class MessageNetwork {
   void finish(std::size_t station, Message& m, std::uint8_t error, std::uint16_t extra_bits = 0);
   void send(std::size_t station, VirtualTime at, Message& m);
   void send_df1(std::size_t station, VirtualTime at, Message& m);
+  // The request frame of `m` from `station`, arriving on the target's `channel`.
+  static Frame request_frame(std::size_t station, const Message& m, int channel);
   void reply_df1(std::size_t station, VirtualTime at, const Frame& request, Frame reply);
   // The far end of `station`'s DF1 port and whether it hears this end (cable connected, same baud and parity).
   Df1Port* df1_far(std::size_t station, bool* line_ok);

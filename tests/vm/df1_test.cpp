@@ -276,6 +276,22 @@ TEST(Df1Msg, AnSlcReadsAMicroLogixAndTheMicroLogixWritesTheSlc) {
   EXPECT_EQ(line.counter(*line.b, "sent"), 2);
 }
 
+TEST(Df1Msg, AMicroLogix1100ReadsAnSlcWithItsMgElement) {
+  // The MG form on channel 0 (1763-RM001B), target node 0: a full-duplex receiver ignores it (RM 13-49). Two
+  // words from N10:0 of file 10: the packet is again 12 bytes, 18 characters.
+  Df1Line line(ml("Bul.1763", "SOR XIC B3:0/0 MSG MG11:0 READ 500CPU LOCAL 0 N7:0 2 0 N10:0 5 EOR"), slc(""));
+  ASSERT_TRUE(line.b->set("N10:0", Value::of_int(5)));
+  ASSERT_TRUE(line.b->set("N10:1", Value::of_int(-6)));
+  const VirtualTime sent = line.start();
+  ASSERT_TRUE(line.until("MG11:0/ST", kNsPerS));
+  EXPECT_GE(line.a->now() - sent, chars(20, 19200));
+  EXPECT_LE(line.a->now() - sent, chars(20, 19200) + line.a->stats().max);
+  ASSERT_TRUE(line.until("MG11:0/DN", kNsPerS));
+  EXPECT_EQ(line.ai("MG11:0.ERR"), 0);
+  EXPECT_EQ(line.ai("N7:0"), 5);
+  EXPECT_EQ(line.ai("N7:1"), -6);
+}
+
 TEST(Df1Msg, StComesLaterAtALowerBaudRate) {
   // Both ends at 1200 baud: the command's 18 characters and the ACK take 166.67 ms.
   Df1Options slow;

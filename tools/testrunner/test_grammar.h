@@ -239,7 +239,7 @@ struct channel_line : seq<kw_channel, ws, must<channel_number>, ws, must<channel
 struct peer_node_part : seq<kw_node, ws, must<node_number>, opt<network_part>> {};
 struct peer_ip_part : seq<kw_ip, ws, must<ip_address>> {};
 struct peer_df1_part : df1_part {};
-struct peer_node : sor<peer_node_part, peer_ip_part, peer_df1_part> {};
+struct peer_node : sor<peer_node_part, peer_df1_part, peer_ip_part> {};
 struct peer_line : seq<kw_peer, ws, must<peer_name>, ws, must<peer_path>, ws, must<peer_node>> {};
 struct bench_line : seq<kw_bench, ws, must<bench_path>> {};
 

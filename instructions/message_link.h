@@ -19,16 +19,18 @@
 
 namespace softslc {
 
-enum class MessageLink : unsigned char { None, Dh485, DhPlus, Ethernet };
+enum class MessageLink : unsigned char { None, Dh485, DhPlus, Ethernet, Df1 };
 
 // The link `channel` of a processor of `family` is on (None: a channel softslc does not simulate
 // for MSG, or one the processor does not have).
 constexpr MessageLink message_link(ProcessorFamily family, int channel) {
   switch (family) {
     case ProcessorFamily::Slc502: return channel == 0 ? MessageLink::Dh485 : MessageLink::None;
-    case ProcessorFamily::Slc503: return channel == 1 ? MessageLink::Dh485 : MessageLink::None;
-    case ProcessorFamily::Slc504: return channel == 1 ? MessageLink::DhPlus : MessageLink::None;
-    case ProcessorFamily::Slc505: return channel == 1 ? MessageLink::Ethernet : MessageLink::None;
+    // Channel 0 of the 5/03-5/05, the RS-232 port: DF1 full-duplex, the only System-mode link softslc
+    // simulates there (a MSG on a channel 0 not configured for it ends with 12h at run time).
+    case ProcessorFamily::Slc503: return channel == 1 ? MessageLink::Dh485 : channel == 0 ? MessageLink::Df1 : MessageLink::None;
+    case ProcessorFamily::Slc504: return channel == 1 ? MessageLink::DhPlus : channel == 0 ? MessageLink::Df1 : MessageLink::None;
+    case ProcessorFamily::Slc505: return channel == 1 ? MessageLink::Ethernet : channel == 0 ? MessageLink::Df1 : MessageLink::None;
     // A MicroLogix's channel 0, its serial port, taken to be configured for DH-485 (network_link below).
     case ProcessorFamily::MicroLogix: return channel == 0 ? MessageLink::Dh485 : MessageLink::None;
     default: return MessageLink::None;
@@ -69,8 +71,10 @@ inline MessageLink station_link(const ProcessorModel& p, bool has_ip) {
 // The node addresses a MSG may name on a link. DH-485: "The node address range for all responders
 // is 1 to 31" and an SLC processor never has node 0 (RM 13-4). DH+: 0-77 octal (64 stations).
 // Ethernet has no node numbers: the target is the IP address string in the control block (RM 12-34).
+// DF1: station addresses 0-254 ("Source ID (Node Address) 0...254 decimal", 1766-RM001A p. 592); on a
+// full-duplex link the receiver ignores the destination (1747-RM001G p. 13-49).
 constexpr std::pair<int, int> message_node_range(MessageLink link) {
-  return link == MessageLink::Dh485 ? std::pair{1, 31} : std::pair{0, 63};
+  return link == MessageLink::Dh485 ? std::pair{1, 31} : link == MessageLink::Df1 ? std::pair{0, 254} : std::pair{0, 63};
 }
 
 // The link's data rate in bits per second and bits sent per byte: DH-485 19,200 baud with 11-bit
@@ -195,6 +199,7 @@ constexpr std::string_view to_string(MessageLink link) {
     case MessageLink::Dh485: return "DH-485";
     case MessageLink::DhPlus: return "DH+";
     case MessageLink::Ethernet: return "Ethernet";
+    case MessageLink::Df1: return "DF1 full-duplex";
     case MessageLink::None: break;
   }
   return "none";

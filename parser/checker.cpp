@@ -1006,9 +1006,8 @@ class Checker {
     const int channel = slc502 ? 0 : static_cast<int>(ops[5].integer);
     const MessageLink link = message_link(proc.family, channel);
     if (link == MessageLink::None)
-      return error(ops[5].pos, "MSG on channel 0 (the RS-232 port: DF1, DH-485 through an isolator, Modbus RTU or "
-                               "ASCII, 1747-RM001G p. 12-14) is not simulated by softslc; channel 1 is the " +
-                                   std::string(proc.display_name) + "'s network port");
+      return error(ops[5].pos, "MSG on channel " + std::to_string(channel) + ": the " + std::string(proc.display_name) +
+                                   " has no such channel (1747-RM001G p. 12-14)");
     const bool ethernet = link == MessageLink::Ethernet;
     const bool ml1000 = proc.micrologix == MicroLogixModel::ML1000;
     const std::string dev = device.kind == Operand::Kind::Symbol ? device.spelling : "";
@@ -1020,6 +1019,13 @@ class Checker {
     if (dev == "PLC5" && link == MessageLink::Dh485)
       return error(device.pos, "MSG PLC5 on DH-485: a PLC-5 is on DH+ or Ethernet; the " + proc.display_name +
                                    "'s DH-485 channel sends 500CPU and 485CIF messages (docs/semantics.md \"MSG\")");
+    // Channel 0 of the 5/03-5/05 is DF1 full-duplex when a MSG uses it (the only System-mode link softslc
+    // simulates there; docs/semantics.md "DF1 full-duplex on channel 0"): its far end is an SLC or a
+    // MicroLogix, and the PLC-5 typed commands' packets are not built.
+    if (dev == "PLC5" && link == MessageLink::Df1)
+      return error(device.pos, "MSG PLC5 on channel 0 (DF1 full-duplex): softslc's DF1 peers are SLC and MicroLogix "
+                               "controllers, reached with 500CPU or 485CIF; the PLC-5 typed read and write are not "
+                               "simulated (docs/semantics.md \"DF1 full-duplex on channel 0\")");
     // The control block: 7 words (SLC 5/02), 14 (DH-485, DH+) or 51 (the SLC 5/05's Ethernet channel, RM
     // 12-34 table 12.14) of one N file.
     const int blen = static_cast<int>(block_length.integer);
@@ -1039,15 +1045,24 @@ class Checker {
                                                             : " (1747-RM001G p. 12-31)"));
     }
     if (node.kind == Operand::Kind::Integer) {
-      const auto [lo, hi] = message_node_range(link);
+      // A MicroLogix's channel 0 is DH-485 or DF1 full-duplex by its channel configuration, which is not in
+      // the program: its node is a DF1 station address, 0-254, and on DH-485 a node above 31 ends the
+      // message at run time (16h; the 1000: no response, 07h).
+      const auto [lo, hi] = proc.is_micrologix() && channel == 0 ? message_node_range(MessageLink::Df1)
+                                                                 : message_node_range(link);
       if (ethernet && node.integer != 0)
         error(node.pos, "MSG on Ethernet has no target node: the target is the IP address string in words 14-34 of "
                         "the control block (1747-RM001G p. 12-34 table 12.14); write 0 for the node");
       else if (!ethernet && (node.integer < lo || node.integer > hi))
         error(node.pos, "MSG target node " + node.text() + " is out of range " + std::to_string(lo) + "-" +
                             std::to_string(hi) + " for " + std::string(to_string(link)) +
-                            (link == MessageLink::Dh485 ? " (1747-RM001G p. 13-4: responders 1-31; node 0 is a "
-                                                          "programming device)"
+                            (proc.is_micrologix() && channel == 0
+                                 ? " on channel 0 (DF1 station addresses 0-254, 1766-RM001A p. 592; DH-485 "
+                                   "responders are 1-31)"
+                             : link == MessageLink::Dh485 ? " (1747-RM001G p. 13-4: responders 1-31; node 0 is a "
+                                                            "programming device)"
+                             : link == MessageLink::Df1 ? " (DF1 station addresses 0-254; the receiver ignores the "
+                                                          "destination, 1747-RM001G p. 13-49)"
                                                         : " (DH+ node addresses 0-77 octal)"));
     }
     if (block.is_address() && block.address.element + blen > 256)
@@ -1162,13 +1177,21 @@ class Checker {
     const std::string dev = device.kind == Operand::Kind::Symbol ? device.spelling : "";
     if (dev == "PLC5")
       return error(device.pos, "MSG PLC5 on DH-485: a PLC-5 is on DH+ or Ethernet; the " + proc.display_name +
-                                   "'s channel " + port + " on the simulated DH-485 link sends 500CPU and 485CIF messages "
-                                   "(docs/semantics.md \"MSG\")");
+                                   "'s channel " + port + " on the simulated DH-485 link sends 500CPU and 485CIF messages, "
+                                   "as on a DF1 full-duplex channel 0, whose simulated peers are SLC and MicroLogix "
+                                   "controllers (docs/semantics.md \"MSG\")");
     if (node.kind == Operand::Kind::Integer) {
-      const auto [lo, hi] = message_node_range(MessageLink::Dh485);
+      // Channel 0 is DH-485 or DF1 full-duplex by the channel configuration, which is not in the program: a DF1
+      // station address, 0-254 (1766-RM001A p. 592); on DH-485 a node above 31 ends the message with 16h at run
+      // time. The 1764-LRP's channel 1 is DH-485 only.
+      const bool serial0 = port == "0";
+      const auto [lo, hi] = message_node_range(serial0 ? MessageLink::Df1 : MessageLink::Dh485);
       if (node.integer < lo || node.integer > hi)
         error(node.pos, "MSG target node " + node.text() + " is out of range " + std::to_string(lo) + "-" +
-                            std::to_string(hi) + " for DH-485 (1747-RM001G p. 13-4: responders 1-31)");
+                            std::to_string(hi) +
+                            (serial0 ? " on channel 0 (DF1 station addresses 0-254, 1766-RM001A p. 592; DH-485 "
+                                       "responders are 1-31)"
+                                     : " for DH-485 (1747-RM001G p. 13-4: responders 1-31)"));
     }
     claim_message_element(element);
     const Operand& data = ops[5];

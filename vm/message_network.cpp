@@ -120,6 +120,12 @@ int MessageNetwork::network_channel(std::size_t station) const {
 }
 
 MessageLink MessageNetwork::channel_link(std::size_t station, int channel) const {
+  if (channel == 0 && stations_[station].df1) return MessageLink::Df1;
+  // The SLC 5/03-5/05's channel 0 sends MSG only as a DF1 port (docs/semantics.md "DF1 full-duplex on channel 0").
+  const ProcessorFamily family = stations_[station].rt->compiled().processor.family;
+  if (channel == 0 && (family == ProcessorFamily::Slc503 || family == ProcessorFamily::Slc504 ||
+                       family == ProcessorFamily::Slc505))
+    return MessageLink::None;
   if (channel == network_channel(station) || stations_[station].port_node[static_cast<std::size_t>(channel & 1)] >= 0)
     return link_;
   // The 1764-LRP's channel 1 is a serial port like its channel 0 (DH-485 in softslc), here on no network.
@@ -197,6 +203,10 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& instru
   m.in = in;
   m.started = in.at;
   const MessageLink link = channel_link(station, in.channel);
+  // An SLC 5/03-5/05 channel 0 that is not configured for DF1 full-duplex: "12H Local channel configuration
+  // protocol error exists" (1747-RM001G p. 12-41 table 12.17; decision, docs/semantics.md "DF1 full-duplex
+  // on channel 0").
+  if (link == MessageLink::None && bad_channel == 0) bad_channel = modbus::kChannelProtocol;
   if (in.micrologix) {
     // The MG element's setup (1762-RM001C p. 21-4): NOD, the target file type (word 12), TFN, ELE, MTO in
     // whole seconds, 0 = no timeout (p. 21-12). The MicroLogix 1400's channel 1 timeout is not the MSG's:
@@ -377,15 +387,180 @@ void MessageNetwork::finish(std::size_t station, Message& m, std::uint8_t error,
   remove(station, m.serial);
 }
 
+// ---- DF1 full-duplex on channel 0 ----------------------------------------------------------------------------
+
+void MessageNetwork::attach_df1(std::size_t station, const Df1Config& config) {
+  Station& s = stations_[station];
+  s.df1.emplace();
+  s.df1->config = config;
+  // A channel 0 that is a DF1 port is on no DH-485 network (a MicroLogix's, a 5/02 has none).
+  s.port_node[0] = -1;
+}
+
+void MessageNetwork::join_df1(std::size_t a, std::size_t b) {
+  stations_[a].df1_partner = b;
+  stations_[b].df1_partner = a;
+}
+
+void MessageNetwork::leave_network(std::size_t station) {
+  stations_[station].port_node[static_cast<std::size_t>(network_channel(station) & 1)] = -1;
+}
+
+const Df1Port* MessageNetwork::df1_port(std::size_t station) const {
+  return stations_[station].df1 ? &*stations_[station].df1 : nullptr;
+}
+
+Df1Port* MessageNetwork::df1_far(std::size_t station, bool* line_ok) {
+  const Station& s = stations_[station];
+  Df1Port* far = s.df1_partner && stations_[*s.df1_partner].df1 ? &*stations_[*s.df1_partner].df1 : nullptr;
+  // A receiver at another baud rate or parity assembles no frame from what arrives (decision [U],
+  // docs/semantics.md "DF1 full-duplex on channel 0"): it neither ACKs nor NAKs, as an open cable.
+  *line_ok = far && s.df1_cable && far->config.baud == s.df1->config.baud &&
+             far->config.parity_even == s.df1->config.parity_even;
+  return far;
+}
+
+namespace {
+// Duplicate detection compares the packet's source, command and transaction number with the last packet
+// taken (1770-6.5.16 ch. 4 [U]).
+std::uint32_t df1_key(const std::vector<std::uint8_t>& packet) {
+  return (static_cast<std::uint32_t>(packet[1]) << 24) | (static_cast<std::uint32_t>(packet[2]) << 16) |
+         static_cast<std::uint32_t>(packet[4]) | (static_cast<std::uint32_t>(packet[5]) << 8);
+}
+}  // namespace
+
+void MessageNetwork::send_df1(std::size_t station, VirtualTime at, Message& m) {
+  Station& s = stations_[station];
+  Df1Port& port = *s.df1;
+  bool line_ok = false;
+  Df1Port* far = df1_far(station, &line_ok);
+  Df1Command c;
+  c.dst = m.target_node;
+  c.src = s.node & 0xFF;
+  c.tns = port.next_tns++;
+  c.write = m.in.write;
+  c.cif = m.in.device == 1;
+  c.file = m.target_file;
+  c.type_code = m.type_code;
+  c.element = m.target_element;
+  c.words = m.words;
+  c.data = m.data;
+  const std::vector<std::uint8_t> packet = df1_command_packet(c);
+  const int bytes = static_cast<int>(df1_frame(packet, port.config.error_check).size());
+  const Df1Outcome o = df1_transfer(port, far, line_ok, at, bytes, df1_key(packet));
+  for (VirtualTime when : o.deliveries) {
+    Frame req = request_frame(station, m, 0);
+    req.df1 = true;
+    req.dst = c.dst;
+    req.src = c.src;
+    req.tns = c.tns;
+    post(*s.df1_partner, when, std::move(req));
+  }
+  Frame f;
+  f.channel = m.in.channel;
+  f.serial = m.serial;
+  if (o.acked) {
+    // ST "is set when the processor receives acknowledgment (ACK) from the target device" (RM 12-29).
+    f.kind = FrameKind::Ack;
+  } else {
+    // NAK retries or ENQ retries used up: "07H Target node does not respond" (RM 12-41 table 12.17;
+    // decision [U], docs/semantics.md "DF1 full-duplex on channel 0").
+    f.kind = FrameKind::NoAck;
+    f.error = msg::kNoResponse;
+  }
+  post(station, o.done, std::move(f));
+}
+
+void MessageNetwork::reply_df1(std::size_t station, VirtualTime at, const Frame& req, Frame reply) {
+  Station& s = stations_[station];
+  if (!s.df1) return;
+  Df1Port& port = *s.df1;
+  bool line_ok = false;
+  Df1Port* far = df1_far(station, &line_ok);
+  Df1Command c;
+  c.dst = req.dst;
+  c.src = req.src;
+  c.tns = req.tns;
+  c.write = req.write;
+  c.cif = req.cif;
+  // The reply's STS carries the error; the codes E0h and above travel as STS F0h with an EXT STS byte.
+  std::vector<std::uint8_t> packet =
+      df1_reply_packet(c, reply.error >= 0xE0 ? 0xF0 : reply.error, reply.data);
+  if (reply.error >= 0xE0) packet.push_back(static_cast<std::uint8_t>(reply.error & 0x0F));
+  const int bytes = static_cast<int>(df1_frame(packet, port.config.error_check).size());
+  // A reply the link fails to deliver leaves the message to its timer (37h), or waiting when it has none
+  // (RM 12-14: "a message that has been acknowledged waits indefinitely for a reply").
+  const Df1Outcome o = df1_transfer(port, far, line_ok, at, bytes, df1_key(packet));
+  for (VirtualTime when : o.deliveries) post(req.from, when, reply);
+}
+
+std::string MessageNetwork::df1_inject(std::size_t station, std::string_view change, const std::vector<std::string>& args) {
+  Station& s = stations_[station];
+  if (!s.df1) return "channel 0 is not configured for DF1 full-duplex";
+  auto set_cable = [&](bool on) {
+    s.df1_cable = on;
+    if (s.df1_partner) stations_[*s.df1_partner].df1_cable = on;
+  };
+  if ((change == "cable removed" || change == "cable connected") && args.empty()) {
+    set_cable(change == "cable connected");
+    return {};
+  }
+  if (change == "corrupt" && args.size() == 1) {
+    const std::string& n = args[0];
+    if (n.empty() || n.size() > 3 || n.find_first_not_of("0123456789") != std::string::npos)
+      return "corrupt takes the number of frames (0-999) whose check the noise breaks, not '" + n + "'";
+    s.df1->corrupt_frames = std::stoi(n);
+    return {};
+  }
+  if (change == "lose ack" && args.empty()) {
+    s.df1->lose_ack = true;
+    return {};
+  }
+  if (change == "normal" && args.empty()) {
+    set_cable(true);
+    s.df1->corrupt_frames = 0;
+    s.df1->lose_ack = false;
+    return {};
+  }
+  return "the DF1 link takes 'cable removed', 'cable connected', 'corrupt N' (the next N frames this controller "
+         "sends arrive with a bad BCC/CRC), 'lose ack' (the next ACK it receives is destroyed) or 'normal'";
+}
+
+std::optional<std::int64_t> MessageNetwork::df1_observe(std::size_t station, std::string_view what,
+                                                        VirtualTime now) const {
+  const Station& s = stations_[station];
+  const std::optional<Df1Count> c = df1_count_named(what);
+  if (!s.df1 || !c) return std::nullopt;
+  return s.df1->counters.at(*c, now);
+}
+
 // ---- Servicing ---------------------------------------------------------------------------------------------
 
 void MessageNetwork::post(std::size_t to, VirtualTime arrival, Frame f) {
   stations_[to].inbox.emplace(std::pair{arrival, next_frame_++}, std::move(f));
 }
 
+MessageNetwork::Frame MessageNetwork::request_frame(std::size_t station, const Message& m, int channel) {
+  Frame req;
+  req.kind = FrameKind::Request;
+  req.from = station;
+  req.channel = channel;
+  req.reply_channel = m.in.channel;
+  req.serial = m.serial;
+  req.write = m.in.write;
+  req.cif = m.in.device == 1;
+  req.file = m.target_file;
+  req.type_code = m.type_code;
+  req.element = m.target_element;
+  req.words = m.words;
+  req.data = m.data;
+  return req;
+}
+
 void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
   m.sent = true;
   const MessageLink link = channel_link(station, m.in.channel);
+  if (link == MessageLink::Df1) return send_df1(station, at, m);
   const Nanoseconds d = message_frame_time(link, m.in.write ? 2 * m.words : 0);
   const bool ethernet = link == MessageLink::Ethernet;
   // A MicroLogix's channel off this network reaches nobody (a serial port no other station is on). On
@@ -410,20 +585,7 @@ void MessageNetwork::send(std::size_t station, VirtualTime at, Message& m) {
     post(station, ethernet ? at + msg::kConnectionTimeoutNs : at + d, std::move(f));
     return;
   }
-  Frame req;
-  req.kind = FrameKind::Request;
-  req.from = station;
-  req.channel = target->second;
-  req.reply_channel = m.in.channel;
-  req.serial = m.serial;
-  req.write = m.in.write;
-  req.cif = m.in.device == 1;
-  req.file = m.target_file;
-  req.type_code = m.type_code;
-  req.element = m.target_element;
-  req.words = m.words;
-  req.data = m.data;
-  post(target->first, at + d, std::move(req));
+  post(target->first, at + d, request_frame(station, m, target->second));
   // The link-level acknowledgement: ST "is set when the processor receives acknowledgment (ACK) from
   // the target device" (RM 12-29), here when the frame arrives.
   Frame ack;
@@ -477,6 +639,7 @@ void MessageNetwork::answer(std::size_t station, VirtualTime at, const Frame& re
       for (int i = 0; i < req.words; ++i) reply.data[static_cast<std::size_t>(i)] = word(station, first + static_cast<std::uint32_t>(i));
     }
   }
+  if (req.df1) return reply_df1(station, at, req, std::move(reply));
   const Nanoseconds d = message_frame_time(link_, static_cast<int>(2 * reply.data.size()));
   post(req.from, at + d, std::move(reply));
 }

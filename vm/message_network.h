@@ -32,6 +32,13 @@
 // scan sees the frames sent up to the start of that scan by stations the lockstep has already run;
 // docs/semantics.md "MSG".) Nothing is dropped: every queue is bounded by the processor's own
 // limits (14 messages a channel, the MSG's WQ bit beyond), and frames in flight by them.
+//
+// DF1 full-duplex (vm/df1_link.h): a station's channel 0 may instead be a DF1 port joined point to point to
+// another station's (the leader and one peer). A message there is handed to the port's transmitter at the
+// servicing point that sends it; the link's exchange (frames, ACK/NAK, ENQ, retries, duplicates) is computed
+// at once, and what it leads to is posted as the timed frames above: the ACK (ST), each packet the far end's
+// sink takes (a Request; a reply is its own transfer back), or the failure (07h). The far end answers the
+// command at its servicing points with the same code as on the other links.
 #pragma once
 
 #include <array>
@@ -45,6 +52,7 @@
 
 #include "instructions/message_link.h"
 #include "parser/address.h"
+#include "vm/df1_link.h"
 #include "vm/virtual_time.h"
 
 namespace softslc {
@@ -203,6 +211,18 @@ class MessageNetwork {
   // The station with a channel at `node` on `segment` (a DH-485 or DH+ network), if any.
   std::optional<std::size_t> station_on(int segment, int node) const;
 
+  // DF1 full-duplex on channel 0 of `station` (vm/df1_link.h): the port, with its configuration; such a
+  // channel is on no DH-485 network. join_df1 joins two ports by the cable (`device DF1 cable removed` opens it).
+  void attach_df1(std::size_t station, const Df1Config& config);
+  void join_df1(std::size_t a, std::size_t b);
+  // Takes the station's network channel off the network (a peer reached only through its DF1 port).
+  void leave_network(std::size_t station);
+  const Df1Port* df1_port(std::size_t station) const;
+  // `device DF1 CHANGE` on the station's port (docs/testing.md "DF1 full-duplex"): "" or why it is refused.
+  std::string df1_inject(std::size_t station, std::string_view change, const std::vector<std::string>& args);
+  // The port's diagnostic counter `what` (df1_count_named) at `now`.
+  std::optional<std::int64_t> df1_observe(std::size_t station, std::string_view what, VirtualTime now) const;
+
   MessageLink link() const { return link_; }
   std::size_t size() const { return stations_.size(); }
   Runtime& runtime(std::size_t station) const { return *stations_[station].rt; }
@@ -262,6 +282,10 @@ class MessageNetwork {
     int words = 0;
     std::uint8_t error = 0;            // Reply, NoAck: 0 or the MSG error code
     std::vector<std::uint16_t> data;   // a write's data, a read's reply data
+    // A Request that came over DF1: the reply goes back over the link, with these header fields.
+    bool df1 = false;
+    int dst = 0, src = 0;
+    std::uint16_t tns = 0;
   };
   struct Station {
     Runtime* rt = nullptr;
@@ -276,6 +300,11 @@ class MessageNetwork {
     std::array<int, 2> port_segment{0, 0};
     std::map<std::pair<VirtualTime, std::uint64_t>, Frame> inbox;  // by (arrival, sequence)
     std::optional<VirtualTime> service_due;
+    // Channel 0 as a DF1 full-duplex port, the station at the cable's other end, and whether the cable is
+    // connected (kept the same at both ends).
+    std::optional<Df1Port> df1;
+    std::optional<std::size_t> df1_partner;
+    bool df1_cable = true;
   };
 
   // How many messages the channel's buffers take: four, or one while the 5/02's message is at the
@@ -288,6 +317,12 @@ class MessageNetwork {
   void answer(std::size_t station, VirtualTime at, const Frame& request);
   void finish(std::size_t station, Message& m, std::uint8_t error, std::uint16_t extra_bits = 0);
   void send(std::size_t station, VirtualTime at, Message& m);
+  void send_df1(std::size_t station, VirtualTime at, Message& m);
+  // The request frame of `m` from `station`, arriving on the target's `channel`.
+  static Frame request_frame(std::size_t station, const Message& m, int channel);
+  void reply_df1(std::size_t station, VirtualTime at, const Frame& request, Frame reply);
+  // The far end of `station`'s DF1 port and whether it hears this end (cable connected, same baud and parity).
+  Df1Port* df1_far(std::size_t station, bool* line_ok);
   void post(std::size_t to, VirtualTime arrival, Frame f);
   void enter_buffer(std::size_t station, Message& m);
   Message* find(std::size_t station, std::uint64_t serial, int* channel = nullptr, bool* queued = nullptr);
@@ -306,7 +341,8 @@ class MessageNetwork {
   // The channel of `station` this network's link is on: 0 on the SLC 5/02 and on a MicroLogix on DH-485
   // (its serial port), 1 on the SLC 5/03-5/05 and on a MicroLogix 1100/1400 on Ethernet.
   int network_channel(std::size_t station) const;
-  // The link a message on `channel` of `station` travels: this network's on a channel that is on it; on
+  // The link a message on `channel` of `station` travels: DF1 on a channel 0 configured for it; None on
+  // an SLC 5/03-5/05's channel 0 that is not (its MSG ends with 12h); this network's on a channel that is on it; on
   // the other channel of a MicroLogix 1100/1400 (Ethernet when it is on DH-485, DH-485 when it is on
   // Ethernet) a link no other station is on (docs/semantics.md "The MicroLogix MSG on Ethernet"); on a
   // 1764-LRP's channel 1 given no network, DH-485 with no other station.

@@ -321,6 +321,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   const std::vector<PeerController> peers = std::move(options.peers);
   const int channel1_node = options.channel1_node;
   const std::string channel1_network = options.channel1_network;
+  const std::optional<Df1Options> channel0_df1 = options.channel0_df1;
   r.runtime.reset(new Runtime(std::move(compiled), std::move(options)));
   Runtime& rt = *r.runtime;
   RepeatFacts facts;
@@ -352,8 +353,8 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
     }
     rt.processes_.push_back(std::move(p));
   }
-  if (!peers.empty() || channel1_node != 0) {
-    if (std::string why = rt.join_peers(peers, channel1_node, channel1_network); !why.empty()) {
+  if (!peers.empty() || channel1_node != 0 || channel0_df1) {
+    if (std::string why = rt.join_peers(peers, channel1_node, channel1_network, channel0_df1); !why.empty()) {
       CompileError e;
       e.message = why;
       r.errors.push_back(std::move(e));
@@ -370,8 +371,21 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
 // too, at its own node, on this network or on a second one that the peers given its name are on
 // (`segment` 1; docs/semantics.md "Channel 1 of the 1500 LRP"): node numbers are unique per network.
 std::string Runtime::join_peers(const std::vector<PeerController>& peers, int channel1_node,
-                                const std::string& channel1_network) {
+                                const std::string& channel1_network, const std::optional<Df1Options>& channel0_df1) {
   const MessageLink link = station_link(program_->processor, ip_ != 0);
+  // Channel 0 as a DF1 full-duplex port (docs/semantics.md "DF1 full-duplex on channel 0"): a System-mode
+  // configuration, so not also the bench's User-mode (ASCII) device or a Modbus RTU master.
+  Df1Config df1;
+  if (channel0_df1) {
+    if (std::string why = df1_configure(program_->processor, *channel0_df1, df1); !why.empty()) return why;
+    if (modbus_channel_)
+      return "channel 0: it is a Modbus RTU master (the bench's modbus nodes) and cannot also be DF1 full-duplex";
+    if (ascii_channel_)
+      return "channel 0: it is in User mode (ASCII) with the bench's serial device and cannot also be DF1 full-duplex";
+  }
+  // A MicroLogix without an IP address meets the network through channel 0, its serial port: a DF1 port is
+  // on none (its node is its DF1 station address then, 0-254).
+  const bool df1_on_network_channel = channel0_df1 && link != MessageLink::Ethernet && program_->processor.is_micrologix();
   if (link == MessageLink::None)
     return "a MSG network needs SLC 500 or MicroLogix processors (DH-485, DH+ or Ethernet); " +
            program_->processor.display_name + " has none that softslc simulates for MSG";
@@ -385,7 +399,13 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers, int ch
              std::to_string(hi) + " on " + std::string(to_string(link));
     return {};
   };
-  if (auto e = node_error("this controller", node_); !e.empty()) return e;
+  if (df1_on_network_channel) {
+    if (node_ < 0 || node_ > 254)
+      return "this controller: node " + std::to_string(node_) + " is out of range 0-254 for a DF1 station address "
+             "(1766-RM001A p. 592)";
+  } else if (auto e = node_error("this controller", node_); !e.empty()) {
+    return e;
+  }
   if (!ethernet && ip_ != 0)
     return "this controller is on " + std::string(to_string(link)) + ", which names stations by node number: "
            "an IP address is for an SLC 5/05, or a MicroLogix 1100 or 1400 on its channel 1, on Ethernet";
@@ -397,6 +417,8 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers, int ch
            "DH-485 network; give it an IP address (ip A.B.C.D) to meet its peers on Ethernet, channel 1";
   auto net = std::make_unique<MessageNetwork>(link);
   net->attach(*this, node_, "", nullptr, ip_);
+  if (channel0_df1) net->attach_df1(0, df1);
+  bool df1_peer_joined = false;
   auto taken = [&](int segment, int node) -> std::string {
     const std::optional<std::size_t> i = net->station_on(segment, node);
     if (!i) return {};
@@ -416,6 +438,14 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers, int ch
   }
   for (const PeerController& p : peers) {
     if (!p.program) return "peer " + p.name + ": no program";
+    if (p.df1) {
+      if (std::string why = join_df1_peer(*net, p, channel0_df1.has_value(), df1_peer_joined); !why.empty()) return why;
+      df1_peer_joined = true;
+      continue;
+    }
+    if (df1_on_network_channel)
+      return "peer " + p.name + ": this controller's channel 0 is DF1 full-duplex (channel 0 df1), a point-to-point "
+             "link, so it is on no DH-485 network; join the peer by the cable ('peer NAME PATH df1')";
     // A peer on a named network is on the one the leader's channel 1 names; no other is reachable.
     if (!p.network.empty() && (channel1_node == 0 || p.network != channel1_network))
       return "peer " + p.name + ": network " + p.network + " is not one this controller is on (its channel 1 " +
@@ -462,6 +492,41 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers, int ch
   own_network_ = std::move(net);
   network_ = own_network_.get();
   station_ = 0;
+  return {};
+}
+
+// The peer at the other end of the leader's DF1 cable (docs/semantics.md "DF1 full-duplex on channel 0"):
+// one, with a DF1 channel 0 of its own (its options' configuration, or its processor's defaults), on no
+// other network.
+std::string Runtime::join_df1_peer(MessageNetwork& net, const PeerController& p, bool leader_df1, bool joined) {
+  if (!leader_df1)
+    return "peer " + p.name + ": joined by the DF1 cable, but this controller's channel 0 is not DF1 full-duplex "
+           "(add 'channel 0 df1')";
+  if (joined)
+    return "peer " + p.name + ": DF1 full-duplex is point to point (1747-RM001G p. 13-49): channel 0 already has "
+           "its peer at the cable's other end";
+  if (p.node < 0 || p.node > 254)
+    return "peer " + p.name + ": node " + std::to_string(p.node) + " is out of range 0-254 for a DF1 station address "
+           "(1766-RM001A p. 592)";
+  RuntimeOptions po = p.options ? *p.options : RuntimeOptions{};
+  po.peers.clear();
+  const std::optional<Df1Options> settings = po.channel0_df1;
+  po.channel0_df1.reset();  // the peer's port is attached to this network below, not to one of its own
+  po.node = p.node;
+  po.ip = 0;
+  RuntimeResult pr = Runtime::create(*p.program, std::move(po));
+  if (!pr.ok()) return "peer " + p.name + ": " + pr.render_errors();
+  Df1Config config;
+  if (std::string why = df1_configure(pr.runtime->program_->processor, settings.value_or(Df1Options{}), config);
+      !why.empty())
+    return "peer " + p.name + ": " + why;
+  Runtime& peer = *pr.runtime;
+  const std::size_t station = net.attach(peer, p.node, p.name, std::move(pr.runtime), 0, 0);
+  net.leave_network(station);
+  net.attach_df1(station, config);
+  net.join_df1(0, station);
+  peer.network_ = &net;
+  peer.station_ = station;
   return {};
 }
 
@@ -1568,6 +1633,12 @@ RuntimeStatus Runtime::inject(std::string_view device, std::string_view fault, s
     if (st.kind == DeviceStatus::Kind::Refused)
       return RuntimeStatus::failure("device " + f.device + ": " + st.message);
   }
+  // The DF1 link on channel 0: its cable and the noise on it (docs/testing.md "DF1 full-duplex").
+  if (f.device == kDf1DeviceName && network_ && network_->df1_port(station_)) {
+    if (std::string why = network_->df1_inject(station_, f.fault, f.args); !why.empty())
+      return RuntimeStatus::failure("device " + f.device + ": " + why);
+    return {};
+  }
   return RuntimeStatus::failure("no simulated field device is named '" + f.device + "'");
 }
 
@@ -1604,6 +1675,8 @@ std::optional<std::vector<std::int64_t>> Runtime::observe(std::string_view devic
     if (auto v = p->observe(device, what)) return v;
   if (modbus_channel_)
     if (auto v = modbus_channel_->observe(device, what)) return v;
+  if (device == kDf1DeviceName && network_ && network_->df1_port(station_))
+    if (auto v = network_->df1_observe(station_, what, clock_.now())) return std::vector<std::int64_t>{*v};
   if (ascii_channel_ && ascii_channel_->device().name() == device) {
     // The channel's own counts, then what the device offers.
     if (what == "buffered") return std::vector<std::int64_t>{static_cast<std::int64_t>(ascii_channel_->buffered())};
@@ -1622,6 +1695,7 @@ std::vector<std::string> Runtime::devices() const {
   if (ascii_channel_) out.push_back(ascii_channel_->device().name());
   if (modbus_channel_)
     for (auto& n : modbus_channel_->device_names()) out.push_back(std::move(n));
+  if (network_ && network_->df1_port(station_)) out.emplace_back(kDf1DeviceName);
   // The inputs of the MicroLogix high-speed counters, which need no bench (vm/ml_hsc.h).
   for (int c = 0; c < interp_->hsc().counters(); ++c) out.push_back("HSC" + std::to_string(c));
   return out;

@@ -61,6 +61,9 @@ using ModuleFactory = std::function<std::unique_ptr<Module>(const SlotConfig&)>;
 
 struct PeerController;
 
+// The bench device that is channel 0's DF1 link (`device DF1 cable removed`, `expect device DF1 sent == 4`).
+inline constexpr std::string_view kDf1DeviceName = "DF1";
+
 struct RuntimeOptions {
   std::optional<ProcessorModel> processor;         // overrides the program's START line
   std::shared_ptr<const ScanTimeModel> time_model;  // default: DefaultScanTimeModel
@@ -89,6 +92,10 @@ struct RuntimeOptions {
   // stations are the peers given that name (PeerController::network).
   int channel1_node = 0;
   std::string channel1_network;
+  // Channel 0 in System mode as DF1 full-duplex (vm/df1_link.h; docs/semantics.md "DF1 full-duplex on
+  // channel 0"): its settings, each one left unset the processor's default. Empty: channel 0 is not so
+  // configured (an SLC 5/03-5/05's channel 0 MSG then ends with 12h; a MicroLogix's channel 0 is on DH-485).
+  std::optional<Df1Options> channel0_df1;
   std::vector<PeerController> peers;
 };
 
@@ -101,6 +108,10 @@ struct PeerController {
   // The network the peer is on: "" the leader's, a name one the leader's channel 1 names (a 1764-LRP's
   // second serial port, RuntimeOptions::channel1_network). Node numbers are unique per network.
   std::string network;
+  // Joined point to point to the leader's DF1 channel 0 by the cable (a null-modem cable) instead of being on
+  // the network: the peer's own channel 0 is DF1 full-duplex, configured by its options' channel0_df1 (unset:
+  // its processor's defaults). The leader needs channel0_df1; one such peer at most.
+  bool df1 = false;
   std::shared_ptr<const Program> program;
   std::shared_ptr<const RuntimeOptions> options;
 };
@@ -327,7 +338,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void service_communications(std::uint16_t channels, VirtualTime at) override;
   MessageNetwork& network();
   std::string join_peers(const std::vector<PeerController>& peers, int channel1_node,
-                         const std::string& channel1_network);
+                         const std::string& channel1_network, const std::optional<Df1Options>& channel0_df1);
+  std::string join_df1_peer(MessageNetwork& net, const PeerController& p, bool leader_df1, bool joined);
 
   std::unique_ptr<CompiledProgram> program_;
   std::shared_ptr<const ScanTimeModel> model_;

@@ -79,9 +79,10 @@ TEST(MicroLogix1000Msg, CheckRefusesWhatTheMl1000DoesNotHave) {
       {"SOR MSG READ PLC5 N7:50 7 N7:0 5 2 N10:0 EOR", "MSG PLC5: the MicroLogix 1000's command types are SLC500/ML1000"},
       // 1761-6.3 p. 13-13: the control block is 7 words.
       {"SOR MSG READ 500CPU N7:50 14 N7:0 5 2 N10:0 EOR", "1761-6.3 p. 13-13: \"Control Block Length 7\""},
-      // DH-485 responders are nodes 1-31.
-      {"SOR MSG READ 500CPU N7:50 7 N7:0 5 32 N10:0 EOR", "target node 32 is out of range 1-31"},
-      {"SOR MSG READ 500CPU N7:50 7 N7:0 5 0 N10:0 EOR", "target node 0 is out of range 1-31"},
+      // Channel 0 is DH-485 or DF1 full-duplex by its configuration, not in the program: DF1 station addresses
+      // are 0-254 (AG-UM008C p. 6-14 table 6.2: "Valid range is 0 to 254"); on DH-485 a node above 31 does not
+      // respond (07h at run time, df1_test.cpp).
+      {"SOR MSG READ 500CPU N7:50 7 N7:0 5 255 N10:0 EOR", "target node 255 is out of range 0-254"},
       // The control block is an integer file element, and one per MSG.
       {"SOR MSG READ 500CPU B3:0 7 N7:0 5 2 N10:0 EOR", "expected an integer file element such as N9:0"},
       {"SOR MSG READ 500CPU N7:50 7 N7:0 5 2 N10:0 EOR\nSOR MSG WRITE 500CPU N7:53 7 N7:0 5 2 N10:0 EOR",

@@ -105,8 +105,9 @@ TEST(MicroLogixMsg, CheckRefusesWhatTheChannelCannotSend) {
       {"Bul.1762", "SOR MSG MG11:0 READ 500CPU LOCAL 0 N7:250 10 2 N10:0 5 EOR", "runs past the end of the file"},
       {"Bul.1762", "SOR MSG MG11:0 READ 500CPU LOCAL 0 N7:0 5 2 F8:0 5 EOR", "is not of the local data's file type"},
       {"Bul.1766", "SOR MSG MG11:0 READ 500CPU LOCAL 0 L9:0 5 2 L9:0 5 EOR", "MSG of L (long word) elements is not simulated"},
-      // DH-485 responders are nodes 1-31 (1747-RM001G p. 13-4).
-      {"Bul.1763", "SOR MSG MG11:0 READ 500CPU LOCAL 0 N7:0 5 32 N10:0 5 EOR", "target node 32 is out of range 1-31"},
+      // Channel 0 is DH-485 or DF1 full-duplex by its configuration, not in the program: a DF1 station address,
+      // 0-254 (1766-RM001A p. 592); on DH-485 a node above 31 ends with 16h at run time (df1_test.cpp).
+      {"Bul.1763", "SOR MSG MG11:0 READ 500CPU LOCAL 0 N7:0 5 255 N10:0 5 EOR", "target node 255 is out of range 0-254 on channel 0"},
       {"Bul.1763", "SOR MSG MG11:0 READ 500CPU REMOTE 0 N7:0 5 2 N10:0 5 EOR", "MSG REMOTE"},
       {"Bul.1763", "SOR MSG MG11:0 READ PLC5 LOCAL 0 N7:0 5 2 N10:0 5 EOR", "MSG PLC5 on DH-485"},
       // Channel 1: Ethernet on the 1100/1400, with an RI element where the node is (msg_ethernet_test.cpp),

@@ -89,7 +89,7 @@ TEST(PeerTests, AnLrpsChannel1IsOnTheNetworkItsLineNames) {
             "PASS t.test: t\n");
   // Channel 1 on the file's network: node 2 there is B too.
   EXPECT_EQ(run("program lrp.slc\nchannel 1 node 5\npeer B b.slc node 2\n", test), "PASS t.test: t\n");
-  EXPECT_THAT(run("program lrp.slc\nchannel 2 node 5\n", test), HasSubstr("t.test:2:9: error: only channel 1 has a 'channel' line"));
+  EXPECT_THAT(run("program lrp.slc\nchannel 2 node 5\n", test), HasSubstr("t.test:2:9: error: a 'channel' line is for channel 1"));
   EXPECT_THAT(run("program a.slc\nchannel 1 node 5\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("channel 1: a second serial port on DH-485 is the 1764-LRP's"));
   EXPECT_THAT(run("program a.slc\nchannel 1 node 5\n", "test \"t\"\n  scan 1\n"),
@@ -100,6 +100,45 @@ TEST(PeerTests, AnLrpsChannel1IsOnTheNetworkItsLineNames) {
               HasSubstr("peer B: network OTHER is not one this controller is on (its channel 1 is on network PANEL)"));
   EXPECT_THAT(run("program lrp.slc\nchannel 1 node 5 network PANEL\npeer B b.slc node 5 network PANEL\n", test),
               HasSubstr("peer B: node 5 is already this controller's on network PANEL"));
+}
+
+// DF1 full-duplex on channel 0 (docs/testing.md "DF1 full-duplex"): `channel 0 df1 [SETTING...]` and a peer
+// joined by the cable, `peer NAME PATH df1 [SETTING...]`; A reads B's N7:0 on channel 0. The settings are
+// checked at their column, the processor's ranges at load time (1766-RM001A p. 592).
+constexpr const char* kA0 =
+    "START 1747-L532\nLADDER 2 MAIN\n"
+    "SOR XIO N9:0/15 MSG READ 500CPU LOCAL N9:0 14 0 N10:0 1 2 N7:0 5 EOR\n";
+
+TEST(PeerTests, ADf1CableJoinsTheChannel0s) {
+  auto run = [](const std::string& head, const std::string& body) {
+    Sandbox box;
+    box.write("a0.slc", kA0);
+    box.write("b.slc", kB);
+    return box.run(head + body);
+  };
+  // A one-word read: 18 characters of command and 14 of reply at 19,200 baud, 10 bits a character: 16.67 ms
+  // plus the scans; at 2400 baud eight times the frames, 133.3 ms.
+  const std::string test = "test \"t\"\n  set B.SPEED = 77\n  run until N10:0 == 77 within 30ms\n"
+                           "  expect device DF1 sent == 1\n  expect device DF1 received == 1\n";
+  EXPECT_EQ(run("program a0.slc\nchannel 0 df1\npeer B b.slc df1\n", test), "PASS t.test: t\n");
+  const std::string slow = "test \"t\"\n  set B.SPEED = 77\n  run until N10:0 == 77 within 200ms\n"
+                           "  expect elapsed in 133ms..150ms\n";
+  EXPECT_EQ(run("program a0.slc\nchannel 0 df1 baud=2400\npeer B b.slc df1 baud=2400\n", slow), "PASS t.test: t\n");
+  // Breakage: the peer left at 19,200 hears nothing, and the read is not back in 200 ms.
+  EXPECT_THAT(run("program a0.slc\nchannel 0 df1 baud=2400\npeer B b.slc df1\n", slow), HasSubstr("FAIL"));
+  EXPECT_THAT(run("program a0.slc\nchannel 0 df1 baud=fast\n", test),
+              HasSubstr("t.test:2:15: error: df1: baud takes a whole number (baud=N), not 'fast'"));
+  EXPECT_THAT(run("program a0.slc\nchannel 0 df1 crc speed=3\n", test),
+              HasSubstr("t.test:2:19: error: df1: 'speed' is not a DF1 setting"));
+  EXPECT_THAT(run("program a0.slc\nchannel 0 node 3\n", test), HasSubstr("t.test:2:11: error: 'node N' is for channel 1"));
+  EXPECT_THAT(run("program a0.slc\nchannel 1 df1\n", test), HasSubstr("t.test:2:11: error: DF1 full-duplex is channel 0's"));
+  EXPECT_THAT(run("program a0.slc\nchannel 0 df1\nchannel 0 df1 bcc\n", test),
+              HasSubstr("t.test:3:1: error: a second 'channel 0' line (the first is at line 2)"));
+  const std::string range = run("program a0.slc\nchannel 0 df1 ack_timeout=0\n", test);
+  EXPECT_THAT(range, HasSubstr("channel 0: ack_timeout 0 is out of range 1-65535"));
+  EXPECT_THAT(range, HasSubstr("t.test:2:1: error: the MSG network did not build"));
+  EXPECT_THAT(run("program a0.slc\npeer B b.slc df1\n", test),
+              HasSubstr("peer B: joined by the DF1 cable, but this controller's channel 0 is not DF1 full-duplex"));
 }
 
 // Two SLC 5/05s on Ethernet: E reads F's N7:0 into N10:0; the block's IP address string (words 14-20 of
@@ -156,7 +195,7 @@ TEST(PeerTests, EthernetLoadErrorsNameTheLine) {
   EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.10\nip 192.168.1.11\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("a second 'ip' line (the first is at line 2)"));
   EXPECT_THAT(run_ethernet("program e.slc\npeer F f.slc ip\n", "test \"t\"\n  scan 1\n"),
-              HasSubstr("t.test:2:16: error: expected 'node N' (DH-485, DH+) or 'ip A.B.C.D' (Ethernet)"));
+              HasSubstr("t.test:2:16: error: expected 'node N' (DH-485, DH+), 'ip A.B.C.D' (Ethernet) or 'df1' (the DF1 cable"));
 }
 
 TEST(PeerTests, APowerCycleWithPeersIsRefused) {

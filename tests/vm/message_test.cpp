@@ -487,7 +487,10 @@ TEST(MessageCheck, RefusesBadOperandsWithAPosition) {
   // A message type the channel cannot send.
   EXPECT_NE(check_errors("SOR MSG READ PLC5 LOCAL N9:0 14 1 N10:0 5 2 N7:0 5 EOR").find("MSG PLC5 on DH-485"),
             std::string::npos);
-  EXPECT_NE(check_errors("SOR MSG READ 500CPU LOCAL N9:0 14 0 N10:0 5 2 N7:0 5 EOR").find("MSG on channel 0"),
+  // Channel 0 is DF1 full-duplex when a test configures it (tests/vm/df1_test.cpp): check takes its form; PLC5
+  // there is not simulated.
+  EXPECT_EQ(check_errors("SOR MSG READ 500CPU LOCAL N9:0 14 0 N10:0 5 2 N7:0 5 EOR"), "");
+  EXPECT_NE(check_errors("SOR MSG READ PLC5 LOCAL N9:0 14 0 N10:0 5 2 N7:0 5 EOR").find("MSG PLC5 on channel 0"),
             std::string::npos);
   EXPECT_NE(check_errors("SOR MSG READ 500CPU REMOTE N9:0 14 1 N10:0 5 2 N7:0 5 EOR").find("MSG REMOTE"),
             std::string::npos);

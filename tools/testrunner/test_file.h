@@ -23,6 +23,7 @@
 #include "parser/address.h"
 #include "parser/program.h"
 #include "tools/testrunner/values.h"
+#include "vm/df1_link.h"
 #include "vm/module.h"
 #include "vm/runtime.h"
 #include "vm/virtual_time.h"
@@ -166,6 +167,11 @@ struct PeerSpec {
   int node = 2;
   std::uint32_t ip = 0;  // Ethernet: the peer's IP address (0: named by node)
   std::string network;   // `network NAME`: the DH-485 network the program's channel 1 names ("" the file's)
+  // `peer NAME PATH df1 [SETTING...]`: joined to the program's DF1 channel 0 by the cable, its own channel 0
+  // configured with these settings (docs/testing.md "DF1 full-duplex").
+  bool df1 = false;
+  Df1Options df1_options;
+  std::string df1_text;  // the settings as written (the program cache's key)
   Location loc;      // of the name
   Location path_loc;
 };
@@ -188,6 +194,10 @@ struct TestCase {
   int channel1_node = 0;
   std::string channel1_network;
   Location channel1_loc;
+  // `channel 0 df1 [SETTING...]`: channel 0 in System mode, DF1 full-duplex (docs/testing.md "DF1 full-duplex").
+  std::optional<Df1Options> channel0_df1;
+  std::string channel0_text;
+  Location channel0_loc;
   std::shared_ptr<const LoadedProgram> program;  // set by the loader
   // Tests start in Run; a `mode` step written first sets the starting mode instead.
   Mode initial_mode = Mode::Run;

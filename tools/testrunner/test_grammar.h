@@ -53,6 +53,7 @@ struct kw_peer : TAO_PEGTL_KEYWORD("peer") {};
 struct kw_ip : TAO_PEGTL_KEYWORD("ip") {};
 struct kw_channel : TAO_PEGTL_KEYWORD("channel") {};
 struct kw_network : TAO_PEGTL_KEYWORD("network") {};
+struct kw_df1 : TAO_PEGTL_KEYWORD("df1") {};
 struct kw_test : TAO_PEGTL_KEYWORD("test") {};
 struct kw_with : TAO_PEGTL_KEYWORD("with") {};
 struct kw_row : TAO_PEGTL_KEYWORD("row") {};
@@ -226,12 +227,19 @@ struct peer_path : path {};
 // NAME; `peer NAME PATH node N network NAME` puts a peer on that network instead of the file's.
 struct network_name : seq<pg::identifier, token_end> {};
 struct network_part : seq<ws, kw_network, ws, must<network_name>> {};
+// DF1 full-duplex on channel 0 (docs/testing.md "DF1 full-duplex"): `channel 0 df1 [SETTING...]` configures the
+// program's channel 0; `peer NAME PATH df1 [SETTING...]` joins a peer's channel 0 to it by the cable. A SETTING
+// is one token (baud=19200, crc, duplicate_detect=off), checked by its action.
+struct df1_setting : seq<plus<not_one<' ', '\t', '#'>>> {};
+struct df1_part : seq<kw_df1, star<ws, df1_setting>> {};
 struct channel_number : digits {};
-struct channel_node : seq<kw_node, ws, must<node_number>> {};
-struct channel_line : seq<kw_channel, ws, must<channel_number>, ws, must<channel_node>, opt<network_part>> {};
+struct channel_node : seq<kw_node, ws, must<node_number>, opt<network_part>> {};
+struct channel_setup : sor<channel_node, df1_part> {};
+struct channel_line : seq<kw_channel, ws, must<channel_number>, ws, must<channel_setup>> {};
 struct peer_node_part : seq<kw_node, ws, must<node_number>, opt<network_part>> {};
 struct peer_ip_part : seq<kw_ip, ws, must<ip_address>> {};
-struct peer_node : sor<peer_node_part, peer_ip_part> {};
+struct peer_df1_part : df1_part {};
+struct peer_node : sor<peer_node_part, peer_df1_part, peer_ip_part> {};
 struct peer_line : seq<kw_peer, ws, must<peer_name>, ws, must<peer_path>, ws, must<peer_node>> {};
 struct bench_line : seq<kw_bench, ws, must<bench_path>> {};
 

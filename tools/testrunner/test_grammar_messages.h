@@ -54,13 +54,14 @@ template <> inline constexpr auto error_message<peer_name> =
     "expected the peer's name after 'peer' (peer B line_b.slc node 2)";
 template <> inline constexpr auto error_message<peer_path> = "expected the path of the peer's program after its name";
 template <> inline constexpr auto error_message<peer_node> =
-    "expected 'node N' (DH-485, DH+) or 'ip A.B.C.D' (Ethernet) after the peer's program";
+    "expected 'node N' (DH-485, DH+), 'ip A.B.C.D' (Ethernet) or 'df1' (the DF1 cable on channel 0) after the peer's "
+    "program";
 template <> inline constexpr auto error_message<network_name> =
     "expected the network's name after 'network' (network PANEL)";
 template <> inline constexpr auto error_message<channel_number> =
     "expected the channel number after 'channel' (channel 1 node 3)";
-template <> inline constexpr auto error_message<channel_node> =
-    "expected 'node N' after the channel (channel 1 node 3 network PANEL)";
+template <> inline constexpr auto error_message<channel_setup> =
+    "expected 'node N' (channel 1 node 3 network PANEL) or 'df1' (channel 0 df1 baud=19200) after the channel";
 template <> inline constexpr auto error_message<ip_address> = "expected an IP address after 'ip' (ip 192.168.1.20)";
 template <> inline constexpr auto error_message<test_name> = "expected the test name in double quotes (test \"name\")";
 template <> inline constexpr auto error_message<column_list> =

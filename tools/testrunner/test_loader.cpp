@@ -81,10 +81,10 @@ class Checker {
     std::vector<ProgramCache::Peer> peers;
     for (const auto& p : tc.peers) {
       const auto [peer_actual, peer_display] = locate(p.path);
-      peers.push_back({p.name, peer_actual, peer_display, p.node, p.ip, p.network});
+      peers.push_back({p.name, peer_actual, peer_display, p.node, p.ip, p.network, p.df1, p.df1_options, p.df1_text});
     }
     auto& entry = cache_.load(actual, display, bench, bench_display, processor ? &*processor : nullptr, peers, tc.node,
-                              tc.ip, {tc.channel1_node, tc.channel1_network});
+                              tc.ip, {tc.channel1_node, tc.channel1_network, tc.channel0_df1, tc.channel0_text});
     if (!entry.program) {
       if (!entry.errors.empty() && reported_.insert(display + "\n" + bench_display).second)
         out_.program_diagnostics += entry.errors;
@@ -96,6 +96,7 @@ class Checker {
           // The network's error names the peer it is about ("peer SRV: ..."): point at that line.
           Location where = tc.peers.empty() ? tc.program_loc : tc.peers.front().loc;
           if (tc.channel1_loc.line && entry.errors.find("channel 1") != std::string::npos) where = tc.channel1_loc;
+          if (tc.channel0_loc.line && entry.errors.find("channel 0") != std::string::npos) where = tc.channel0_loc;
           for (const auto& p : tc.peers)
             if (entry.errors.find("error: peer " + p.name + ": ") != std::string::npos) {
               where = p.loc;
@@ -455,12 +456,14 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
                                         int node, std::uint32_t ip, const ChannelOneSpec& channel1) {
   std::string key = cache_key(path) + "\n" + (bench.empty() ? std::string() : cache_key(bench)) + "\n" +
                     (pasted_processor ? pasted_processor->catalog + ":" + pasted_processor->series : std::string());
-  if (!peers.empty() || ip != 0 || channel1.node != 0) {
+  const bool networked = !peers.empty() || ip != 0 || channel1.node != 0 || channel1.channel0_df1;
+  if (networked) {
     key += "\nnode " + std::to_string(node) + " ip " + std::to_string(ip) + " channel 1 node " +
            std::to_string(channel1.node) + " network " + channel1.network;
+    if (channel1.channel0_df1) key += "\nchannel 0 df1" + channel1.channel0_text;
     for (const auto& p : peers)
       key += "\npeer " + p.name + " " + std::to_string(p.node) + " " + std::to_string(p.ip) + " " + p.network + " " +
-             cache_key(p.path);
+             (p.df1 ? "df1" + p.df1_text + " " : std::string()) + cache_key(p.path);
   }
   if (auto it = entries_.find(key); it != entries_.end()) return it->second;
   Entry& e = entries_[key];
@@ -534,6 +537,8 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
     peer.node = p.node;
     peer.ip = p.ip;
     peer.network = p.network;
+    peer.df1 = p.df1;
+    if (p.df1) peer_setup.options.channel0_df1 = p.df1_options;
     peer.program = std::make_shared<const Program>(std::move(*plr.program));
     peer.options = std::make_shared<const RuntimeOptions>(std::move(peer_setup.options));
     setup.options.peers.push_back(std::move(peer));
@@ -542,10 +547,11 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
   setup.options.ip = ip;
   setup.options.channel1_node = channel1.node;
   setup.options.channel1_network = channel1.network;
+  setup.options.channel0_df1 = channel1.channel0_df1;
   RuntimeResult rr = Runtime::create(*lr.program, setup.options);
   if (!rr.ok()) {
     for (const auto& err : rr.errors) e.errors += display + ": error: " + err.to_string() + "\n";
-    if (!peers.empty() || channel1.node != 0) e.failed_peer = "*";
+    if (networked) e.failed_peer = "*";
     return e;
   }
   auto loaded = std::make_shared<LoadedProgram>();

@@ -36,6 +36,9 @@ namespace softslc::testing {
 struct ChannelOneSpec {
   int node = 0;  // 0: on no network
   std::string network;
+  // `channel 0 df1 ...`: channel 0 as DF1 full-duplex, and its settings as written (the cache key).
+  std::optional<Df1Options> channel0_df1;
+  std::string channel0_text;
 };
 
 class ProgramCache {
@@ -55,6 +58,9 @@ class ProgramCache {
     int node = 2;
     std::uint32_t ip = 0;
     std::string network;  // "" the program's network, else the one its channel 1 names
+    bool df1 = false;     // joined by the DF1 cable to the program's channel 0
+    Df1Options df1_options;
+    std::string df1_text;
   };
 
   // Loads the program at `path` (shown as `display`) with the bench at `bench` (shown as

@@ -46,6 +46,10 @@ struct ParsedLine {
   Location ip_loc;
   std::string network;    // channel 1 node N network NAME, peer ... node N network NAME
   Location network_loc;
+  int channel = -1;       // channel N ...
+  bool df1 = false;       // channel 0 df1 ..., peer ... df1 ...
+  Df1Options df1_options;
+  std::string df1_text;
   std::string test_name;
   Location name_loc;  // the opening quote of the test name
   std::vector<std::pair<std::string, Location>> columns;
@@ -457,14 +461,38 @@ template <> struct action<node_line> : line_kind_action<ParsedLine::Kind::Node> 
 template <> struct action<ip_line> : line_kind_action<ParsedLine::Kind::Ip> {};
 template <> struct action<peer_line> : line_kind_action<ParsedLine::Kind::Peer> {};
 template <> struct action<channel_line> : line_kind_action<ParsedLine::Kind::Channel> {};
-// Only channel 1 has a line of its own: channel 0 is the program's `node` (the 1764-LRP's second serial
-// port is channel 1, 1762-RM001C p. 21-12).
+// `channel 1 node N` is the 1764-LRP's second serial port (1762-RM001C p. 21-12); `channel 0 df1 ...` the
+// program's channel 0 as DF1 full-duplex (its DH-485 node, where it has one, is the program's `node N`).
 template <> struct action<channel_number> {
   template <typename Input>
-  static void apply(const Input& in, LineState&) {
-    if (in.string() != "1")
-      fail_at(in, 0, "only channel 1 has a 'channel' line (a 1764-LRP's second serial port); channel 0 is the "
-                     "program's 'node N'");
+  static void apply(const Input& in, LineState& s) {
+    if (in.string() != "0" && in.string() != "1")
+      fail_at(in, 0, "a 'channel' line is for channel 1 (a 1764-LRP's second serial port: channel 1 node N) or "
+                     "channel 0 (DF1 full-duplex: channel 0 df1)");
+    s.out.channel = in.string() == "1" ? 1 : 0;
+  }
+};
+template <> struct action<channel_node> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    if (s.out.channel != 1)
+      fail_at(in, 0, "'node N' is for channel 1 (a 1764-LRP's second serial port); channel 0 takes 'df1 "
+                     "[SETTING...]' (DF1 full-duplex), and its DH-485 node is the program's 'node N'");
+  }
+};
+template <> struct action<df1_setting> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    if (std::string why = df1_parse_option(in.string_view(), s.out.df1_options); !why.empty()) fail_at(in, 0, "df1: " + why);
+    s.out.df1_text += " " + in.string();
+  }
+};
+template <> struct action<kw_df1> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    if (s.out.channel == 1)
+      fail_at(in, 0, "DF1 full-duplex is channel 0's (the RS-232 port, 1747-RM001G p. 13-49): write 'channel 0 df1'");
+    s.out.df1 = true;
   }
 };
 template <> struct action<network_name> {
@@ -1043,6 +1071,17 @@ class Driver {
           error(pl.loc, "'node', 'ip', 'channel' and 'peer' lines belong at the top of the file, before the first test");
           return;
         }
+        if (pl.kind == ParsedLine::Kind::Channel && pl.channel == 0) {
+          if (file_channel0_loc_.line) {
+            error(pl.loc, "a second 'channel 0' line (the first is at line " + std::to_string(file_channel0_loc_.line) +
+                              ")");
+            return;
+          }
+          file_channel0_df1_ = pl.df1_options;
+          file_channel0_text_ = pl.df1_text;
+          file_channel0_loc_ = pl.loc;
+          return;
+        }
         if (pl.kind == ParsedLine::Kind::Channel) {
           if (file_channel1_loc_.line) {
             error(pl.loc, "a second 'channel 1' line (the first is at line " + std::to_string(file_channel1_loc_.line) +
@@ -1085,6 +1124,11 @@ class Driver {
         peer.node = static_cast<int>(pl.node);
         peer.ip = pl.ip;
         peer.network = pl.network;
+        if (pl.df1) {
+          peer.df1 = true;
+          peer.df1_options = pl.df1_options;
+          peer.df1_text = pl.df1_text;
+        }
         file_peers_.push_back(std::move(peer));
         return;
       }
@@ -1242,6 +1286,9 @@ class Driver {
     tc.channel1_node = file_channel1_node_;
     tc.channel1_network = file_channel1_network_;
     tc.channel1_loc = file_channel1_loc_;
+    tc.channel0_df1 = file_channel0_df1_;
+    tc.channel0_text = file_channel0_text_;
+    tc.channel0_loc = file_channel0_loc_;
     bool steps_seen = false, ok = true;
     std::optional<Location> own_program, own_bench;
     for (auto& pl : lines) {
@@ -1321,6 +1368,9 @@ class Driver {
   int file_channel1_node_ = 0;
   std::string file_channel1_network_;
   Location file_channel1_loc_;
+  std::optional<Df1Options> file_channel0_df1_;
+  std::string file_channel0_text_;
+  Location file_channel0_loc_;
   std::optional<PendingTest> pending_;
   std::size_t steps_ = 0;         // test lines so far, table rows expanded (kMaxStepsPerTestFile)
   bool too_many_steps_ = false;   // the limit was passed: the rest of the file is not read

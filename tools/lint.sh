@@ -15,8 +15,8 @@
 # Not the whole tree in CI. Measured on the 2-core machine (session 18, clang-tidy 14): a file
 # costs 12 s of clang-tidy CPU on average (103 files measured), 1 s to 47 s (vm/runtime.cpp,
 # cmd_serve.cpp and the googletest files the most), so the 211 sources the build compiles take
-# about 42 min of CPU, 21 min on two idle
-# cores, against CI's 7-26 min now and its 45 min limit; cppcheck on all of them is 11 s. Once the
+# about 42 min of CPU, 21 min on two idle cores, against CI's 7-26 min now and its 45 min limit;
+# cppcheck on all of them is 11 s of CPU. Once the
 # tree is clean, a change can bring a finding only into the files it changes, into the includers
 # of a header it changes (CI checks the header's own .cpp, not every includer), or with a new tool
 # version or check set: CI keeps the changed-files rule, and `tools/lint.sh --all` is for a new

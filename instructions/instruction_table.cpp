@@ -53,7 +53,9 @@ constexpr auto kRowsByGroup = [] {
 constexpr auto kGroupStart = [] {
   std::array<std::uint16_t, mnemonic_group(kLongestMnemonic + 1, 'A') + 1> start{};
   std::size_t i = 0;
-  for (std::size_t g = 0; g < start.size(); ++g) {
+  // `!=`, not `<`: cppcheck 2.10 takes `g < start.size()` in this lambda for a template argument
+  // list and stops at a syntax error.
+  for (std::size_t g = 0; g != start.size(); ++g) {
     while (i < kInstructionCount && group_of_row(kRowsByGroup[i]) < g) ++i;
     start[g] = static_cast<std::uint16_t>(i);
   }

@@ -215,7 +215,8 @@ bool has_sub_elements(int id) { return is_sti(id) || is_eii(id) || is_hsc(id) ||
 }  // namespace
 
 std::string_view function_file_name(int id) {
-  return id >= 0 && id < kFunctionFileCount ? kFunctionFileNames[static_cast<std::size_t>(id)] : "?";
+  if (id < 0 || id >= kFunctionFileCount) return "?";
+  return kFunctionFileNames[static_cast<std::size_t>(id)];
 }
 
 int function_file_id(std::string_view name) {

@@ -203,7 +203,7 @@ class Checker {
                                              : std::vector<std::string_view>{"SLOT", "REGISTER"};
     if (d.suffix == '@') keys.push_back("BIT");
     bool ok = true;
-    auto field_error = [&](const AutomaxField& f, std::string m) {
+    auto field_error = [&](const AutomaxField& f, const std::string& m) {
       diags_.error(f.line, f.value_column, what + ": " + m);
       ok = false;
     };
@@ -257,6 +257,7 @@ class Checker {
                                            static_cast<int>(d.field("SLOT")->value),
                                            static_cast<int>(d.field("REGISTER")->value));
     }
+    // cppcheck-suppress identicalConditionAfterEarlyExit ; in_range and the MASTER check clear ok (field_error)
     if (!ok) return false;
     s.address.type = FileType::M0;
     s.address.file = 0;

@@ -20,7 +20,7 @@ namespace {
 std::string format_operand(const Operand& op) {
   switch (op.kind) {
     case Operand::Kind::Address: return to_string(op.address);
-    case Operand::Kind::Symbol: return op.spelling;
+    case Operand::Kind::Symbol:
     case Operand::Kind::Expression: return op.spelling;
     case Operand::Kind::Float: return format_float(op.real);
     case Operand::Kind::Integer: {

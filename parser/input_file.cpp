@@ -20,7 +20,7 @@ std::string what_it_is(mode_t m) {
 }
 
 std::string too_big(std::size_t limit) {
-  return "file larger than " + std::to_string(limit / (1024 * 1024)) + " MB, the limit for an input file";
+  return "file larger than " + std::to_string(limit / (std::size_t{1024} * 1024)) + " MB, the limit for an input file";
 }
 
 // Closes the descriptor on every path out.

@@ -1030,13 +1030,9 @@ template <> struct action<data_header> {
     s.data_opaque = !type || is_mfile(*type) || (is_function_file(*type) && !sti && !pulse_train && !hsc);
     if (!s.data_opaque) {
       s.data.type = type;
-      if (pulse_train) {
-        if (!number.empty() && number != "0")
-          s.diags.error(s.data.pos.line, s.data.pos.column, "the " + letters + " function file has no file number: DATA " + letters +
-                                                                ":0 or, as RSLogix exports it, DATA " + letters + "0:0");
-        s.data.file = function_file_id(letters);
-      } else if (sti) {
-        // RSLogix exports it as STI0:0; softslc's addresses write STI:0. Either names the one element.
+      if (pulse_train || sti) {
+        // RSLogix exports it as STI0:0 (PTO0:0, ...); softslc's addresses write STI:0. Either names
+        // the one element.
         if (!number.empty() && number != "0")
           s.diags.error(s.data.pos.line, s.data.pos.column, "the " + letters + " function file has no file number: DATA " + letters +
                                                                 ":0 or, as RSLogix exports it, DATA " + letters + "0:0");

@@ -22,6 +22,7 @@ std::optional<std::uint8_t> type_code(FileType t) {
     case FileType::M1: return kTypeM1;
     // MicroLogix function files (RTC, HSC, ...) are not served over PCCC yet: a typed read of
     // one has no file type to answer with (docs/serve.md, "Not yet").
+    // NOLINTNEXTLINE(bugprone-branch-clone): kept apart from MG/RI below, which differ in why
     case FileType::Function: return std::nullopt;
     // Nor are the MicroLogix MG and RI files: no source for their typed-read codes was reached.
     case FileType::Message:

@@ -92,7 +92,7 @@ bool extract(const Text& source, std::int64_t index, std::int64_t number, Text& 
   const auto first = static_cast<int>(index - 1);
   const int count = static_cast<int>(std::min<std::int64_t>(number, source.length - first));
   out = Text{};
-  for (int i = 0; i < count; ++i) out.chars[static_cast<std::size_t>(i)] = source.chars[static_cast<std::size_t>(first + i)];
+  for (int i = 0; i < count; ++i) out.chars[static_cast<std::size_t>(i)] = source.chars[static_cast<std::size_t>(first) + static_cast<std::size_t>(i)];
   out.length = count;
   return true;
 }

@@ -88,7 +88,7 @@ void list_range(const CompiledProgram& p, std::uint32_t begin, std::uint32_t end
     char head[32];
     std::snprintf(head, sizeof head, "  %04u  ", pc);
     std::string line = head;
-    line.append(static_cast<std::size_t>(depth * 2), ' ');
+    line.append(static_cast<std::size_t>(depth) * 2, ' ');
     std::string m(mnemonic(op));
     line += m;
     std::string notes;

@@ -699,9 +699,9 @@ inline std::uint32_t word_index(const std::uint16_t* at) {
 template <unsigned N, bool Wide>
 inline unsigned gather(const std::uint16_t* w, const std::uint16_t* rec) {
   constexpr unsigned k = Wide ? 2 : 1;
-  const auto* bits = reinterpret_cast<const unsigned char*>(rec + N * k);
+  const auto* bits = reinterpret_cast<const unsigned char*>(rec + std::size_t{N} * k);
   return [&]<unsigned... K>(std::integer_sequence<unsigned, K...>) {
-    return (0u | ... | (((static_cast<unsigned>(w[word_index<Wide>(rec + K * k)]) >> bits[K]) & 1u) << K));
+    return (0u | ... | (((static_cast<unsigned>(w[word_index<Wide>(rec + std::size_t{K} * k)]) >> bits[K]) & 1u) << K));
   }(std::make_integer_sequence<unsigned, N>{});
 }
 
@@ -917,6 +917,7 @@ static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every co
 #define SOFTSLC_WORD_LABELS(A) SOFTSLC_WORD_LABELS_T(A, 0), SOFTSLC_WORD_LABELS_T(A, 1)
       // A timer never precedes a transfer (Builder::parse): those kernels are not built.
       static const void* const kRungKernels[kKernelMask + 1] = {
+          // cppcheck-suppress syntaxError ; cppcheck 2.10 cannot parse GNU labels as values (&&label)
           SOFTSLC_WORD_LABELS(0),       SOFTSLC_WORD_LABELS_T(1, 0), SOFTSLC_NO_WORD_LABELS,
           SOFTSLC_WORD_LABELS_T(2, 0), SOFTSLC_NO_WORD_LABELS,      SOFTSLC_WORD_LABELS_T(3, 0),
           SOFTSLC_NO_WORD_LABELS,      SOFTSLC_WORD_LABELS(4),      SOFTSLC_WORD_LABELS(5),

@@ -1942,7 +1942,7 @@ constexpr std::array<bool, 256> kNoFastPathOp{};
     int bsp;
     int bsp_base;
   };
-  std::array<BranchFrame, kMaxBranchDepth * (kMaxCallDepth + 1)> bstack;
+  std::array<BranchFrame, std::size_t{kMaxBranchDepth} * (kMaxCallDepth + 1)> bstack;
   std::array<CallFrame, kMaxCallDepth> frames;
   int bsp = 0;
   int bsp_base = 0;

@@ -37,7 +37,7 @@ void PulseTrainOutputs::attach(const CompiledProgram& program) {
   }
   const FileLayout& out = layout.files[0];
   const SlotImage& slot0 = layout.output_slots[0];
-  if (out.present && slot0.present && slot0.words > 0) output_word_ = static_cast<std::int64_t>(out.base + slot0.first);
+  if (out.present && slot0.present && slot0.words > 0) output_word_ = static_cast<std::int64_t>(out.base) + static_cast<std::int64_t>(slot0.first);
 }
 
 std::int64_t PulseTrainOutputs::read(const std::uint16_t* e, int word, bool wide) const {
@@ -58,7 +58,7 @@ void PulseTrainOutputs::set_output(std::uint16_t* w, int b, bool on) const {
 
 void PulseTrainOutputs::enter_run(std::uint16_t* w) {
   for (int n = 0; n < elements_; ++n) {
-    std::uint16_t* e = w + base_ + static_cast<std::uint32_t>(n) * static_cast<std::uint32_t>(layout_.words);
+    std::uint16_t* e = w + base_ + static_cast<std::size_t>(n) * static_cast<std::size_t>(layout_.words);
     if (state_[static_cast<std::size_t>(n)].running) set_output(w, state_[static_cast<std::size_t>(n)].output, false);
     state_[static_cast<std::size_t>(n)] = Element{};
     e[pto::kBits] = static_cast<std::uint16_t>((e[pto::kBits] & ~kStatusBits) | bit(pto::kIdleBit));
@@ -99,7 +99,7 @@ bool PulseTrainOutputs::idle() const {
 void PulseTrainOutputs::scan(int n, bool rung, VirtualTime now, std::uint16_t* w) {
   if (file_ < 0 || n < 0 || n >= elements_) return;
   Element& s = state_[static_cast<std::size_t>(n)];
-  std::uint16_t* e = w + base_ + static_cast<std::uint32_t>(n) * static_cast<std::uint32_t>(layout_.words);
+  std::uint16_t* e = w + base_ + static_cast<std::size_t>(n) * static_cast<std::size_t>(layout_.words);
   std::uint16_t bits = e[pto::kBits];
   const bool was_enabled = bits & bit(pto::kEnableBit);
   bool completed_now = false;

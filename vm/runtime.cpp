@@ -574,7 +574,7 @@ void Runtime::service_communications(std::uint16_t channels, VirtualTime at) {
 
 Runtime::Runtime(std::unique_ptr<CompiledProgram> program, RuntimeOptions options)
     : program_(std::move(program)),
-      model_(options.time_model ? options.time_model : make_scan_time_model(program_->processor)),
+      model_(options.time_model ? std::move(options.time_model) : make_scan_time_model(program_->processor)),
       data_(program_->layout, program_->initial_words),
       node_(options.node),
       ip_(options.ip) {
@@ -914,6 +914,7 @@ void Runtime::advance_rtc(VirtualTime now) {
       enter_suspend();
     } else if (r.faulted) {
       enter_fault(r.fault);
+      // NOLINTNEXTLINE(bugprone-branch-clone): the STI and DII checks fault alike, each for its own page
     } else if (mode_ == Mode::Run && !interp_->configure_sti(start + used, false)) {
       // RM 11-12: an S:30/S:31 loaded by the program starts timing at the end of this scan.
       enter_fault(interp_->last_fault());

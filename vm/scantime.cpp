@@ -156,7 +156,7 @@ class Predictor {
     stack.insert(file);
     Nanoseconds worst = 0, mfile = 0;
     for (std::size_t r = 0; r < f->rungs.size(); ++r) {
-      const auto& c = costs_[{file, static_cast<int>(r)}];
+      const auto& c = costs_[std::pair{file, static_cast<int>(r)}];
       worst += c.worst;
       mfile += c.mfile_worst;
       for (int target : c.jsr_targets) {

@@ -175,8 +175,8 @@ bool AutomaxMaster::has_rail(const Drop& d, int rail) const {
 
 // One successful message: the drop's inputs into the image, the image's outputs to the drop.
 void AutomaxMaster::exchange(Drop& d) {
-  const int base = d.spec->area * kAutomaxAreaWords;
-  auto img = [&](int offset) -> std::uint16_t& { return image_[static_cast<std::size_t>(base + offset)]; };
+  const std::size_t base = static_cast<std::size_t>(d.spec->area) * kAutomaxAreaWords;
+  auto img = [&](int offset) -> std::uint16_t& { return image_[base + static_cast<std::size_t>(offset)]; };
   auto in = [&](int offset) { img(offset) = d.field_in[static_cast<std::size_t>(offset)]; };
   auto out = [&](int offset) { d.field_out[static_cast<std::size_t>(offset)] = img(offset); };
   switch (d.spec->kind) {

@@ -164,12 +164,12 @@ const BenchAttribute* BenchReader::get(std::string_view key) {
   return node_.find(key);
 }
 
-void BenchReader::error(std::string message) {
+void BenchReader::error(const std::string& message) {
   failed_ = true;
   diags_.error(node_.pos.line, node_.pos.column, node_.label() + ": " + message);
 }
 
-void BenchReader::error_at(std::string_view key, std::string message) {
+void BenchReader::error_at(std::string_view key, const std::string& message) {
   failed_ = true;
   const BenchAttribute* a = node_.find(key);
   const SourcePos p = a ? a->value_pos : node_.pos;

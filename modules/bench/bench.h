@@ -95,8 +95,8 @@ class BenchReader {
   // Reports a missing required attribute at the node.
   void require(std::string_view key, std::string_view what);
   // An error at the attribute (or the node when the attribute is absent).
-  void error_at(std::string_view key, std::string message);
-  void error(std::string message);
+  void error_at(std::string_view key, const std::string& message);
+  void error(const std::string& message);
   void finish();
   bool failed() const { return failed_; }
 

@@ -20,7 +20,7 @@ void write_setup(std::span<std::uint16_t, kWords> cb, const Setup& s) {
   cb[11] = s.attribute;
   for (int w = kSendDataWord; w < kReplyWord; ++w) cb[static_cast<std::size_t>(w)] = 0;
   for (int k = 0; k < n; ++k) {
-    std::uint16_t& w = cb[static_cast<std::size_t>(kSendDataWord + k / 2)];
+    std::uint16_t& w = cb[static_cast<std::size_t>(kSendDataWord) + static_cast<std::size_t>(k / 2)];
     const std::uint16_t b = s.send[static_cast<std::size_t>(k)];
     w = static_cast<std::uint16_t>(k % 2 == 0 ? (w & 0xFF00) | b : (w & 0x00FF) | b << 8);
   }

@@ -40,7 +40,7 @@ std::optional<TableRef> parse_table_ref(std::string_view text, bool input_side) 
 Nanoseconds default_epr(IoType t) {
   switch (t) {
     case IoType::Cos: return milliseconds(250);
-    case IoType::Poll: return milliseconds(75);
+    case IoType::Poll:
     case IoType::Strobe: return milliseconds(75);
     case IoType::Cyclic: return milliseconds(500);
   }
@@ -176,7 +176,7 @@ MapSegment read_segment(const json& v, const std::string& path, bool input) {
   s.connection = *parse_io_type(name);
   s.device_byte = static_cast<int>(r.optional_integer("byte", 0, 254).value_or(0));
   s.device_bit = static_cast<int>(r.optional_integer("bit", 0, 7).value_or(0));
-  s.bits = static_cast<int>(r.optional_integer("bits", 1, 255 * 8).value_or(8));
+  s.bits = static_cast<int>(r.optional_integer("bits", 1, std::int64_t{255} * 8).value_or(8));
   const std::string table_key = input ? "to" : "from";
   const std::string text = r.string(table_key);
   const auto ref = parse_table_ref(text, input);

@@ -768,7 +768,7 @@ bool Scanner::read_m(MFile f, int word, std::uint16_t& value) const {
     std::uint16_t v = 0;
     const int first = (word - base) * 16;
     for_each_node((listed_ >> first) & 0xFFFFu, [&](int b) {
-      if (has(nodes_[static_cast<std::size_t>(first + b)])) v = static_cast<std::uint16_t>(v | (1u << b));
+      if (has(nodes_[static_cast<std::size_t>(first) + static_cast<std::size_t>(b)])) v = static_cast<std::uint16_t>(v | (1u << b));
     });
     return v;
   };

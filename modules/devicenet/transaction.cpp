@@ -26,11 +26,11 @@ std::uint16_t word(std::uint8_t high, std::uint8_t low) { return static_cast<std
 
 // Body byte k (0...57) of a block: word 3 + k/2, low byte first.
 std::uint8_t body_byte(std::span<const std::uint16_t, 32> w, int k) {
-  const std::uint16_t v = w[static_cast<std::size_t>(3 + k / 2)];
+  const std::uint16_t v = w[3 + static_cast<std::size_t>(k / 2)];
   return k % 2 == 0 ? lo(v) : hi(v);
 }
 void set_body_byte(Block& w, int k, std::uint8_t b) {
-  std::uint16_t& v = w[static_cast<std::size_t>(3 + k / 2)];
+  std::uint16_t& v = w[3 + static_cast<std::size_t>(k / 2)];
   v = k % 2 == 0 ? word(hi(v), b) : word(b, lo(v));
 }
 }  // namespace

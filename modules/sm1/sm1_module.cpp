@@ -51,7 +51,7 @@ std::optional<std::int64_t> integer_arg(const std::string& s) {
 
 }  // namespace
 
-Sm1Module::Sm1Module(const SlotConfig& slot, Sm1Config config, std::shared_ptr<const Sm1Bench> bench)
+Sm1Module::Sm1Module(const SlotConfig& slot, Sm1Config config, const std::shared_ptr<const Sm1Bench>& bench)
     : Module(slot.slot, slot.catalog, slot.scan_in, slot.scan_out), config_(std::move(config)) {
   m0_.assign(static_cast<std::size_t>(config_.m0_words), 0);
   m1_.assign(static_cast<std::size_t>(config_.m1_words), 0);
@@ -314,7 +314,7 @@ void Sm1Module::finish_message(int c, const scanport::Response& response) {
   scanport::write_response(response, buffer);
   const int first = scanport::response_buffer_word(c);
   for (int k = 0; k < scanport::kBufferWords && first + k < static_cast<int>(m1_.size()); ++k)
-    m1_[static_cast<std::size_t>(first + k)] = buffer[static_cast<std::size_t>(k)];
+    m1_[static_cast<std::size_t>(first) + static_cast<std::size_t>(k)] = buffer[static_cast<std::size_t>(k)];
   // DONE while ME is held; if the program cleared ME meanwhile the buffer is READY again.
   ch.message = ch.me ? MessageState::Done : MessageState::Ready;
 }

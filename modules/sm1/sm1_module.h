@@ -49,7 +49,7 @@ inline constexpr Nanoseconds kM0ReadTime = 1 * kNsPerMs;
 
 class Sm1Module final : public Module {
  public:
-  Sm1Module(const SlotConfig& slot, Sm1Config config, std::shared_ptr<const Sm1Bench> bench);
+  Sm1Module(const SlotConfig& slot, Sm1Config config, const std::shared_ptr<const Sm1Bench>& bench);
 
   // ---- Module ----
   void input_scan(std::span<std::uint16_t> image) override;

@@ -310,8 +310,8 @@ void RioScanner::on_mode_change(Mode from, Mode to) {
     for (auto& d : devices_) d.attempted = false;
     for (int r = 0; r < 4; ++r) {
       held_control_[static_cast<std::size_t>(r)] = control(8, r);
-      held_control_[static_cast<std::size_t>(4 + r)] = control(16, r);
-      held_control_[static_cast<std::size_t>(8 + r)] = control(24, r);
+      held_control_[4 + static_cast<std::size_t>(r)] = control(16, r);
+      held_control_[8 + static_cast<std::size_t>(r)] = control(24, r);
     }
     cancel_all();
     pending_mode_ = to;
@@ -752,7 +752,7 @@ void RioScanner::enable(int x) {
   Buffer& b = bt_[static_cast<std::size_t>(x)];
   const int base = x * rio::kBufferStride;
   const auto m0 = [&](int k) -> std::uint16_t {
-    return static_cast<std::size_t>(base + k) < m0_.size() ? m0_[static_cast<std::size_t>(base + k)] : 0;
+    return static_cast<std::size_t>(base) + static_cast<std::size_t>(k) < m0_.size() ? m0_[static_cast<std::size_t>(base) + static_cast<std::size_t>(k)] : 0;
   };
   const std::uint16_t ctl = m0(rio::kControlWord);
   const auto requested = static_cast<std::int16_t>(m0(rio::kRequestedCount));
@@ -972,8 +972,8 @@ void RioScanner::bt_visit_end(int x, const Visit& v, VirtualTime t) {
   m.last_btw.assign(static_cast<std::size_t>(count), 0);
   const int base = x * rio::kBufferStride + rio::kDataOffset;
   for (int k = 0; k < count; ++k)
-    if (static_cast<std::size_t>(base + k) < m0_.size())
-      m.last_btw[static_cast<std::size_t>(k)] = static_cast<std::int16_t>(m0_[static_cast<std::size_t>(base + k)]);
+    if (static_cast<std::size_t>(base) + static_cast<std::size_t>(k) < m0_.size())
+      m.last_btw[static_cast<std::size_t>(k)] = static_cast<std::int16_t>(m0_[static_cast<std::size_t>(base) + static_cast<std::size_t>(k)]);
   ++m.btw_count;
   finish(x, true, 0, {}, count);
 }
@@ -1201,7 +1201,7 @@ std::optional<std::vector<std::int64_t>> RioScanner::observe(std::string_view de
     else if (what == "faulted") out.push_back(di != devices_.end() && di->faulted() ? 1 : 0);
     else if (what == "retries") {
       if (di == devices_.end()) return std::nullopt;
-      const std::size_t w = static_cast<std::size_t>((di->g.complementary ? 32 : 16) + di->g.bit);
+      const std::size_t w = static_cast<std::size_t>(di->g.complementary ? 32 : 16) + static_cast<std::size_t>(di->g.bit);
       out.push_back(w < m1_.size() ? m1_[w] : 0);
     } else return std::nullopt;
     return out;

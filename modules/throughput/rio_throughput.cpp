@@ -458,7 +458,7 @@ std::vector<RioLogicalDevice> validated_logical_devices(const RioNetwork& networ
     }
     if (network.devices.empty()) throw ConfigError("devices", "expected at least one device");
     for (std::size_t i = 0; i < network.devices.size(); ++i) validate_device(network, i);
-    const std::vector<RioLogicalDevice> logical = split_into_logical_devices(network.baud, network.devices);
+    std::vector<RioLogicalDevice> logical = split_into_logical_devices(network.baud, network.devices);
     validate_overlaps(network.mode, logical);
     validate_block_transfers(network, logical);
     return logical;

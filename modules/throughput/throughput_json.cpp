@@ -40,7 +40,7 @@ std::string element_path(const std::string& path, std::size_t index) {
 std::string describe(const json& value) {
     if (value.is_object() || value.is_array()) return std::string("an ") + value.type_name();
     std::string text = value.dump();
-    if (text.size() > 40) text = text.substr(0, 37) + "...";
+    if (text.size() > 40) text.replace(37, std::string::npos, "...");
     return text;
 }
 
@@ -181,6 +181,7 @@ Micros micros_of(const json& ms) { return std::llround(ms.get<double>() * 1000.0
 template <typename Values, typename Name>
 std::vector<std::string_view> names_of(const Values& values, Name name) {
     std::vector<std::string_view> names;
+    names.reserve(std::size(values));
     for (const auto& value : values) names.push_back(name(value));
     return names;
 }
@@ -449,6 +450,7 @@ std::string render_table(const std::vector<Column>& columns, std::vector<std::ve
         }
     }
     std::vector<std::size_t> widths;
+    widths.reserve(columns.size());
     for (const Column& column : columns) widths.push_back(column.header.size());
     for (const auto& row : rows) {
         for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
@@ -464,6 +466,7 @@ std::string render_table(const std::vector<Column>& columns, std::vector<std::ve
         return text + "\n";
     };
     std::vector<std::string> headers;
+    headers.reserve(columns.size());
     for (const Column& column : columns) headers.push_back(column.header);
     std::string text = line(headers);
     for (const auto& row : rows) text += line(row);

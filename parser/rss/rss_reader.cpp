@@ -784,7 +784,7 @@ void write_data_file(const DataFileRecord& r, const ProcessorCode& processor, Ar
     out += r.type == DtControl ? "% .CTL .LEN .POS %\n" : "% .CTL .PRE .ACC %\n";
     for (int e = 0; e < r.elements; ++e) {
       char row[64];
-      std::snprintf(row, sizeof row, "0X%04X %d %d ", word_at(r.values, 3 * e), static_cast<std::int16_t>(word_at(r.values, 3 * e + 1)),
+      std::snprintf(row, sizeof row, "0X%04X %d %d ", word_at(r.values, 3 * static_cast<std::size_t>(e)), static_cast<std::int16_t>(word_at(r.values, 3 * e + 1)),
                     static_cast<std::int16_t>(word_at(r.values, 3 * e + 2)));
       out += row + element(e) + "\n";
     }
@@ -815,7 +815,7 @@ void write_data_file(const DataFileRecord& r, const ProcessorCode& processor, Ar
     if (!wide) {
       v = std::to_string(static_cast<std::int16_t>(word_at(r.values, e)));
     } else {
-      std::uint32_t bits = word_at(r.values, 2 * e) | static_cast<std::uint32_t>(word_at(r.values, 2 * e + 1)) << 16;
+      std::uint32_t bits = word_at(r.values, 2 * static_cast<std::size_t>(e)) | static_cast<std::uint32_t>(word_at(r.values, 2 * e + 1)) << 16;
       if (r.type == DtLong) {
         v = std::to_string(static_cast<std::int32_t>(bits));
       } else {

@@ -1200,7 +1200,7 @@ TEST(RepeatedScans, AnEthernetMessageAloneRepeatsUpToEachSecondAndItsTimeout) {
     // "192.168.1.20" as RM 12-34 table 12.14 stores it, the first character in the high byte.
     const std::string ip = "192.168.1.20";
     for (std::size_t w = 0; w * 2 < ip.size() + 1; ++w) {
-      const auto hi = static_cast<unsigned char>(ip[w * 2]);
+      const auto hi = w * 2 < ip.size() ? static_cast<unsigned char>(ip[w * 2]) : 0;
       const auto lo = w * 2 + 1 < ip.size() ? static_cast<unsigned char>(ip[w * 2 + 1]) : 0;
       ASSERT_TRUE(r.runtime->set("N9:" + std::to_string(14 + w), Value::of_int(static_cast<std::int16_t>(hi << 8 | lo))));
     }

@@ -59,7 +59,7 @@ struct Plc {
   std::unique_ptr<Runtime> rt;
   explicit Plc(const std::string& text, const std::string& bench = "") {
     std::string errors;
-    rt = build(text, bench, &errors);
+    rt = build(text, bench, &errors);  // cppcheck-suppress useInitializationList ; the build reports into the local errors
     if (!rt) throw std::runtime_error(errors);
   }
   Runtime* operator->() { return rt.get(); }

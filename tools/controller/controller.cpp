@@ -41,10 +41,10 @@ Controller Controller::load(const std::filesystem::path& program, const std::opt
 
 Controller Controller::from_text(std::string program_text, std::string bench_text, std::string name,
                                  std::string bench_name) {
-  LoadResult lr = load_program_bytes(std::move(program_text), name);  // .SLC text or .RSS project
+  LoadResult lr = load_program_bytes(std::move(program_text), std::move(name));  // .SLC text or .RSS project
   if (!lr.ok()) throw ControllerError(lr.render_diagnostics());
   ModuleSetup setup = bench_text.empty() ? load_module_setup(*lr.program, std::nullopt)
-                                         : load_module_setup_text(*lr.program, std::move(bench_text), bench_name);
+                                         : load_module_setup_text(*lr.program, std::move(bench_text), std::move(bench_name));
   if (!setup.ok()) throw ControllerError(setup.render(lr.source_name, lr.source));
   auto loaded = std::make_shared<Loaded>();
   loaded->program = std::move(*lr.program);

@@ -44,9 +44,7 @@ bool is_word_file(FileType t) {
 class Checker {
  public:
   Checker(TestFileLoad& out, const std::filesystem::path& dir, ProgramCache& cache)
-      : out_(out), dir_(dir), cache_(cache) {
-    display_dir_ = std::filesystem::path(out.file.name).parent_path();
-  }
+      : out_(out), dir_(dir), display_dir_(std::filesystem::path(out.file.name).parent_path()), cache_(cache) {}
 
   void run() {
     for (auto& tc : out_.file.tests) check_test(tc);

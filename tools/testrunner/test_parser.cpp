@@ -247,8 +247,9 @@ template <> struct action<device_observation> {
     DeviceRef& d = o.device;
     d.spelling = text;
     d.loc = o.loc;
-    d.name = words.at(1).first;
-    d.name_loc = {o.loc.line, o.loc.column + static_cast<std::uint32_t>(words[1].second)};
+    // The grammar matched `device NAME WHAT`: there are at least three words.
+    d.name = words.at(1).first;  // cppcheck-suppress containerOutOfBounds
+    d.name_loc = {o.loc.line, o.loc.column + static_cast<std::uint32_t>(words[1].second)};  // cppcheck-suppress containerOutOfBounds
     for (std::size_t i = 2; i < words.size(); ++i) d.what += (i > 2 ? " " : "") + words[i].first;
     if (const auto bracket = d.what.find('['); bracket != std::string::npos) {
       const std::string digits = d.what.substr(bracket + 1, d.what.size() - bracket - 2);

@@ -170,8 +170,9 @@ void put_field(std::vector<std::uint8_t>& p, int v) {
     p.push_back(static_cast<std::uint8_t>(v));
   } else {
     p.push_back(0xFF);
-    p.push_back(static_cast<std::uint8_t>(v & 0xFF));
-    p.push_back(static_cast<std::uint8_t>((v >> 8) & 0xFF));
+    const auto u = static_cast<std::uint32_t>(v);  // the field's two bytes, low first
+    p.push_back(static_cast<std::uint8_t>(u & 0xFF));
+    p.push_back(static_cast<std::uint8_t>((u >> 8) & 0xFF));
   }
 }
 

@@ -471,7 +471,7 @@ void MessageNetwork::send_df1(std::size_t station, VirtualTime at, Message& m) {
   post(station, o.done, std::move(f));
 }
 
-void MessageNetwork::reply_df1(std::size_t station, VirtualTime at, const Frame& req, Frame reply) {
+void MessageNetwork::reply_df1(std::size_t station, VirtualTime at, const Frame& req, const Frame& reply) {
   Station& s = stations_[station];
   if (!s.df1) return;
   Df1Port& port = *s.df1;
@@ -639,7 +639,7 @@ void MessageNetwork::answer(std::size_t station, VirtualTime at, const Frame& re
       for (int i = 0; i < req.words; ++i) reply.data[static_cast<std::size_t>(i)] = word(station, first + static_cast<std::uint32_t>(i));
     }
   }
-  if (req.df1) return reply_df1(station, at, req, std::move(reply));
+  if (req.df1) return reply_df1(station, at, req, reply);
   const Nanoseconds d = message_frame_time(link_, static_cast<int>(2 * reply.data.size()));
   post(req.from, at + d, std::move(reply));
 }

@@ -320,7 +320,7 @@ class MessageNetwork {
   void send_df1(std::size_t station, VirtualTime at, Message& m);
   // The request frame of `m` from `station`, arriving on the target's `channel`.
   static Frame request_frame(std::size_t station, const Message& m, int channel);
-  void reply_df1(std::size_t station, VirtualTime at, const Frame& request, Frame reply);
+  void reply_df1(std::size_t station, VirtualTime at, const Frame& request, const Frame& reply);
   // The far end of `station`'s DF1 port and whether it hears this end (cable connected, same baud and parity).
   Df1Port* df1_far(std::size_t station, bool* line_ok);
   void post(std::size_t to, VirtualTime arrival, Frame f);

@@ -947,7 +947,7 @@ TEST(RepeatedScans, AnMWriteThatChangesTheModuleIsNotRepeated) {
   const std::uint64_t idle = skipping.rt->stats().repeated;
   EXPECT_GT(idle, 0u) << "writing the value already there must let scans repeat";
   for (int i = 1; i <= 5; ++i) {
-    for (MemoryPlc* p : {&skipping, &executing}) p->rt->set("N7:0", Value::of_int(100 * i));
+    for (MemoryPlc* p : {&skipping, &executing}) p->rt->set("N7:0", Value::of_int(std::int64_t{100} * i));
     run_side_by_side(*skipping.rt, *executing.rt, 2, milliseconds(50), "M write " + std::to_string(i), m_files_of);
     EXPECT_EQ(skipping.rt->value("N7:1").as_int(), 100 * i);
   }
@@ -962,7 +962,7 @@ TEST(RepeatedScans, AnMWriteThatChangesTheModuleIsNotRepeated) {
 TEST(RepeatedScans, AnEventThatChangesAnMWordTheProgramReadsStopsTheRepeats) {
   const std::string rungs = "SOR MOV M1:3.0 N7:0 EOR\nSOR XIC I:1/0 OTE B3:0/0 EOR\n";
   MemoryPlc skipping(rungs, milliseconds(3)), executing(rungs, milliseconds(3));
-  for (int i = 1; i <= 6; ++i)
+  for (std::int64_t i = 1; i <= 6; ++i)
     for (MemoryPlc* p : {&skipping, &executing})
       p->card->change_at(milliseconds(200 * i) + microseconds(37 * i), MFile::M1, 0, static_cast<std::uint16_t>(i));
   run_side_by_side(*skipping.rt, *executing.rt, 70, milliseconds(20), "M1 changed by events", m_files_of);
@@ -978,7 +978,7 @@ TEST(RepeatedScans, AnEventThatChangesAnMWordTheProgramReadsStopsTheRepeats) {
 TEST(RepeatedScans, AnEventAfterWhichTheProbesWriteWouldChangeSomethingStopsTheRepeats) {
   const std::string rungs = "SOR MOV N7:5 M0:3.4 EOR\n";
   MemoryPlc skipping(rungs, milliseconds(3)), executing(rungs, milliseconds(3));
-  for (int i = 1; i <= 6; ++i)
+  for (std::int64_t i = 1; i <= 6; ++i)
     for (MemoryPlc* p : {&skipping, &executing}) {
       p->rt->set("N7:5", Value::of_int(7));
       p->card->change_at(milliseconds(150 * i) + microseconds(53 * i), MFile::M0, 4, 99);
@@ -996,7 +996,7 @@ TEST(RepeatedScans, AnEventAfterWhichTheProbesWriteWouldChangeSomethingStopsTheR
 TEST(RepeatedScans, AnEventThatChangesAnInputImageStopsTheRepeats) {
   const std::string rungs = "SOR XIC I:3/0 OTE B3:0/0 EOR\nSOR XIC I:3/0 OSR B3:0/1 ADD N7:0 1 N7:0 EOR\n";
   MemoryPlc skipping(rungs, milliseconds(2)), executing(rungs, milliseconds(2));
-  for (int i = 1; i <= 8; ++i)
+  for (std::int64_t i = 1; i <= 8; ++i)
     for (MemoryPlc* p : {&skipping, &executing})
       p->card->input_at(milliseconds(90 * i) + microseconds(71 * i), static_cast<std::uint16_t>(i % 2));
   run_side_by_side(*skipping.rt, *executing.rt, 50, milliseconds(20), "input changed by events");

@@ -81,7 +81,7 @@ constexpr std::string_view kReadFive = "SOR XIC B3:0/0 MSG READ 500CPU LOCAL N9:
 constexpr std::string_view kWriteThree = "SOR XIC B3:0/0 MSG WRITE 500CPU LOCAL N9:0 51 1 N10:0 3 0 N7:4 5 EOR";
 
 // A frame of `data_bytes` on Ethernet: 10 Mbit/s, 8 bits a byte, 106 bytes of framing (EST).
-constexpr Nanoseconds ethernet(int data_bytes) { return ((106 + data_bytes) * 8 * kNsPerS + 9'999'999) / 10'000'000; }
+constexpr Nanoseconds ethernet(int data_bytes) { return (Nanoseconds{106 + data_bytes} * 8 * kNsPerS + 9'999'999) / 10'000'000; }
 
 TEST(MessageEthernet, TheIpStringIsStoredHighByteFirst) {
   // RM 12-34 table 12.14, note 1: the first byte is the left-most character, in the high-byte column.

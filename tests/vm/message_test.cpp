@@ -39,7 +39,7 @@ constexpr std::string_view kReadFive = "SOR XIC B3:0/0 MSG READ 500CPU LOCAL N9:
 
 // The time a frame of `data_bytes` takes on DH-485: 19,200 baud, 11 bits a character, 16 bytes of
 // framing (EST) — instructions/message_link.h.
-constexpr Nanoseconds dh485(int data_bytes) { return ((16 + data_bytes) * 11 * kNsPerS + 19199) / 19200; }
+constexpr Nanoseconds dh485(int data_bytes) { return (Nanoseconds{16 + data_bytes} * 11 * kNsPerS + 19199) / 19200; }
 
 TEST(Message, TheSetupIsWrittenIntoTheControlBlock) {
   // RM 12-31, table 12.11: word 1 target node, 2 number of elements, 3 file number, 4 file type,
@@ -396,7 +396,7 @@ TEST(Message, Plc5TypedOnDhPlusBetweenTwoSlc504s) {
   const VirtualTime sent = a->now();
   ASSERT_TRUE(a->run_until([](const Runtime& r) { return r.value("N9:0/13").as_bool(); }, kNsPerS));
   EXPECT_EQ(a->value("N10:0").as_int(), 4242);
-  constexpr Nanoseconds request = (16 * 8 * kNsPerS + 57599) / 57600, reply = (18 * 8 * kNsPerS + 57599) / 57600;
+  constexpr Nanoseconds request = (Nanoseconds{16} * 8 * kNsPerS + 57599) / 57600, reply = (Nanoseconds{18} * 8 * kNsPerS + 57599) / 57600;
   EXPECT_GE(a->now() - sent, request + reply);
   EXPECT_LT(a->now() - sent, request + reply + 4 * a->stats().max) << "DH+ is three times DH-485's rate";
   // DH+ nodes go to 63, DH-485's to 31.

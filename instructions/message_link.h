@@ -27,7 +27,8 @@ constexpr MessageLink message_link(ProcessorFamily family, int channel) {
   switch (family) {
     case ProcessorFamily::Slc502: return channel == 0 ? MessageLink::Dh485 : MessageLink::None;
     // Channel 0 of the 5/03-5/05, the RS-232 port: DF1 full-duplex, the only System-mode link softslc
-    // simulates there (a MSG on a channel 0 not configured for it ends with 12h at run time).
+    // simulates there and its factory configuration (docs/semantics.md "Channel 0"); a MSG on a channel 0
+    // in User (ASCII) mode ends with 12h at run time.
     case ProcessorFamily::Slc503: return channel == 1 ? MessageLink::Dh485 : channel == 0 ? MessageLink::Df1 : MessageLink::None;
     case ProcessorFamily::Slc504: return channel == 1 ? MessageLink::DhPlus : channel == 0 ? MessageLink::Df1 : MessageLink::None;
     case ProcessorFamily::Slc505: return channel == 1 ? MessageLink::Ethernet : channel == 0 ? MessageLink::Df1 : MessageLink::None;
@@ -40,8 +41,8 @@ constexpr MessageLink message_link(ProcessorFamily family, int channel) {
 // The link a processor's network channel is on: DH-485 for the fixed controllers, the 5/01, 5/02 and
 // 5/03 (they all answer messages on it), DH+ for the 5/04, Ethernet for the 5/05. A MicroLogix is on
 // DH-485 through its channel 0, the serial port, configured for DH-485 (1762-RM001C p. 21-2 lists DH-485
-// among the protocols its MSG uses; decision: softslc has no channel configuration, docs/semantics.md
-// "The MicroLogix MSG"); the 1000 sends its messages there too (1761-6.2 p. 15-3: DH-485 with a MicroLogix
+// among the protocols its MSG uses; decision: DH-485 unless a test or the API makes channel 0 a DF1 port
+// or a Modbus RTU master, docs/semantics.md "The MicroLogix MSG"); the 1000 sends its messages there too (1761-6.2 p. 15-3: DH-485 with a MicroLogix
 // 1000 "except for Series A and B discrete controllers", and with every SLC 500; docs/semantics.md "The
 // MicroLogix 1000 MSG").
 constexpr MessageLink network_link(ProcessorFamily family) {

@@ -562,7 +562,15 @@ void Runtime::message_start(const MessageInstruction& m) {
   if (m.modbus_function != 0 && modbus_channel_) return modbus_channel_->start(m);
   if (m.modbus_function != 0 || (m.micrologix && m.channel == 0 && modbus_channel_))
     return ModbusMaster::refuse(*process_host_, m, modbus::kChannelProtocol);
-  network().start(station_, m);
+  MessageNetwork& net = network();
+  // An SLC 5/03-5/05 channel 0 that nothing configured is at its factory configuration, DF1 full-duplex
+  // at the processor's defaults (docs/semantics.md "Channel 0"): a MSG on it goes out on the cable and,
+  // with nobody at the other end, ends with 07h once the ACK timeouts and ENQ retries are spent. A channel
+  // 0 the bench makes a User-mode (ASCII) port is no DF1 port: the MSG ends with 12h there.
+  if (m.channel == 0 && !m.micrologix && !ascii_channel_ && !net.df1_port(station_) &&
+      has_df1_channel0(program_->processor) && !program_->processor.is_micrologix())
+    net.attach_df1(station_, df1_defaults(program_->processor));
+  net.start(station_, m);
 }
 void Runtime::message_abort(std::uint32_t block) {
   if (modbus_channel_ && modbus_channel_->abort(block)) return;

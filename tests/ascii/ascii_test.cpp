@@ -500,6 +500,22 @@ TEST(AsciiChannel, AnInstructionStillQueuedIsNotQueuedTwice) {
   EXPECT_EQ(*plc->observe("SCALE", "buffered"), std::vector<std::int64_t>{2}) << "B CR stays: one read only";
 }
 
+TEST(AsciiChannel, AChannel0MsgOnAUserModePortEndsWith12h) {
+  // Channel 0 wired to the bench's serial device is in User (ASCII) mode, not DF1: a MSG on it ends with
+  // 12h "Local channel configuration protocol error exists" (RM 12-41 table 12.17; docs/semantics.md
+  // "Channel 0"). Unwired, the same MSG is DF1's and waits for the cable (Df1Msg.AnUnconfiguredChannel0...).
+  const std::string msg = program("SOR XIC B3:0/0 MSG READ 500CPU LOCAL N9:0 14 0 N10:0 5 2 N7:0 5 EOR");
+  Plc p(msg, kBench);
+  p.set("B3:0/0", 1);
+  p.scans(2);
+  EXPECT_EQ(p.w("N9:0") & (1u << 12), 1u << 12);
+  EXPECT_EQ(p.i("N9:0") & 0xFF, 0x12);
+  Plc unwired(msg);
+  unwired.set("B3:0/0", 1);
+  unwired.scans(2);
+  EXPECT_EQ(unwired.w("N9:0") & (1u << 12), 0u);
+}
+
 TEST(AsciiChannel, TheBenchNodeIsChecked) {
   std::string errors;
   EXPECT_EQ(build(program("SOR OTE B3:0/0 EOR"), "serial S baud=9601\n", &errors), nullptr);

@@ -382,16 +382,30 @@ TEST(Df1Msg, ADuplicateWriteIsNotExecutedTwice) {
   }
 }
 
-TEST(Df1Msg, AChannel0MsgWithoutDf1EndsWith12h) {
-  // The SLC 5/03's channel 0 not configured for DF1: "12H Local channel configuration protocol error".
+TEST(Df1Msg, AnUnconfiguredChannel0IsDf1FullDuplexAtItsDefaults) {
+  // An SLC 5/03's channel 0 that no test line or option configures is at its factory configuration, DF1
+  // full-duplex ("You can use channel 0 as a programming port, or as a peer-to-peer port using the MSG
+  // instruction", RM 13-49; docs/semantics.md "Channel 0"). With no cable partner the MSG goes out and ends
+  // as an absent peer's does: 07h after the frame, (ENQ retries + 1) ACK timeouts and the ENQs (RM 12-14),
+  // not at once with 12h.
   std::string errors;
   auto a = try_build(slc(kRead), errors);
   ASSERT_TRUE(a) << errors;
   ASSERT_TRUE(a->set_mode(Mode::Run));
   ASSERT_TRUE(a->set("B3:0/0", Value::bit(true)));
-  a->scan(2);
-  EXPECT_TRUE(a->value("N9:0/12").as_bool());
-  EXPECT_EQ(a->value("N9:0").as_int() & 0xFF, 0x12);
+  a->scan(1);
+  const VirtualTime sent = a->now();
+  a->scan(1);
+  EXPECT_FALSE(a->value("N9:0/12").as_bool());  // no 12h at once
+  EXPECT_TRUE(a->value("N9:0/15").as_bool());   // EN: the message is out
+  while (!a->value("N9:0/12").as_bool() && a->now() < sent + 6 * kNsPerS) a->scan(1);
+  ASSERT_TRUE(a->value("N9:0/12").as_bool());
+  EXPECT_EQ(a->value("N9:0").as_int() & 0xFF, 0x07);
+  // The defaults of the 1400's table (1766-RM001A p. 592, taken for the SLC [U]): 19.2K, ACK timeout 1 s,
+  // 3 ENQ retries: the frame of 18 characters, four ACK timeouts and three 2-character ENQs.
+  const Nanoseconds expected = chars(18, 19200) + 4 * kNsPerS + 3 * chars(2, 19200);
+  EXPECT_GE(a->now() - sent, expected);
+  EXPECT_LE(a->now() - sent, expected + a->stats().max);
 }
 
 TEST(Df1Msg, TheMicroLogix1000OnDf1UsesItsOwnDefaults) {

@@ -59,28 +59,13 @@ Resolved resolve_registers(const pccc::Target& target, int file, std::uint32_t a
   return resolve(target, file, kRegisterSpace, address, count, false);
 }
 
+// A reply PDU: the request's function and its data, or function | 80h and an exception code.
 class Reply {
  public:
-  Reply(const Header& h, std::uint8_t function) : function_(function) {
-    put16(out_, h.transaction);
-    put16(out_, 0);
-    put16(out_, 0);  // length, set by finish()
-    out_.push_back(h.unit);
-    out_.push_back(function);
-  }
+  explicit Reply(std::uint8_t function) : function_(function) { out_.push_back(function); }
   std::vector<std::uint8_t>& bytes() { return out_; }
-  std::vector<std::uint8_t> finish() {
-    const auto len = static_cast<std::uint16_t>(out_.size() - 6);
-    out_[4] = static_cast<std::uint8_t>(len >> 8);
-    out_[5] = static_cast<std::uint8_t>(len & 0xFF);
-    return std::move(out_);
-  }
-  std::vector<std::uint8_t> exception(std::uint8_t code) {
-    out_.resize(kHeaderSize);
-    out_.push_back(static_cast<std::uint8_t>(function_ | 0x80));
-    out_.push_back(code);
-    return finish();
-  }
+  std::vector<std::uint8_t> finish() { return std::move(out_); }
+  std::vector<std::uint8_t> exception(std::uint8_t code) { return {static_cast<std::uint8_t>(function_ | 0x80), code}; }
 
  private:
   std::uint8_t function_;
@@ -165,9 +150,22 @@ std::optional<std::vector<std::uint8_t>> handle(std::span<const std::uint8_t> fr
                         std::to_string(frame.size()) + " bytes";
     return std::nullopt;
   }
-  const auto pdu = frame.subspan(kHeaderSize);
+  const auto pdu = handle_pdu(frame.subspan(kHeaderSize), map, target, refusal);
+  std::vector<std::uint8_t> out;
+  out.reserve(kHeaderSize + pdu.size());
+  put16(out, h->transaction);
+  put16(out, 0);
+  put16(out, static_cast<std::uint16_t>(pdu.size() + 1));
+  out.push_back(h->unit);
+  out.insert(out.end(), pdu.begin(), pdu.end());
+  return out;
+}
+
+std::vector<std::uint8_t> handle_pdu(std::span<const std::uint8_t> pdu, const Map& map, pccc::Target& target,
+                                     std::string* refusal) {
+  if (pdu.empty()) return {};
   const std::uint8_t fc = pdu[0];
-  Reply reply(*h, fc);
+  Reply reply(fc);
   const auto refuse = [&](std::uint8_t code, const std::string& why) {
     if (refusal) *refusal = "function " + std::to_string(fc) + ": " + why;
     return reply.exception(code);

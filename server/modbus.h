@@ -88,6 +88,14 @@ struct Header {
 // (protocol id not 0, length outside 2-254) — `error` says which.
 std::optional<Header> decode_header(std::span<const std::uint8_t> bytes, std::string* error = nullptr);
 
+// Executes one request PDU (function code and data) and returns the reply PDU: the function and
+// its data, or function | 80h and one exception code. Modbus TCP (handle below) and Modbus RTU
+// (server/modbus_rtu.h) both answer through it, so the map, the exception codes and the writes
+// (through `target`, journaled by the live controller) are the same on both. An empty PDU gets an
+// empty reply. `refusal`, when given, receives why an exception was answered (for the log).
+std::vector<std::uint8_t> handle_pdu(std::span<const std::uint8_t> pdu, const Map& map, pccc::Target& target,
+                                     std::string* refusal = nullptr);
+
 // Handles one whole frame (header and exactly length-1 PDU bytes) and returns the reply frame.
 // nullopt: the frame is malformed (the connection closes, `error` says why). `refusal`, when
 // given, receives why an exception was answered (for the log).

@@ -60,6 +60,17 @@ std::vector<std::uint8_t> with_crc(std::vector<std::uint8_t> bytes) {
   return bytes;
 }
 
+CommParameters RtuSlave::comm_parameters() const {
+  CommParameters p = modbus::comm_parameters(map_);
+  p[6] = address_;
+  for (std::size_t i = 0; i < std::size(counters_.function); ++i) p[17 + i] = counters_.function[i];
+  p[27] = counters_.responded;
+  p[28] = counters_.to_slave;
+  p[29] = counters_.seen;
+  p[30] = counters_.link_errors;
+  return p;
+}
+
 RtuEvents RtuSlave::receive(std::span<const std::uint8_t> bytes, pccc::Target& target) {
   RtuEvents events;
   // At most one byte past the largest frame is buffered at a time, so a flood of bytes is cut and
@@ -128,7 +139,8 @@ void RtuSlave::frame(std::span<const std::uint8_t> f, pccc::Target& target, RtuE
   const auto pdu = f.subspan(1, f.size() - 3);
   if (const int c = function_counter(pdu[0]); c >= 0) ++counters_.function[c];
   std::string refusal;
-  auto reply = handle_pdu(pdu, map_, target, &refusal);
+  const CommParameters comm = comm_parameters();
+  auto reply = handle_pdu(pdu, map_, target, &refusal, &comm);
   if (!refusal.empty()) events.log.push_back("Modbus RTU: " + refusal);
   if (to == kBroadcastAddress) return;  // §2.2: a broadcast request is never answered
   reply.insert(reply.begin(), address_);

@@ -69,6 +69,8 @@ class RtuSlave {
   bool waiting_for_silence() const { return dropping_ || !buffer_.empty(); }
   std::size_t buffered() const { return buffer_.size(); }
   const RtuCounters& counters() const { return counters_; }
+  // Input registers 30501-30532 as this slave answers them (server/modbus.h, CommParameters).
+  CommParameters comm_parameters() const;
   std::uint8_t address() const { return address_; }
 
  private:

@@ -143,8 +143,9 @@ struct Server::Connection : Server::Link {
 // One Modbus TCP connection: read the 7-byte MBAP header, check its length, read the PDU, hand
 // the frame to modbus::handle, write the reply, repeat.
 struct Server::ModbusConnection : Server::Link {
-  ModbusConnection(asio::ip::tcp::socket s, LiveController& l, const ServerOptions& o, std::shared_ptr<std::size_t> count)
-      : Link(std::move(s), o, std::move(count), "Modbus"), live(l) {}
+  ModbusConnection(asio::ip::tcp::socket s, LiveController& l, const ServerOptions& o, std::shared_ptr<std::size_t> count,
+                   std::shared_ptr<const modbus::RtuSlave> r)
+      : Link(std::move(s), o, std::move(count), "Modbus"), live(l), rtu(std::move(r)) {}
 
   std::shared_ptr<ModbusConnection> self() { return std::static_pointer_cast<ModbusConnection>(shared_from_this()); }
 
@@ -169,7 +170,9 @@ struct Server::ModbusConnection : Server::Link {
 
   void handle() {
     std::string error, refusal;
-    auto out = modbus::handle(frame, options.modbus_map, live, &error, &refusal);
+    // Input registers 30501-30532 report the serial channel's address and counters when there is one.
+    const modbus::CommParameters comm = rtu ? rtu->comm_parameters() : modbus::comm_parameters(options.modbus_map);
+    auto out = modbus::handle(frame, options.modbus_map, live, &error, &refusal, &comm);
     if (!out) {
       spdlog::warn("{}: {}; connection closed", peer, error);
       close();
@@ -180,6 +183,7 @@ struct Server::ModbusConnection : Server::Link {
   }
 
   LiveController& live;
+  std::shared_ptr<const modbus::RtuSlave> rtu;
 };
 
 Server::Server(asio::io_context& io, LiveController& live, ServerOptions options)
@@ -292,7 +296,7 @@ void Server::accept() {
 
 void Server::accept_modbus() {
   accept_on(modbus_acceptor_, "Modbus TCP", [this](asio::ip::tcp::socket socket) {
-    auto c = std::make_shared<ModbusConnection>(std::move(socket), live_, options_, live_connections_);
+    auto c = std::make_shared<ModbusConnection>(std::move(socket), live_, options_, live_connections_, rtu_);
     spdlog::debug("{}: connected", c->peer);
     c->start();
   });
@@ -390,7 +394,7 @@ void Server::open_modbus_rtu() {
     set_raw(rtu_port_.native_handle(), o.baud, o.parity);
     rtu_path_ = o.device;
   }
-  rtu_ = std::make_unique<modbus::RtuSlave>(o.address, options_.modbus_map);
+  rtu_ = std::make_shared<modbus::RtuSlave>(o.address, options_.modbus_map);
   read_modbus_rtu();
 }
 

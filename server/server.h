@@ -141,7 +141,7 @@ class Server {
   // held open so reads do not fail while no client has it open.
   asio::serial_port rtu_port_;
   asio::steady_timer rtu_silence_;
-  std::unique_ptr<modbus::RtuSlave> rtu_;
+  std::shared_ptr<modbus::RtuSlave> rtu_;  // shared: Modbus TCP connections answer its parameters
   std::array<std::uint8_t, 512> rtu_buffer_{};
   std::uint64_t rtu_reads_ = 0;
   std::deque<std::vector<std::uint8_t>> rtu_out_;

@@ -230,6 +230,39 @@ TEST_F(ModbusRtuServerTest, ABadCrcIsIgnoredAndTheNextFrameAnswered) {
   EXPECT_GE(c.link_errors, 3);
 }
 
+// Input registers 30501-30532, "Modbus Communication Parameters" (1766-RM001A p. 618, AG-UM008C
+// p. 3-52, "Modbus Slave to MicroLogix Memory Map - Detail"): 30501-30504 the map's files, 30507
+// the slave address, 30518-30526 messages per function code (1, 2, 3, 4, 5, 6, 8, 15, 16), 30528
+// responded to, 30529 to this slave, 30530 seen, 30531 link layer errors.
+TEST_F(ModbusRtuServerTest, CommunicationParametersCountTheLine) {
+  start();
+  std::uint16_t v = 0;
+  ASSERT_EQ(modbus_read_registers(ctx_, 0, 1, &v), 1);      // FC 3
+  ASSERT_EQ(modbus_write_register(ctx_, 1, 5), 1);          // FC 6
+  ASSERT_EQ(modbus_set_slave(ctx_, kSlave + 1), 0);         // seen, not to this slave
+  modbus_set_response_timeout(ctx_, 0, 200000);
+  EXPECT_EQ(modbus_read_registers(ctx_, 0, 1, &v), -1);
+  ASSERT_EQ(modbus_set_slave(ctx_, MODBUS_BROADCAST_ADDRESS), 0);  // to this slave, not answered
+  const std::uint8_t fc6[] = {0x00, 0x06, 0x00, 0x01, 0x00, 0x06};
+  ASSERT_GT(modbus_send_raw_request(ctx_, fc6, sizeof fc6), 0);
+  EXPECT_FALSE(line_answers_within(200));
+  write_raw({kSlave, 0x03, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00});  // bad CRC: a link layer error
+  EXPECT_FALSE(line_answers_within(200));
+  ASSERT_EQ(modbus_set_slave(ctx_, kSlave), 0);
+  modbus_set_response_timeout(ctx_, 1, 0);
+  std::uint16_t p[32];
+  ASSERT_EQ(modbus_read_input_registers(ctx_, 500, 32, p), 32) << modbus_strerror(errno);  // FC 4, counted too
+  EXPECT_EQ((std::vector<int>{p[0], p[1], p[2], p[3]}), (std::vector<int>{3, 3, 7, 7}));
+  EXPECT_EQ(p[6], kSlave);
+  // Function counters 30518-30526: FC 3 once, FC 4 once (this read), FC 6 twice (one broadcast).
+  EXPECT_EQ((std::vector<int>(p + 17, p + 26)), (std::vector<int>{0, 0, 1, 1, 0, 2, 0, 0, 0}));
+  EXPECT_EQ(p[27], 2) << "30528 responded to (this read's reply is not sent yet)";
+  EXPECT_EQ(p[28], 4) << "30529 to this slave";
+  EXPECT_EQ(p[29], 5) << "30530 seen";
+  EXPECT_EQ(p[30], 1) << "30531 link layer errors";
+  EXPECT_EQ(n7(1), 6) << "the broadcast wrote N7:1";
+}
+
 TEST_F(ModbusRtuServerTest, TheLadderRespondsToWrittenValues) {
   LiveOptions lo;
   lo.speed = 10;

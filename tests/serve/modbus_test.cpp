@@ -130,11 +130,12 @@ TEST_F(ModbusServerTest, BadRequestsGetTheModbusExceptionCodes) {
   std::uint16_t regs[130];
   std::uint8_t bits[16];
   // 02 illegal data address: N7 has 2 words, so 40003 runs past the file; 40300 is outside the
-  // map; 30501 (channel diagnostics) is not simulated; coil 00017 is past B3's one word.
+  // map; 30500 lies between the input register file and the communication parameters; coil 00017
+  // is past B3's one word.
   EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 2, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 1, 2, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 299, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
-  EXPECT_EQ(exception_of(modbus_read_input_registers(ctx_, 500, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
+  EXPECT_EQ(exception_of(modbus_read_input_registers(ctx_, 499, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 1566, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_write_bit(ctx_, 16, 1)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_read_bits(ctx_, 4090, 10, bits)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
@@ -161,6 +162,21 @@ TEST_F(ModbusServerTest, BadRequestsGetTheModbusExceptionCodes) {
   // Nothing was written, and the connection still serves.
   EXPECT_EQ(holding(0), 500);
   EXPECT_EQ(on_server([&] { return live_->controller().get_int("B3:0"); }), 0);
+}
+
+// Input registers 30501-30532 are the "Modbus Communication Parameters" (1766-RM001A p. 617-618,
+// AG-UM008C p. 3-52): 30501-30504 the coil, contact, input register and holding register file
+// numbers. Without a serial channel the address and counters read 0; the block ends at 30532.
+TEST_F(ModbusServerTest, CommunicationParametersNameTheMapsFiles) {
+  start();
+  std::uint16_t regs[32];
+  ASSERT_EQ(modbus_read_input_registers(ctx_, 500, 32, regs), 32) << modbus_strerror(errno);
+  EXPECT_EQ((std::vector<int>{regs[0], regs[1], regs[2], regs[3]}), (std::vector<int>{3, 3, 7, 7}));
+  EXPECT_EQ(regs[6], 0) << "30507 slave address: no serial channel";
+  EXPECT_EQ(regs[29], 0) << "30530 total messages seen: Modbus TCP requests are not counted";
+  EXPECT_EQ(exception_of(modbus_read_input_registers(ctx_, 531, 2, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
+  // FC 3 does not reach them: holding register 40501 is not mapped.
+  EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 500, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
 }
 
 TEST_F(ModbusServerTest, ReadOnlyServerRefusesWritesWithServerDeviceFailure) {

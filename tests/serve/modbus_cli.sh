@@ -35,11 +35,16 @@ for _ in $(seq 1 50); do
 done
 [ -n "$mport" ] || fail "no 'Modbus TCP on 127.0.0.1:PORT' line: $(cat "$work/out")"
 grep "Modbus TCP" "$work/out"
+# request PATH BYTES N: writes the bytes (printf escapes) to PATH (a bash /dev/tcp path or a tty)
+# and sets $reply to the first N bytes that come back, in hex.
+request() {
+  exec 3<> "$1" || fail "cannot open $1"
+  printf "$2" >&3
+  reply="$(timeout 5 head -c "$3" <&3 | od -An -tx1 | tr -d ' \n')"
+  exec 3>&-
+}
 # FC 3, address 0, one register, through bash's /dev/tcp: the reply's register is 01F4h = 500.
-exec 3<> "/dev/tcp/127.0.0.1/$mport" || fail "cannot connect to $mport"
-printf '\x00\x07\x00\x00\x00\x06\x01\x03\x00\x00\x00\x01' >&3
-reply="$(timeout 5 head -c 11 <&3 | od -An -tx1 | tr -d ' \n')"
-exec 3>&-
+request "/dev/tcp/127.0.0.1/$mport" '\x00\x07\x00\x00\x00\x06\x01\x03\x00\x00\x00\x01' 11
 [ "$reply" = "00070000000501030201f4" ] || fail "reply $reply, expected register 01f4"
 echo "ok: holding register 40001 = 500"
 
@@ -48,15 +53,9 @@ echo "ok: holding register 40001 = 500"
 pty="$(sed -n 's/.*Modbus RTU slave 1 on \(\/dev\/[^ ]*\) .*/\1/p' "$work/out")"
 [ -n "$pty" ] || fail "no 'Modbus RTU slave 1 on /dev/...' line: $(cat "$work/out")"
 grep "Modbus RTU" "$work/out"
-exec 4<> "$pty" || fail "cannot open $pty"
-printf '\x01\x06\x00\x01\x00\x2a\x59\xd5' >&4
-reply="$(timeout 5 head -c 8 <&4 | od -An -tx1 | tr -d ' \n')"
-exec 4>&-
+request "$pty" '\x01\x06\x00\x01\x00\x2a\x59\xd5' 8
 [ "$reply" = "01060001002a59d5" ] || fail "RTU reply $reply, expected the echo 01060001002a59d5"
-exec 3<> "/dev/tcp/127.0.0.1/$mport" || fail "cannot connect to $mport"
-printf '\x00\x08\x00\x00\x00\x06\x01\x03\x00\x01\x00\x01' >&3
-reply="$(timeout 5 head -c 11 <&3 | od -An -tx1 | tr -d ' \n')"
-exec 3>&-
+request "/dev/tcp/127.0.0.1/$mport" '\x00\x08\x00\x00\x00\x06\x01\x03\x00\x01\x00\x01' 11
 [ "$reply" = "000800000005010302002a" ] || fail "TCP reply $reply, expected register 002a written over RTU"
 echo "ok: holding register 40002 written over Modbus RTU, read over Modbus TCP"
 stop_serve_and_replay "$softslc" "$work" 0

@@ -14,40 +14,27 @@
 #include <poll.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
-#include <chrono>
-#include <filesystem>
-#include <future>
-#include <thread>
 
 #include "server/modbus_rtu.h"
 #include "server/server.h"
+#include "tests/serve/modbus_test_util.h"
 
 namespace softslc::serve::testing {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-std::filesystem::path batch_program() {
-  return std::filesystem::path(SOFTSLC_SOURCE_DIR) / "examples/ladder/micrologix/ml1400_batch.slc";
-}
-
-constexpr modbus::Map kBatchMap{3, 3, 7, 7};
 constexpr int kSlave = 17;
 
-class ModbusRtuServerTest : public ::testing::Test {
+class ModbusRtuServerTest : public ModbusClientTest {
  protected:
   void start(const LiveOptions& lo = {}) {
-    live_.emplace(batch_program(), std::nullopt, lo);
-    live_->controller().set("HIGH_LEVEL", 1);  // I:0/5: the tank is full (rungs 1-3)
     ServerOptions so;
-    so.port = 0;
-    so.modbus_map = kBatchMap;
     so.modbus_rtu = ServerOptions::ModbusRtu{"pty", kSlave, 19200, 'E'};
-    server_ = std::make_unique<Server>(io_, *live_, so);
-    server_->start();
+    start_server(so, lo);
     ASSERT_FALSE(server_->modbus_rtu_path().empty());
-    thread_ = std::thread([this] { io_.run(); });
     // libmodbus sets the line as it would a real port: 19200 baud, even parity, 8 data bits,
     // 1 stop bit (a pseudo-terminal stores these settings and honours none of them).
     ctx_ = modbus_new_rtu(server_->modbus_rtu_path().c_str(), 19200, 'E', 8, 1);
@@ -56,35 +43,8 @@ class ModbusRtuServerTest : public ::testing::Test {
     modbus_set_response_timeout(ctx_, 1, 0);
     ASSERT_EQ(modbus_connect(ctx_), 0) << modbus_strerror(errno);
   }
-  void TearDown() override {
-    if (ctx_) {
-      modbus_close(ctx_);
-      modbus_free(ctx_);
-    }
-    if (!thread_.joinable()) return;
-    asio::post(io_, [this] {
-      server_->stop();
-      io_.stop();
-    });
-    thread_.join();
-  }
-  template <typename F>
-  auto on_server(F f) {
-    std::promise<decltype(f())> done;
-    asio::post(io_, [&] { done.set_value(f()); });
-    return done.get_future().get();
-  }
   int n7(int word) {
     return on_server([&] { return live_->controller().get_int("N7:" + std::to_string(word)); });
-  }
-  std::uint16_t holding(int address) {
-    std::uint16_t v = 0xDEAD;
-    EXPECT_EQ(modbus_read_registers(ctx_, address, 1, &v), 1) << modbus_strerror(errno);
-    return v;
-  }
-  static int exception_of(int rc) {
-    if (rc != -1) return 0;
-    return errno - MODBUS_ENOBASE;
   }
   // Whether any byte comes back on the client's line within `ms`.
   bool line_answers_within(int ms) {
@@ -106,12 +66,6 @@ class ModbusRtuServerTest : public ::testing::Test {
   void write_raw(const Bytes& bytes) {
     ASSERT_EQ(::write(modbus_get_socket(ctx_), bytes.data(), bytes.size()), static_cast<ssize_t>(bytes.size()));
   }
-
-  asio::io_context io_;
-  std::optional<LiveController> live_;
-  std::unique_ptr<Server> server_;
-  std::thread thread_;
-  modbus_t* ctx_ = nullptr;
 };
 
 TEST_F(ModbusRtuServerTest, CoilsAndRegistersAreTheMappedFiles) {
@@ -267,21 +221,7 @@ TEST_F(ModbusRtuServerTest, TheLadderRespondsToWrittenValues) {
   LiveOptions lo;
   lo.speed = 10;
   start(lo);
-  // ml1400_batch.slc: litres (holding 40001 = N7:0), BATCH (coil 00002 = B3:0/1) on; after the
-  // 2.5 s mix the ladder counts the batch in N7:1, adds the litres to L9:0 (DATA 32500) and
-  // unlatches BATCH.
-  ASSERT_EQ(modbus_write_register(ctx_, 0, 1200), 1);
-  ASSERT_EQ(modbus_write_bit(ctx_, 1, 1), 1);
-  std::uint16_t batches = 0;
-  for (int i = 0; i < 100 && batches == 0; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    batches = holding(1);
-  }
-  EXPECT_EQ(batches, 1);
-  std::uint8_t batch = 1;
-  ASSERT_EQ(modbus_read_bits(ctx_, 1, 1, &batch), 1);
-  EXPECT_EQ(batch, 0);
-  EXPECT_EQ(on_server([&] { return live_->controller().get_int("L9:0"); }), 32500 + 1200);
+  run_a_batch();
 }
 
 // The framer without a line: byte-exact frames through modbus::RtuSlave.

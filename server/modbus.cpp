@@ -59,28 +59,13 @@ Resolved resolve_registers(const pccc::Target& target, int file, std::uint32_t a
   return resolve(target, file, kRegisterSpace, address, count, false);
 }
 
+// A reply PDU: the request's function and its data, or function | 80h and an exception code.
 class Reply {
  public:
-  Reply(const Header& h, std::uint8_t function) : function_(function) {
-    put16(out_, h.transaction);
-    put16(out_, 0);
-    put16(out_, 0);  // length, set by finish()
-    out_.push_back(h.unit);
-    out_.push_back(function);
-  }
+  explicit Reply(std::uint8_t function) : function_(function) { out_.push_back(function); }
   std::vector<std::uint8_t>& bytes() { return out_; }
-  std::vector<std::uint8_t> finish() {
-    const auto len = static_cast<std::uint16_t>(out_.size() - 6);
-    out_[4] = static_cast<std::uint8_t>(len >> 8);
-    out_[5] = static_cast<std::uint8_t>(len & 0xFF);
-    return std::move(out_);
-  }
-  std::vector<std::uint8_t> exception(std::uint8_t code) {
-    out_.resize(kHeaderSize);
-    out_.push_back(static_cast<std::uint8_t>(function_ | 0x80));
-    out_.push_back(code);
-    return finish();
-  }
+  std::vector<std::uint8_t> finish() { return std::move(out_); }
+  std::vector<std::uint8_t> exception(std::uint8_t code) { return {static_cast<std::uint8_t>(function_ | 0x80), code}; }
 
  private:
   std::uint8_t function_;
@@ -135,6 +120,15 @@ std::string check_map(const Map& map, const pccc::Target& target) {
   return {};
 }
 
+CommParameters comm_parameters(const Map& map) {
+  CommParameters p{};
+  p[0] = static_cast<std::uint16_t>(map.coils);
+  p[1] = static_cast<std::uint16_t>(map.contacts);
+  p[2] = static_cast<std::uint16_t>(map.input_registers);
+  p[3] = static_cast<std::uint16_t>(map.holding_registers);
+  return p;
+}
+
 std::optional<Header> decode_header(std::span<const std::uint8_t> b, std::string* error) {
   if (b.size() < kHeaderSize) {
     if (error) *error = "MBAP header shorter than 7 bytes";
@@ -157,7 +151,7 @@ std::optional<Header> decode_header(std::span<const std::uint8_t> b, std::string
 }
 
 std::optional<std::vector<std::uint8_t>> handle(std::span<const std::uint8_t> frame, const Map& map, pccc::Target& target,
-                                                std::string* error, std::string* refusal) {
+                                                std::string* error, std::string* refusal, const CommParameters* comm) {
   const auto h = decode_header(frame, error);
   if (!h) return std::nullopt;
   if (frame.size() != kHeaderSize + h->length - 1u) {
@@ -165,9 +159,22 @@ std::optional<std::vector<std::uint8_t>> handle(std::span<const std::uint8_t> fr
                         std::to_string(frame.size()) + " bytes";
     return std::nullopt;
   }
-  const auto pdu = frame.subspan(kHeaderSize);
+  const auto pdu = handle_pdu(frame.subspan(kHeaderSize), map, target, refusal, comm);
+  std::vector<std::uint8_t> out;
+  out.reserve(kHeaderSize + pdu.size());
+  put16(out, h->transaction);
+  put16(out, 0);
+  put16(out, static_cast<std::uint16_t>(pdu.size() + 1));
+  out.push_back(h->unit);
+  out.insert(out.end(), pdu.begin(), pdu.end());
+  return out;
+}
+
+std::vector<std::uint8_t> handle_pdu(std::span<const std::uint8_t> pdu, const Map& map, pccc::Target& target,
+                                     std::string* refusal, const CommParameters* comm) {
+  if (pdu.empty()) return {};
   const std::uint8_t fc = pdu[0];
-  Reply reply(*h, fc);
+  Reply reply(fc);
   const auto refuse = [&](std::uint8_t code, const std::string& why) {
     if (refusal) *refusal = "function " + std::to_string(fc) + ": " + why;
     return reply.exception(code);
@@ -198,6 +205,15 @@ std::optional<std::vector<std::uint8_t>> handle(std::span<const std::uint8_t> fr
     case kReadHoldingRegisters:
     case kReadInputRegisters: {
       if (pdu.size() != 5 || quantity < 1 || quantity > 125) return refuse(kIllegalDataValue, "quantity outside 1-125");
+      if (fc == kReadInputRegisters && address >= kCommParameterBase && address < kCommParameterBase + kCommParameterCount) {
+        if (address + quantity > kCommParameterBase + kCommParameterCount)
+          return refuse(kIllegalDataAddress, "the communication parameters end at 30532");
+        const CommParameters values = comm ? *comm : comm_parameters(map);
+        auto& out = reply.bytes();
+        out.push_back(static_cast<std::uint8_t>(quantity * 2));
+        for (std::uint32_t i = 0; i < quantity; ++i) put16(out, values[address - kCommParameterBase + i]);
+        return reply.finish();
+      }
       const auto r = resolve_registers(target, fc == kReadHoldingRegisters ? map.holding_registers : map.input_registers,
                                        address, quantity);
       if (!r.place) return refuse(r.exception, r.why);

@@ -12,10 +12,10 @@
 //   holding registers 41501-41566  words 0-65 of the status file S2       FC 3 read, 6, 16 write
 //   FC 8 subfunction 0           echo (the manual's "Echo Command Data")
 // Coil n is bit n%16 of word n/16 (bit 0 of word 0 is coil 00001). Protocol addresses are the
-// 0-based ones on the wire: holding register 40001 is address 0, 41501 is 1500. Not simulated:
-// the communication parameters 30501-30532 (the channel's diagnostic counters) and the expanded
-// holding-register files 40257-41280 and 41793-42048, which the manual says are active only when
-// "specially configured"; they answer exception 02.
+// 0-based ones on the wire: holding register 40001 is address 0, 41501 is 1500. Input registers
+// 30501-30532 are the "Modbus Communication Parameters" (CommParameters below). Not simulated: the
+// expanded holding-register files 40257-41280 and 41793-42048, which the manual says are active
+// only when "specially configured"; they answer exception 02.
 //
 // Replies (Modbus Application Protocol v1.1b3 §7 for the exception codes):
 //   01 illegal function       a function code not in the table above, or FC 8 with another
@@ -32,6 +32,7 @@
 // unit id is echoed and not checked (a Modbus TCP server addressed directly is the unit).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -75,6 +76,28 @@ inline constexpr std::uint32_t kStatusRegisters = 66;       // words 0-65
 inline constexpr std::uint32_t kCoilSpace = 4096;
 inline constexpr std::uint32_t kRegisterSpace = 256;
 
+// Input registers 30501-30532 (FC 4, protocol addresses 500-531): the "Modbus Communication
+// Parameters" of the channel (1766-RM001A p. 618 / AG-UM008C p. 3-52, "Modbus Slave to MicroLogix
+// Memory Map - Detail", which names each word and says no more). Index i is register 30501 + i:
+//   0-3   the coil, contact, input register and holding register file numbers (30501-30504)
+//   6     the Modbus slave address (30507)
+//   17-25 messages to this slave with function code 1, 2, 3, 4, 5, 6, 8, 15, 16 (30518-30526)
+//   27    total messages responded to by this slave (30528)
+//   28    total messages to this slave (30529)
+//   29    total messages seen (30530)
+//   30    link layer error count (30531)
+// and 0 for the rest: 30505 (not in the table), the pre-send, RTS send and RTS off delays and the
+// inter-character timeout (30506, 30508-30510: not simulated; 0 is the channel's default, p. 3-49,
+// 0 = 3.5 character times), and the words whose coding the page does not give: parity (30511),
+// the error codes and error request (30512-30517), modem status (30527), link layer error (30532).
+// The address and counters are the Modbus RTU slave's (server/modbus_rtu.h); without one they
+// read 0, and Modbus TCP requests are not counted.
+inline constexpr std::uint16_t kCommParameterBase = 500;
+inline constexpr std::uint32_t kCommParameterCount = 32;
+using CommParameters = std::array<std::uint16_t, kCommParameterCount>;
+// The parameters of a map without a serial link: the four file numbers, the rest 0.
+CommParameters comm_parameters(const Map& map);
+
 // Checks a map against the program's files: empty when usable, else what is wrong.
 std::string check_map(const Map& map, const pccc::Target& target);
 
@@ -88,11 +111,20 @@ struct Header {
 // (protocol id not 0, length outside 2-254) — `error` says which.
 std::optional<Header> decode_header(std::span<const std::uint8_t> bytes, std::string* error = nullptr);
 
+// Executes one request PDU (function code and data) and returns the reply PDU: the function and
+// its data, or function | 80h and one exception code. Modbus TCP (handle below) and Modbus RTU
+// (server/modbus_rtu.h) both answer through it, so the map, the exception codes and the writes
+// (through `target`, journaled by the live controller) are the same on both. An empty PDU gets an
+// empty reply. `refusal`, when given, receives why an exception was answered (for the log).
+// `comm`: the communication parameters to answer at 30501-30532; nullptr: comm_parameters(map).
+std::vector<std::uint8_t> handle_pdu(std::span<const std::uint8_t> pdu, const Map& map, pccc::Target& target,
+                                     std::string* refusal = nullptr, const CommParameters* comm = nullptr);
+
 // Handles one whole frame (header and exactly length-1 PDU bytes) and returns the reply frame.
 // nullopt: the frame is malformed (the connection closes, `error` says why). `refusal`, when
 // given, receives why an exception was answered (for the log).
 std::optional<std::vector<std::uint8_t>> handle(std::span<const std::uint8_t> frame, const Map& map,
                                                 pccc::Target& target, std::string* error = nullptr,
-                                                std::string* refusal = nullptr);
+                                                std::string* refusal = nullptr, const CommParameters* comm = nullptr);
 
 }  // namespace softslc::modbus

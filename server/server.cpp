@@ -2,7 +2,15 @@
 
 #include <spdlog/spdlog.h>
 
+#include <fcntl.h>
+#include <termios.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <system_error>
 
 namespace softslc::serve {
 
@@ -135,8 +143,9 @@ struct Server::Connection : Server::Link {
 // One Modbus TCP connection: read the 7-byte MBAP header, check its length, read the PDU, hand
 // the frame to modbus::handle, write the reply, repeat.
 struct Server::ModbusConnection : Server::Link {
-  ModbusConnection(asio::ip::tcp::socket s, LiveController& l, const ServerOptions& o, std::shared_ptr<std::size_t> count)
-      : Link(std::move(s), o, std::move(count), "Modbus"), live(l) {}
+  ModbusConnection(asio::ip::tcp::socket s, LiveController& l, const ServerOptions& o, std::shared_ptr<std::size_t> count,
+                   std::shared_ptr<const modbus::RtuSlave> r)
+      : Link(std::move(s), o, std::move(count), "Modbus"), live(l), rtu(std::move(r)) {}
 
   std::shared_ptr<ModbusConnection> self() { return std::static_pointer_cast<ModbusConnection>(shared_from_this()); }
 
@@ -161,7 +170,9 @@ struct Server::ModbusConnection : Server::Link {
 
   void handle() {
     std::string error, refusal;
-    auto out = modbus::handle(frame, options.modbus_map, live, &error, &refusal);
+    // Input registers 30501-30532 report the serial channel's address and counters when there is one.
+    const modbus::CommParameters comm = rtu ? rtu->comm_parameters() : modbus::comm_parameters(options.modbus_map);
+    auto out = modbus::handle(frame, options.modbus_map, live, &error, &refusal, &comm);
     if (!out) {
       spdlog::warn("{}: {}; connection closed", peer, error);
       close();
@@ -172,12 +183,22 @@ struct Server::ModbusConnection : Server::Link {
   }
 
   LiveController& live;
+  std::shared_ptr<const modbus::RtuSlave> rtu;
 };
 
 Server::Server(asio::io_context& io, LiveController& live, ServerOptions options)
-    : live_(live), options_(std::move(options)), acceptor_(io), modbus_acceptor_(io), udp_(io), timer_(io) {}
+    : live_(live),
+      options_(std::move(options)),
+      acceptor_(io),
+      modbus_acceptor_(io),
+      udp_(io),
+      timer_(io),
+      rtu_port_(io),
+      rtu_silence_(io) {}
 
-Server::~Server() = default;
+Server::~Server() {
+  if (rtu_pty_slave_ >= 0) ::close(rtu_pty_slave_);
+}
 
 void listen_on(asio::ip::tcp::acceptor& acceptor, const asio::ip::tcp::endpoint& ep) {
   acceptor.open(ep.protocol());
@@ -198,6 +219,13 @@ void Server::start() {
     listen_on(modbus_acceptor_, asio::ip::tcp::endpoint(address, *options_.modbus_port));
     accept_modbus();
   }
+  if (options_.modbus_rtu) {
+    try {
+      open_modbus_rtu();
+    } catch (const std::exception& e) {
+      throw SerialLineError("cannot open the Modbus RTU line " + options_.modbus_rtu->device + ": " + e.what());
+    }
+  }
   accept();
   receive_udp();
   restart_pacing();
@@ -211,6 +239,10 @@ void Server::stop() {
   modbus_acceptor_.close(ignored);
   udp_.close(ignored);
   timer_.cancel();
+  rtu_port_.close(ignored);
+  rtu_silence_.cancel();
+  if (rtu_pty_slave_ >= 0) ::close(rtu_pty_slave_);
+  rtu_pty_slave_ = -1;
 }
 
 std::uint16_t Server::tcp_port() const { return acceptor_.local_endpoint().port(); }
@@ -264,7 +296,7 @@ void Server::accept() {
 
 void Server::accept_modbus() {
   accept_on(modbus_acceptor_, "Modbus TCP", [this](asio::ip::tcp::socket socket) {
-    auto c = std::make_shared<ModbusConnection>(std::move(socket), live_, options_, live_connections_);
+    auto c = std::make_shared<ModbusConnection>(std::move(socket), live_, options_, live_connections_, rtu_);
     spdlog::debug("{}: connected", c->peer);
     c->start();
   });
@@ -287,6 +319,131 @@ void Server::receive_udp() {
       udp_.async_send_to(asio::buffer(*reply), udp_peer_, [reply](const boost::system::error_code&, std::size_t) {});
     }
     receive_udp();
+  });
+}
+
+std::chrono::microseconds modbus_rtu_silence(int baud) {
+  const std::chrono::microseconds t35{baud > 19200 ? 1750 : 38500000 / std::max(baud, 1)};
+  return std::max(t35, std::chrono::microseconds{5000});
+}
+
+namespace {
+
+[[noreturn]] void throw_errno(const std::string& what) {
+  throw std::system_error(errno, std::generic_category(), what);
+}
+
+// Sets a tty to raw 8-bit characters at `baud` with `parity` ('N', 'E', 'O'); no parity takes two
+// stop bits (Modbus over Serial Line v1.02 §2.5.1: every character is 11 bits).
+void set_raw(int fd, int baud, char parity) {
+  termios t{};
+  if (::tcgetattr(fd, &t) != 0) throw_errno("tcgetattr");
+  ::cfmakeraw(&t);
+  speed_t speed = B19200;
+  switch (baud) {
+    case 300: speed = B300; break;
+    case 600: speed = B600; break;
+    case 1200: speed = B1200; break;
+    case 2400: speed = B2400; break;
+    case 4800: speed = B4800; break;
+    case 9600: speed = B9600; break;
+    case 38400: speed = B38400; break;
+    default: break;
+  }
+  ::cfsetispeed(&t, speed);
+  ::cfsetospeed(&t, speed);
+  t.c_cflag |= CLOCAL | CREAD;
+  t.c_cflag &= ~static_cast<tcflag_t>(PARENB | PARODD | CSTOPB);
+  if (parity == 'E') t.c_cflag |= PARENB;
+  if (parity == 'O') t.c_cflag |= PARENB | PARODD;
+  if (parity == 'N') t.c_cflag |= CSTOPB;
+  if (::tcsetattr(fd, TCSANOW, &t) != 0) throw_errno("tcsetattr");
+}
+
+}  // namespace
+
+void Server::open_modbus_rtu() {
+  const auto& o = *options_.modbus_rtu;
+  if (o.device == "pty") {
+    // A pseudo-terminal: the server reads and writes its master side; clients open the slave path.
+    const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+    if (master < 0) throw_errno("posix_openpt");
+    char name[256] = {};
+    if (::grantpt(master) != 0 || ::unlockpt(master) != 0 || ::ptsname_r(master, name, sizeof name) != 0) {
+      const int e = errno;
+      ::close(master);
+      throw std::system_error(e, std::generic_category(), "pseudo-terminal");
+    }
+    rtu_pty_slave_ = ::open(name, O_RDWR | O_NOCTTY);
+    if (rtu_pty_slave_ < 0) {
+      const int e = errno;
+      ::close(master);
+      throw std::system_error(e, std::generic_category(), name);
+    }
+    // The slave side's line discipline would echo and translate bytes until a client sets it raw.
+    try {
+      set_raw(rtu_pty_slave_, o.baud, o.parity);
+    } catch (...) {
+      ::close(master);
+      throw;
+    }
+    rtu_port_.assign(master);
+    rtu_path_ = name;
+  } else {
+    rtu_port_.open(o.device);
+    set_raw(rtu_port_.native_handle(), o.baud, o.parity);
+    rtu_path_ = o.device;
+  }
+  rtu_ = std::make_shared<modbus::RtuSlave>(o.address, options_.modbus_map);
+  read_modbus_rtu();
+}
+
+void Server::read_modbus_rtu() {
+  rtu_port_.async_read_some(asio::buffer(rtu_buffer_), [this](const boost::system::error_code& ec, std::size_t n) {
+    if (ec) {
+      if (ec == asio::error::operation_aborted || stopped_) return;
+      spdlog::warn("Modbus RTU on {}: read failed: {}; the serial line is closed", rtu_path_, ec.message());
+      boost::system::error_code ignored;
+      rtu_port_.close(ignored);
+      return;
+    }
+    ++rtu_reads_;
+    modbus_rtu_events(rtu_->receive(std::span<const std::uint8_t>(rtu_buffer_.data(), n), live_));
+    if (rtu_->waiting_for_silence()) {
+      rtu_silence_.expires_after(modbus_rtu_silence(options_.modbus_rtu->baud));
+      // A wait that completed before bytes arrived is stale: the read count tells.
+      rtu_silence_.async_wait([this, reads = rtu_reads_](const boost::system::error_code& wait_ec) {
+        if (wait_ec || stopped_ || reads != rtu_reads_) return;
+        modbus_rtu_events(rtu_->silence(live_));
+      });
+    }
+    read_modbus_rtu();
+  });
+}
+
+void Server::modbus_rtu_events(modbus::RtuEvents events) {
+  for (const auto& line : events.log) spdlog::debug("{}", line);
+  for (auto& reply : events.replies) {
+    // A client that sends and never reads (a pseudo-terminal fills up) must not grow the queue.
+    if (rtu_out_.size() >= 16) {
+      spdlog::warn("Modbus RTU on {}: 16 replies unsent; a reply dropped", rtu_path_);
+      continue;
+    }
+    rtu_out_.push_back(std::move(reply));
+    if (rtu_out_.size() == 1) send_modbus_rtu();
+  }
+}
+
+void Server::send_modbus_rtu() {
+  asio::async_write(rtu_port_, asio::buffer(rtu_out_.front()), [this](const boost::system::error_code& ec, std::size_t) {
+    if (ec) {
+      rtu_out_.clear();
+      if (ec != asio::error::operation_aborted && !stopped_)
+        spdlog::warn("Modbus RTU on {}: write failed: {}", rtu_path_, ec.message());
+      return;
+    }
+    rtu_out_.pop_front();
+    if (!rtu_out_.empty()) send_modbus_rtu();
   });
 }
 

@@ -28,7 +28,7 @@ ensure_packages clang libclang-rt-14-dev cmake ninja-build tao-pegtl-dev libcli1
 mkdir -p "$build"
 CXX=clang++ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOFTSLC_FUZZ=ON \
   -DSOFTSLC_TESTS=ON -DSOFTSLC_BENCHMARKS=OFF > "$build/configure.log" 2>&1 || { cat "$build/configure.log"; exit 1; }
-all_targets=(program address testfile bench scanport_message transaction dem rss pccc eip modbus web)
+all_targets=(program address testfile bench scanport_message transaction dem rss pccc eip modbus modbus_rtu web)
 targets=("${all_targets[@]}")
 if [ -n "${SOFTSLC_FUZZ_TARGETS:-}" ]; then read -r -a targets <<< "$SOFTSLC_FUZZ_TARGETS"; fi
 parallel="${SOFTSLC_FUZZ_PARALLEL:-2}"
@@ -71,6 +71,10 @@ printf '\x02\x00\x00\x00\x00\x00\xb2\x00\x17\x00\x4b\x02\x20\x67\x24\x01\x07\x00
 # Modbus TCP (server/modbus.h): read holding registers 40001-40002 and write coil 00002 on.
 printf '\x00\x01\x00\x00\x00\x06\x01\x03\x00\x00\x00\x02' > "$corpus/modbus/read-holding"
 printf '\x00\x02\x00\x00\x00\x06\x01\x05\x00\x01\xff\x00' > "$corpus/modbus/write-coil"
+# Modbus RTU (server/modbus_rtu.h; the first byte says how the line delivers the rest): the same read
+# to slave 1 in one chunk; FC 16 of two registers then FC 8 echo in one chunk, then the silence.
+printf '\x3f\x01\x03\x00\x00\x00\x02\xc4\x0b' > "$corpus/modbus_rtu/read-holding"
+printf '\x7f\x01\x10\x00\x00\x00\x02\x04\x00\x07\x00\x08\x43\xa8\x01\x08\x00\x00\xa5\x37\xda\x8d' > "$corpus/modbus_rtu/write-then-echo"
 # The online view's requests (server/web.h), as the page sends them.
 printf '%s' '{"op":"view","file":2,"first":0,"last":30}' > "$corpus/web/view"
 printf '%s' '{"op":"table","name":"N7","offset":0}' > "$corpus/web/table"

@@ -15,6 +15,7 @@
 #include "server/eip.h"
 #include "server/live.h"
 #include "server/modbus.h"
+#include "server/modbus_rtu.h"
 #include "server/pccc.h"
 #include "server/web.h"
 
@@ -99,6 +100,41 @@ inline std::string check_modbus_property(std::string_view input) {
     return "Modbus reply function differs from the request's";
   }
   if (r.size() > modbus::kHeaderSize + modbus::kMaxPdu) return "Modbus reply longer than the largest PDU";
+  return {};
+}
+
+// Bytes on a Modbus RTU line (server/modbus_rtu.h), to slave 1 with the map of the TCP property.
+// The first byte says how the rest arrives: in chunks of (b & 3Fh) + 1 bytes, with the line
+// falling silent after each chunk when b & 40h. Every reply is a whole frame from slave 1 with a
+// good CRC, at most 256 bytes, whose function is a request's or an exception (| 80h, one code
+// 01-04); the buffer never holds more than 256 bytes; after a final silence it is empty.
+inline std::string check_modbus_rtu_property(std::string_view input) {
+  if (input.empty() || input.size() > 4096) return {};
+  const auto how = static_cast<std::uint8_t>(input[0]);
+  const std::size_t chunk = (how & 0x3Fu) + 1u;
+  const bool silences = (how & 0x40u) != 0;
+  const auto bytes = as_bytes(input.substr(1));
+  modbus::RtuSlave slave(1, modbus::Map{3, 3, 7, 7});
+  const auto check = [&](const modbus::RtuEvents& e) -> std::string {
+    if (slave.buffered() > modbus::kRtuMaxFrame) return "Modbus RTU buffer past 256 bytes";
+    for (const auto& r : e.replies) {
+      if (r.size() < 5 || r.size() > modbus::kRtuMaxFrame) return "Modbus RTU reply of " + std::to_string(r.size()) + " bytes";
+      if (r[0] != 1) return "Modbus RTU reply not from slave 1";
+      const std::uint16_t crc = modbus::crc16(std::span(r).first(r.size() - 2));
+      if (r[r.size() - 2] != (crc & 0xFF) || r[r.size() - 1] != (crc >> 8)) return "Modbus RTU reply CRC wrong";
+      if ((r[1] & 0x80) && (r.size() != 5 || r[2] < 1 || r[2] > 4)) return "Modbus RTU exception reply malformed";
+    }
+    return {};
+  };
+  for (std::size_t at = 0; at < bytes.size(); at += chunk) {
+    if (auto broken = check(slave.receive(bytes.subspan(at, std::min(chunk, bytes.size() - at)), serve_live())); !broken.empty())
+      return broken;
+    if (silences)
+      if (auto broken = check(slave.silence(serve_live())); !broken.empty()) return broken;
+  }
+  if (auto broken = check(slave.silence(serve_live())); !broken.empty()) return broken;
+  if (slave.waiting_for_silence() && !slave.silence(serve_live()).replies.empty()) return "Modbus RTU replied on a second silence";
+  if (slave.buffered() != 0) return "Modbus RTU bytes left after the line fell silent";
   return {};
 }
 

@@ -46,6 +46,18 @@ TEST(ServeFuzzProperties, ModbusFrames) {
                   fuzz::check_modbus_property);
 }
 
+// The first byte is how the line delivers the rest (serve_properties.h): 3Fh one chunk, 7Fh one
+// chunk then silence, 40h a byte at a time with a silence after each (every frame cut short).
+TEST(ServeFuzzProperties, ModbusRtuFrames) {
+  const Bytes read = {0x01, 0x03, 0x00, 0x00, 0x00, 0x02, 0xC4, 0x0B};
+  const Bytes write_echo = {0x01, 0x10, 0x00, 0x00, 0x00, 0x02, 0x04, 0x00, 0x07, 0x00, 0x08, 0x43, 0xA8,
+                            0x01, 0x08, 0x00, 0x00, 0xA5, 0x37, 0xDA, 0x8D};
+  for (const std::uint8_t how : {0x3F, 0x7F, 0x40, 0x01, 0x43}) {
+    check_mutations(cat({{how}, read}), fuzz::check_modbus_rtu_property);
+    check_mutations(cat({{how}, write_echo}), fuzz::check_modbus_rtu_property);
+  }
+}
+
 TEST(ServeFuzzProperties, WebRequests) {
   for (const char* request : {R"({"op":"view","file":2,"first":0,"last":30})", R"({"op":"table","name":"N7","offset":3})",
                               R"({"op":"set","address":"N7:0","value":"12"})", R"({"op":"force","address":"I:1/0","state":"on"})",

@@ -12,77 +12,27 @@
 
 #include <cerrno>
 #include <chrono>
-#include <filesystem>
-#include <future>
-#include <thread>
 
 #include "server/server.h"
+#include "tests/serve/modbus_test_util.h"
 
 namespace softslc::serve::testing {
 namespace {
 
 using Bytes = std::vector<std::uint8_t>;
 
-std::filesystem::path batch_program() {
-  return std::filesystem::path(SOFTSLC_SOURCE_DIR) / "examples/ladder/micrologix/ml1400_batch.slc";
-}
-
-constexpr modbus::Map kBatchMap{3, 3, 7, 7};
-
-class ModbusServerTest : public ::testing::Test {
+class ModbusServerTest : public ModbusClientTest {
  protected:
   void start(const LiveOptions& lo = {}) {
-    live_.emplace(batch_program(), std::nullopt, lo);
-    // HIGH_LEVEL (I:0/5): the tank is full, so a batch goes straight to mixing (rungs 1-3).
-    live_->controller().set("HIGH_LEVEL", 1);
     ServerOptions so;
-    so.port = 0;
     so.modbus_port = 0;
-    so.modbus_map = kBatchMap;
     so.idle_timeout = std::chrono::milliseconds(2000);
-    server_ = std::make_unique<Server>(io_, *live_, so);
-    server_->start();
-    thread_ = std::thread([this] { io_.run(); });
+    start_server(so, lo);
     ctx_ = modbus_new_tcp("127.0.0.1", server_->modbus_port());
     ASSERT_NE(ctx_, nullptr);
     modbus_set_response_timeout(ctx_, 2, 0);
     ASSERT_EQ(modbus_connect(ctx_), 0) << modbus_strerror(errno);
   }
-  void TearDown() override {
-    if (ctx_) {
-      modbus_close(ctx_);
-      modbus_free(ctx_);
-    }
-    if (!thread_.joinable()) return;
-    asio::post(io_, [this] {
-      server_->stop();
-      io_.stop();
-    });
-    thread_.join();
-  }
-  // Runs `f` on the server's thread (the controller is not shared across threads).
-  template <typename F>
-  auto on_server(F f) {
-    std::promise<decltype(f())> done;
-    asio::post(io_, [&] { done.set_value(f()); });
-    return done.get_future().get();
-  }
-  std::uint16_t holding(int address) {
-    std::uint16_t v = 0xDEAD;
-    EXPECT_EQ(modbus_read_registers(ctx_, address, 1, &v), 1) << modbus_strerror(errno);
-    return v;
-  }
-  // The exception code of the last failed request (libmodbus reports it as errno).
-  static int exception_of(int rc) {
-    if (rc != -1) return 0;
-    return errno - MODBUS_ENOBASE;
-  }
-
-  asio::io_context io_;
-  std::optional<LiveController> live_;
-  std::unique_ptr<Server> server_;
-  std::thread thread_;
-  modbus_t* ctx_ = nullptr;
 };
 
 TEST_F(ModbusServerTest, RegistersAndCoilsAreTheMappedFiles) {
@@ -130,11 +80,12 @@ TEST_F(ModbusServerTest, BadRequestsGetTheModbusExceptionCodes) {
   std::uint16_t regs[130];
   std::uint8_t bits[16];
   // 02 illegal data address: N7 has 2 words, so 40003 runs past the file; 40300 is outside the
-  // map; 30501 (channel diagnostics) is not simulated; coil 00017 is past B3's one word.
+  // map; 30500 lies between the input register file and the communication parameters; coil 00017
+  // is past B3's one word.
   EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 2, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 1, 2, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 299, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
-  EXPECT_EQ(exception_of(modbus_read_input_registers(ctx_, 500, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
+  EXPECT_EQ(exception_of(modbus_read_input_registers(ctx_, 499, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 1566, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_write_bit(ctx_, 16, 1)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
   EXPECT_EQ(exception_of(modbus_read_bits(ctx_, 4090, 10, bits)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
@@ -163,6 +114,21 @@ TEST_F(ModbusServerTest, BadRequestsGetTheModbusExceptionCodes) {
   EXPECT_EQ(on_server([&] { return live_->controller().get_int("B3:0"); }), 0);
 }
 
+// Input registers 30501-30532 are the "Modbus Communication Parameters" (1766-RM001A p. 617-618,
+// AG-UM008C p. 3-52): 30501-30504 the coil, contact, input register and holding register file
+// numbers. Without a serial channel the address and counters read 0; the block ends at 30532.
+TEST_F(ModbusServerTest, CommunicationParametersNameTheMapsFiles) {
+  start();
+  std::uint16_t regs[32];
+  ASSERT_EQ(modbus_read_input_registers(ctx_, 500, 32, regs), 32) << modbus_strerror(errno);
+  EXPECT_EQ((std::vector<int>{regs[0], regs[1], regs[2], regs[3]}), (std::vector<int>{3, 3, 7, 7}));
+  EXPECT_EQ(regs[6], 0) << "30507 slave address: no serial channel";
+  EXPECT_EQ(regs[29], 0) << "30530 total messages seen: Modbus TCP requests are not counted";
+  EXPECT_EQ(exception_of(modbus_read_input_registers(ctx_, 531, 2, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
+  // FC 3 does not reach them: holding register 40501 is not mapped.
+  EXPECT_EQ(exception_of(modbus_read_registers(ctx_, 500, 1, regs)), MODBUS_EXCEPTION_ILLEGAL_DATA_ADDRESS);
+}
+
 TEST_F(ModbusServerTest, ReadOnlyServerRefusesWritesWithServerDeviceFailure) {
   LiveOptions lo;
   lo.read_only = true;
@@ -174,23 +140,9 @@ TEST_F(ModbusServerTest, ReadOnlyServerRefusesWritesWithServerDeviceFailure) {
 
 TEST_F(ModbusServerTest, TheLadderRespondsToWrittenValues) {
   LiveOptions lo;
-  lo.speed = 10;  // the 2.5 s mix in a quarter of a second
+  lo.speed = 10;
   start(lo);
-  // Litres per batch (holding 40001 = N7:0 BATCH_L), then BATCH (coil 00002 = B3:0/1) on: the
-  // ladder mixes for 2.500 s, adds the volume to TOTAL_L (L9:0, DATA 32500), counts the batch in
-  // BATCHES (holding 40002 = N7:1) and unlatches BATCH.
-  ASSERT_EQ(modbus_write_register(ctx_, 0, 1200), 1);
-  ASSERT_EQ(modbus_write_bit(ctx_, 1, 1), 1);
-  std::uint16_t batches = 0;
-  for (int i = 0; i < 100 && batches == 0; ++i) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    batches = holding(1);
-  }
-  EXPECT_EQ(batches, 1);
-  std::uint8_t batch = 1;
-  ASSERT_EQ(modbus_read_bits(ctx_, 1, 1, &batch), 1);
-  EXPECT_EQ(batch, 0) << "the finished batch unlatched BATCH";
-  EXPECT_EQ(on_server([&] { return live_->controller().get_int("L9:0"); }), 32500 + 1200);
+  run_a_batch();
 }
 
 TEST_F(ModbusServerTest, MalformedFramesCloseOnlyTheirConnection) {

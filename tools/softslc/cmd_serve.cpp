@@ -48,6 +48,17 @@ CLI::App* add_serve_command(CLI::App& app, ServeOptions& o) {
                   "the channel's Modbus data files: coils,contacts,input registers,holding registers, each a B or N "
                   "file (default B3,B3,N7,N7)")
       ->type_name("C,D,I,H");
+  cmd->add_option("--modbus-rtu", o.modbus_rtu,
+                  "also answer Modbus RTU on a serial line, as a MicroLogix 1100/1400 whose channel 0 is configured "
+                  "as a Modbus RTU slave (with the --modbus-map files); DEVICE is a serial device (/dev/ttyUSB0) or "
+                  "pty: a new pseudo-terminal, whose path is printed")
+      ->type_name("DEVICE|pty");
+  cmd->add_option("--modbus-address", o.modbus_address, "the Modbus RTU slave address (default 1)")
+      ->check(CLI::Range(modbus::kMinSlaveAddress, modbus::kMaxSlaveAddress));
+  cmd->add_option("--modbus-baud", o.modbus_baud, "the serial line's baud rate: 300-38400 (default 19200)")
+      ->check(CLI::IsMember(std::vector<int>(std::begin(serve::kModbusRtuBauds), std::end(serve::kModbusRtuBauds))));
+  cmd->add_option("--modbus-parity", o.modbus_parity, "the serial line's parity (default none: 8 data bits, 2 stop bits)")
+      ->check(CLI::IsMember({"none", "even", "odd"}));
   auto* http = cmd->add_option("--http", o.http,
                                "serve the online view (a web page: live ladder, data tables, forces) on PORT, on the "
                                "--listen address (default 8044; 0 picks a free port; off: none)")
@@ -162,12 +173,13 @@ int run_serve(const ServeOptions& o) {
   }
   asio::io_context io;
   serve::ServerOptions so;
-  if (o.modbus_port >= 0) {
+  if (o.modbus_port >= 0 || !o.modbus_rtu.empty()) {
+    const char* option = o.modbus_port >= 0 ? "--modbus" : "--modbus-rtu";
     const ProcessorModel& p = live->controller().program().processor;
     if (p.micrologix != MicroLogixModel::ML1100 && p.micrologix != MicroLogixModel::ML1400) {
-      std::cerr << "softslc serve: --modbus: Modbus TCP is a MicroLogix 1100/1400 channel protocol; this program's "
-                   "processor is "
-                << p.display_name << " (" << p.catalog << ")\n";
+      std::cerr << "softslc serve: " << option << ": Modbus " << (o.modbus_port >= 0 ? "TCP" : "RTU")
+                << " is a MicroLogix 1100/1400 channel protocol; this program's processor is " << p.display_name
+                << " (" << p.catalog << ")\n";
       return kInputError;
     }
     auto map = parse_modbus_map(o.modbus_map);
@@ -176,8 +188,16 @@ int run_serve(const ServeOptions& o) {
       std::cerr << "softslc serve: --modbus-map " << o.modbus_map << ": " << why << "\n";
       return kInputError;
     }
-    so.modbus_port = static_cast<std::uint16_t>(o.modbus_port);
+    if (o.modbus_port >= 0) so.modbus_port = static_cast<std::uint16_t>(o.modbus_port);
     so.modbus_map = *map;
+  }
+  if (!o.modbus_rtu.empty()) {
+    serve::ServerOptions::ModbusRtu rtu;
+    rtu.device = o.modbus_rtu;
+    rtu.address = static_cast<std::uint8_t>(o.modbus_address);
+    rtu.baud = o.modbus_baud;
+    rtu.parity = o.modbus_parity == "even" ? 'E' : o.modbus_parity == "odd" ? 'O' : 'N';
+    so.modbus_rtu = rtu;
   }
   const auto http_port = parse_http(o.http);
   if (!http_port) {
@@ -191,6 +211,9 @@ int run_serve(const ServeOptions& o) {
   serve::Server server(io, *live, so);
   try {
     server.start();
+  } catch (const serve::SerialLineError& e) {
+    std::cerr << "softslc serve: " << e.what() << "\n";
+    return kInputError;
   } catch (const std::exception& e) {
     std::cerr << "softslc serve: cannot listen on " << o.listen << ":" << o.port << ": " << e.what() << "\n";
     return kInputError;
@@ -203,6 +226,11 @@ int run_serve(const ServeOptions& o) {
               << so.modbus_map.coils << ", contacts " << so.modbus_map.contacts << ", input registers "
               << so.modbus_map.input_registers << ", holding registers " << so.modbus_map.holding_registers << ")"
               << std::endl;
+  if (so.modbus_rtu)
+    std::cout << "softslc serve: Modbus RTU slave " << o.modbus_address << " on " << server.modbus_rtu_path() << " ("
+              << o.modbus_baud << " baud, parity " << o.modbus_parity << "; data files: coils " << so.modbus_map.coils
+              << ", contacts " << so.modbus_map.contacts << ", input registers " << so.modbus_map.input_registers
+              << ", holding registers " << so.modbus_map.holding_registers << ")" << std::endl;
   std::optional<serve::WebView> web;
   if (*http_port >= 0) {
     serve::WebOptions wo;

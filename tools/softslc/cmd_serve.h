@@ -25,6 +25,10 @@ struct ServeOptions {
   bool verbose = false;
   int modbus_port = -1;        // -1: no Modbus TCP
   std::string modbus_map = "B3,B3,N7,N7";  // coil, contact, input register, holding register files
+  std::string modbus_rtu;      // a serial device or "pty"; empty: no Modbus RTU
+  int modbus_address = 1;      // the RTU slave address
+  int modbus_baud = 19200;
+  std::string modbus_parity = "none";
   std::string http = "8044";   // the online view's port; "off": none (server/web.h)
   bool http_given = false;     // --http named: a port that cannot be bound is an error, not a warning
 };

@@ -1,6 +1,7 @@
-// `softslc serve PROGRAM`: runs the program paced to the wall clock, answers EtherNet/IP
-// (PCCC) clients and serves the online view (a web page, server/web.h); `softslc replay JOURNAL`: replays a serve session's journal and checks that
-// the data table went through the same states.
+// `softslc serve PROGRAM`: runs the program paced to the wall clock, answers EtherNet/IP (PCCC)
+// clients (and Modbus TCP and RTU masters, as a MicroLogix 1100/1400) and serves the online view (a
+// web page, server/web.h); `softslc replay JOURNAL`: replays a serve session's journal and checks
+// that the data table went through the same states.
 //
 // The server, its pacing timer, the online view, the signal handler and the console reader all
 // run on one io_context in this thread (server/server.h says why). The console takes one command a line:
@@ -25,7 +26,8 @@ namespace softslc::cli {
 
 CLI::App* add_serve_command(CLI::App& app, ServeOptions& o) {
   auto* cmd = app.add_subcommand("serve", "Run a program paced to the wall clock and serve its data table to "
-                                          "EtherNet/IP (PCCC) clients: HMIs, SCADA, test scripts");
+                                          "EtherNet/IP (PCCC) clients, and with --modbus/--modbus-rtu Modbus TCP/RTU "
+                                          "masters: HMIs, SCADA, test scripts");
   cmd->add_option("PROGRAM", o.program, "program file")->required();
   cmd->add_option("--bench", o.bench, "bench file of simulated field devices (docs/bench-format.md)");
   cmd->add_option("--speed", o.speed, "virtual seconds per wall second (default 1)")->check(CLI::Range(0.001, 1000.0));

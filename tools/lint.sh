@@ -21,10 +21,12 @@
 # of a header it changes (CI checks the header's own .cpp, not every includer), or with a new tool
 # version or check set: CI keeps the changed-files rule, and `tools/lint.sh --all` is for a new
 # clang-tidy/cppcheck, a changed check set, or a release. Session 18 left cppcheck clean on all
-# 211 and clang-tidy clean on the 105 that are not tests (and msg_ethernet_test); the other 105
-# test sources wait for a `--all` run.
+# 211 and clang-tidy clean on the 105 that are not tests (and msg_ethernet_test); session 19 ran
+# clang-tidy over the 107 test sources and fixed its 33 findings (int products widened, const
+# references, and two Google Benchmark idioms silenced where they occur): the whole tree is clean.
 # clang-tidy runs one file per core (SOFTSLC_LINT_JOBS, default nproc), so CI's changed files
-# cost half the wall time they did.
+# cost half the wall time they did. It is clang reading a GCC build's compile commands, so a GCC-only
+# warning option there (tests/parser's -Wno-maybe-uninitialized) is not an error to it.
 #
 # Check set: bugprone-*, performance-*, clang-analyzer-*, without the style-only
 # easily-swappable-parameters and narrowing-conversions, and without
@@ -71,7 +73,7 @@ trap 'rm -rf "$logs"' EXIT
 export build checks logs
 printf '%s\n' "${files[@]}" | xargs -P "$jobs" -I{} bash -c '
   log="$logs/$(tr / _ <<<"$1").log"
-  clang-tidy -p "$build" --quiet --warnings-as-errors="*" --checks="$checks" "$1" >"$log" 2>&1 || touch "$log.failed"' _ {}
+  clang-tidy -p "$build" --quiet --warnings-as-errors="*" --checks="$checks" --extra-arg=-Wno-unknown-warning-option "$1" >"$log" 2>&1 || touch "$log.failed"' _ {}
 compgen -G "$logs/*.failed" >/dev/null && status=1
 # Drop clang-tidy's counting chatter; keep every finding.
 cat "$logs"/*.log | grep -v -E '^[0-9]+ warnings? (and [0-9]+ errors? )?generated\.$|^Suppressed [0-9]+ warnings|^Use -header-filter' || true

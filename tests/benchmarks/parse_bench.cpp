@@ -23,7 +23,7 @@ std::string generate_program(int rungs) {
 void BM_ParseAndCheck(benchmark::State& state) {
   const int rungs = static_cast<int>(state.range(0));
   const std::string text = generate_program(rungs);
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     auto r = softslc::load_program(text, "generated.slc");
     if (!r.ok()) state.SkipWithError("generated program did not load");
     benchmark::DoNotOptimize(r);

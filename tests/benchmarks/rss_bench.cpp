@@ -43,7 +43,7 @@ void BM_RssReadProject(benchmark::State& state) {
   }
   std::string bytes = slurp(path);
   state.SetLabel(path.filename().string() + ", " + std::to_string(bytes.size()) + " bytes");
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     auto r = softslc::rss::read_project(bytes, path.filename().string());
     if (!r.text) state.SkipWithError(r.error.c_str());
     benchmark::DoNotOptimize(r);
@@ -60,7 +60,7 @@ void BM_RssReadAndCheck(benchmark::State& state) {
   }
   std::string bytes = slurp(path);
   state.SetLabel(path.filename().string());
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     auto r = softslc::load_program_bytes(bytes, path.filename().string());
     benchmark::DoNotOptimize(r);
   }

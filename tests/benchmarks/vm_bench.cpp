@@ -124,7 +124,7 @@ struct NativeFixture {
 void BM_VmProgramScan(benchmark::State& state) {
   VmFixture vm(static_cast<int>(state.range(0)));
   std::uint64_t instructions = 0;
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     ProgramScanResult r = vm.scan();
     instructions += r.instructions;
     benchmark::DoNotOptimize(r);
@@ -143,7 +143,7 @@ void BM_VmProgramScanWithCoverage(benchmark::State& state) {
   CoverageRecorder recorder(vm.program);
   vm.interp->set_coverage(&recorder);
   std::uint64_t instructions = 0;
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     ProgramScanResult r = vm.scan();
     instructions += r.instructions;
     benchmark::DoNotOptimize(r);
@@ -155,7 +155,7 @@ BENCHMARK(BM_VmProgramScanWithCoverage)->Arg(1000)->Unit(benchmark::kMicrosecond
 
 void BM_NativeScan(benchmark::State& state) {
   NativeFixture native(static_cast<int>(state.range(0)));
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     native.scan();
     benchmark::ClobberMemory();
   }
@@ -186,7 +186,7 @@ void BM_VmVsNative(benchmark::State& state) {
       return;
     }
   std::chrono::nanoseconds vm_time{0}, native_time{0};
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     const auto t0 = thread_cpu_now();
     benchmark::DoNotOptimize(vm.scan());
     const auto t1 = thread_cpu_now();
@@ -394,7 +394,7 @@ void BM_MixedVmVsNative(benchmark::State& state) {
   }
   std::chrono::nanoseconds vm_time{0}, native_time{0};
   std::uint64_t instructions = 0;
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     fx.now += kTick;
     const auto t0 = thread_cpu_now();
     const ProgramScanResult r = fx.vm_scan();

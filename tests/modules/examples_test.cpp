@@ -292,7 +292,7 @@ TEST(AppendixD, DirectionalNonContinuousReadsOncePerInputTransition) {
 TEST(AppendixD, BidirectionalContinuous) {
   Bench b = Bench::example("d_bidirectional_continuous.slc", "d_bidirectional_continuous.bench");
   b.run();
-  for (int k = 0; k < 4; ++k) b.set("N11:" + std::to_string(k), 7 * (k + 1));
+  for (int k = 0; k < 4; ++k) b.set("N11:" + std::to_string(k), std::int64_t{7} * (k + 1));
   b->run_for(seconds(4));
   EXPECT_GE(btr_count(b), 6);
   EXPECT_GE(btw_count(b), 6);

@@ -55,7 +55,7 @@ TEST(ThroughputCheck, DiscreteWithoutBlockTransfers) {
   const Nanoseconds measured = measure_discrete(b, 40);
   tp::RioNetwork n = network_of(b.sn());
   n.processor_scan = us_up(b->stats().max);
-  n.adapter_delay = 2 * 4000;  // "For a 1747-ASB, this is two ASB backplane scan times."
+  n.adapter_delay = tp::Micros{2} * 4000;  // "For a 1747-ASB, this is two ASB backplane scan times."
   n.input_delay = 10000;       // T_id of the example
   n.output_delay = 1000;       // T_od of the example
   n.t_upd = us_up(b->stats().max);
@@ -101,7 +101,7 @@ TEST(ThroughputCheck, DiscreteAndBlockTransfersWithBlockTransfersPresent) {
 
   tp::RioNetwork n = network_of(b.sn());
   n.processor_scan = us_up(b->stats().max);
-  n.adapter_delay = 2 * 4500;
+  n.adapter_delay = tp::Micros{2} * 4500;
   n.input_delay = 10000;
   n.output_delay = 1000;
   n.block_transfers = {{0, 8, "BT8"}, {0, 4, "BT4A"}, {0, 4, "BT4B"}, {1, 2, "BT2"}, {2, 64, "BT64"}, {2, 32, "BT32"}};

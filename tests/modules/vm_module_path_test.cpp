@@ -55,7 +55,7 @@ struct MTime : DefaultScanTimeModel {
 struct Fixture {
   Recorder* rec = nullptr;
   std::unique_ptr<Runtime> rt;
-  explicit Fixture(const std::string& rungs, std::function<void(Recorder&)> setup = {}) {
+  explicit Fixture(const std::string& rungs, const std::function<void(Recorder&)>& setup = {}) {
     LoadResult lr = load_program("START 1747-L532\nSLOT 1 1747-SN SCAN_IN 8 SCAN_OUT 8 M0_SIZE 400 M1_SIZE 400\n"
                                  "SLOT 3 1747-SDN SCAN_IN 8 SCAN_OUT 8\nLADDER 2\n" + rungs,
                                  "t.slc");

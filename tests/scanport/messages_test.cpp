@@ -158,7 +158,7 @@ TEST(MessageErrors, InvalidLengthFD) {
   // Scattered lists: empty, not whole entries, more than 47 entries.
   expect_error(&d, make_request(0x32, 0x93, 0, 0), 0xFD);
   expect_error(&d, make_request(0x32, 0x93, 0, 0, bytes_of({1, 0, 2})), 0xFD);
-  expect_error(&d, make_request(0x34, 0x93, 0, 0, std::vector<std::uint8_t>(48 * 4, 0)), 0xFD);
+  expect_error(&d, make_request(0x34, 0x93, 0, 0, std::vector<std::uint8_t>(std::size_t{48} * 4, 0)), 0xFD);
   // Set Attribute Single with less data than the value needs.
   expect_error(&d, make_request(0x10, 0x0F, 7, 1, {0x05}), 0xFD);
   expect_error(&d, make_request(0x10, 0x0F, 7, 1), 0xFD);
@@ -299,10 +299,10 @@ TEST(MessageTiming, FramesAndTransactionTime) {
   EXPECT_EQ(lt.device_processing, milliseconds(2));
   // Figure B.4: request 0 bytes (1 frame), reply 6 bytes (2 frames).
   const Request r = make_request(0x0E, 0x0F, 0, 2);
-  EXPECT_EQ(transaction_time(r, transact(&d, r), lt), 3 * 888'000 + milliseconds(2));
+  EXPECT_EQ(transaction_time(r, transact(&d, r), lt), std::int64_t{3} * 888'000 + milliseconds(2));
   // Figure B.8: reply 53 bytes (1 + 9 frames).
   const Request full = make_request(0x01, 0x0F, 7, 0);
-  EXPECT_EQ(transaction_time(full, transact(&d, full), lt), 11 * 888'000 + milliseconds(2));
+  EXPECT_EQ(transaction_time(full, transact(&d, full), lt), std::int64_t{11} * 888'000 + milliseconds(2));
   // A timeout: the request goes out, then the module waits.
   EXPECT_EQ(transaction_time(r, transact(nullptr, r), lt), 888'000 + seconds(1));
   // Refused by the module: never on the link.
@@ -310,7 +310,7 @@ TEST(MessageTiming, FramesAndTransactionTime) {
   EXPECT_EQ(transaction_time(bad, transact(&d, bad), lt), 0);
   // A 0xFD from the drive itself (set with too little data) did use the link.
   const Request shortset = make_request(0x10, 0x0F, 7, 1, {1});
-  EXPECT_EQ(transaction_time(shortset, transact(&d, shortset), lt), 4 * 888'000 + milliseconds(2));
+  EXPECT_EQ(transaction_time(shortset, transact(&d, shortset), lt), std::int64_t{4} * 888'000 + milliseconds(2));
 }
 
 TEST(MessageTiming, ExecuteMessageIsTheWrappersSeam) {
@@ -321,11 +321,11 @@ TEST(MessageTiming, ExecuteMessageIsTheWrappersSeam) {
   const Transaction t =
       execute_message(&d, std::span<const std::uint16_t>(m0).subspan(request_buffer_word(3), kBufferWords));
   EXPECT_EQ(hex(encode_response(t.response)), hex({0x0010, 0x000f, 0x0005, 0x0001, 0x0000}));
-  EXPECT_EQ(t.duration, 2 * 888'000 + milliseconds(2) + 888'000);
+  EXPECT_EQ(t.duration, std::int64_t{2} * 888'000 + milliseconds(2) + 888'000);
   EXPECT_EQ(d.value(5), 6);
   const Transaction none = execute_message(nullptr, n10);
   EXPECT_EQ(none.response.error(), ErrorCode::kTimeout);
-  EXPECT_EQ(none.duration, 2 * 888'000 + seconds(1));
+  EXPECT_EQ(none.duration, std::int64_t{2} * 888'000 + seconds(1));
 }
 
 // Any 16-bit words in a request buffer (the ladder controls them) give a defined reply: the

@@ -40,7 +40,7 @@ constexpr std::int64_t kRun = 1, kFault = 2, kDisable = 16;
 // M1:210, high byte node, low byte code (p.136 "node address and status").
 std::int64_t node_status(int node, int code) { return (node << 8) | code; }
 
-Bench network(std::string extra_nodes = "") {
+Bench network(const std::string& extra_nodes = "") {
   std::string bench = kNetwork;
   bench.insert(bench.rfind('}'), extra_nodes);
   return Bench(kProgram, bench);

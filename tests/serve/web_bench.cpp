@@ -13,7 +13,7 @@
 namespace {
 
 std::filesystem::path big_program(int rungs) {
-  const auto path = std::filesystem::temp_directory_path() / ("softslc_web_bench_" + std::to_string(rungs) + ".slc");
+  auto path = std::filesystem::temp_directory_path() / ("softslc_web_bench_" + std::to_string(rungs) + ".slc");
   std::ofstream out(path);
   out << "START 1747-L552\nSLOT 1 1746-IB16 SCAN_IN 1 SCAN_OUT 0\nSLOT 2 1746-OB16 SCAN_IN 0 SCAN_OUT 1\n"
          "PROJECT \"BIG\"\nLADDER 2 MAIN\n";
@@ -37,7 +37,7 @@ void BM_WebOutline(benchmark::State& state) {
   const auto path = big_program(static_cast<int>(state.range(0)));
   softslc::serve::LiveController live(path, std::nullopt, {});
   std::size_t bytes = 0;
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     softslc::serve::WebModel model(live, nullptr);
     bytes = model.program_message().size();
     benchmark::DoNotOptimize(bytes);
@@ -58,7 +58,7 @@ void BM_WebUpdate(benchmark::State& state) {
                    std::to_string(rungs / 2 + 11) + "}",
                watch);
   std::size_t bytes = 0;
-  for (auto _ : state) {
+  for (auto _ : state) {  // NOLINT(clang-analyzer-deadcode.DeadStores): Google Benchmark's loop variable
     const std::string u = model.update(watch);
     bytes = u.size();
     benchmark::DoNotOptimize(bytes);

@@ -278,7 +278,7 @@ std::string read_file(const std::filesystem::path& p) {
 }
 
 TEST(StateCli, DataSurvivesAPowerCycle) {
-  auto dir = scratch_dir();
+  const auto& dir = scratch_dir();
   auto prog = temp_file("counter.slc", kCounter);
   auto state = dir / "counter.state";
   std::filesystem::remove(state);
@@ -289,7 +289,7 @@ TEST(StateCli, DataSurvivesAPowerCycle) {
 }
 
 TEST(StateCli, BadStateFileStopsTheRunAndIsNeverOverwritten) {
-  auto dir = scratch_dir();
+  const auto& dir = scratch_dir();
   auto prog = temp_file("counter2.slc", kCounter);
   auto state = dir / "bad.state";
   std::ofstream(state, std::ios::binary) << "SOFTSLC-STATE\n garbage";
@@ -319,7 +319,7 @@ TEST(StateCli, BadStateFileStopsTheRunAndIsNeverOverwritten) {
 // saves per second of wall time): after every kill the state file is a complete, valid state,
 // and the counter it holds never goes backwards.
 TEST(StateCli, KillingDuringSavesNeverLosesTheState) {
-  auto dir = scratch_dir();
+  const auto& dir = scratch_dir();
   auto prog = temp_file("counter3.slc", kCounter);
   auto state = dir / "kill.state";
   std::filesystem::remove(state);
@@ -373,7 +373,7 @@ TEST(StateCli, KillingDuringSavesNeverLosesTheState) {
 }
 
 TEST(StateCli, SigtermSavesAndExits) {
-  auto dir = scratch_dir();
+  const auto& dir = scratch_dir();
   auto prog = temp_file("counter4.slc", kCounter);
   auto state = dir / "term.state";
   std::filesystem::remove(state);

@@ -58,6 +58,7 @@ TEST(Discovery, RecursiveSortedAndOnlyTestFiles) {
   auto files = discover_test_files({(box.dir() / "suite").string(), (box.dir() / "suite/b.test").string()}, errors);
   EXPECT_TRUE(errors.empty());
   std::vector<std::string> names;
+  names.reserve(files.size());
   for (const auto& f : files) names.push_back(box.strip(f.display));
   // Byte order of the relative path ('.' sorts before '/'); a file named twice runs once.
   EXPECT_EQ(names, (std::vector<std::string>{"suite/a.test", "suite/a/b.test", "suite/a/z.test", "suite/b.test"}));

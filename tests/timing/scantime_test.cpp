@@ -69,7 +69,7 @@ TEST(ScanTime, EveryMOperandIsChargedOnce) {
   auto p = load("START 1747-L524 SERIES B\nSLOT 2 1747-SN SCAN_IN 32 SCAN_OUT 32\nSLOT 3 1747-SN SCAN_IN 32 SCAN_OUT 32\n"
                 "LADDER 2\nSOR XIC M0:2.1/1 XIO M1:3.1/1 OTE M0:2.1/10 EOR\n");
   auto t = predict(p, "1747-L524", 'B');
-  EXPECT_EQ(t.rungs.at(0).mfile, microseconds(3 * 1930));
+  EXPECT_EQ(t.rungs.at(0).mfile, microseconds(std::int64_t{3} * 1930));
   EXPECT_EQ(t.rungs.at(0).mfile_accesses, 3);
 }
 

@@ -119,7 +119,7 @@ TEST(EventQueue, RandomSchedulesAndCancelsMatchATimeThenSequenceModel) {
         model.erase(model.begin());
         ++ran;
         // Some callbacks schedule at their own time or later, or cancel another event.
-        if (depth < 2 && pick(3) == 0) add(t + pick(4) * 5, depth + 1);
+        if (depth < 2 && pick(3) == 0) add(t + static_cast<std::int64_t>(pick(4)) * 5, depth + 1);
         if (pick(5) == 0) {
           const auto victim = ids[static_cast<std::size_t>(pick(static_cast<int>(ids.size())))];
           EXPECT_EQ(q.cancel(victim), model_cancel(victim)) << "seed " << seed;

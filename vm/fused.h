@@ -32,8 +32,9 @@
 //
 // Word rungs. The commonest non-bit rungs are fused the same way: a network of contacts and
 // integer compares (EQU NEQ LES LEQ GRT GEQ on direct words or immediates), optional coils, and
-// after them one action on direct words: TON TOF RTO, CTU CTD, RES, MOV, ADD, SUB or COP (only
-// branch structure, and a JSR or RET, may follow it). A compare is a contact whose bit is
+// after them one action on direct words: TON TOF RTO, CTU CTD, RES, MOV, ADD, SUB, COP or CLR
+// (only branch structure, more actions ("Several actions" below) and a JSR or RET may follow it).
+// A compare is a contact whose bit is
 // computed (bit k of v for contacts, then one bit per compare); the action is one more "coil" of
 // the truth table, so its rung-in and every instruction's charge still come from running the
 // rung's ops for every v. The

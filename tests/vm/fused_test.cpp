@@ -590,6 +590,23 @@ void compare_transfer_scans(const std::string& text, unsigned seed, Rng& rng, st
   }
 }
 
+// Scans the programs `make` writes for 80 seeds fused and unfused (compare_transfer_scans), passing
+// each one's FusedProgram to `count`; returns how often each fault occurred.
+template <class Make, class Count>
+std::map<std::uint16_t, std::size_t> compare_random_programs(Make make, Count count) {
+  const SlowDistinctCosts model;
+  std::map<std::uint16_t, std::size_t> faults;
+  for (unsigned seed = 1; seed <= 80; ++seed) {
+    Rng rng(seed);
+    rng.words = 2;
+    const std::string text = make(rng, seed);
+    const CompiledProgram p = build(text);
+    count(fused_program(p, Machine(p, model, true)));
+    compare_transfer_scans(text, seed, rng, faults);
+  }
+  return faults;
+}
+
 TEST(Fused, TransferAndCopyRungsMatchTheGeneralPath) {
   const SlowDistinctCosts model;
   std::size_t transfer_total = 0, word_total = 0, rungs_total = 0;
@@ -658,21 +675,13 @@ std::string random_call_program(Rng& rng, unsigned seed) {
 }
 
 TEST(Fused, CallsTakenInsideARunMatchTheGeneralPath) {
-  const SlowDistinctCosts model;
   std::size_t linked = 0, word_form = 0;
-  std::map<std::uint16_t, std::size_t> faults;
-  for (unsigned seed = 1; seed <= 80; ++seed) {
-    Rng rng(seed);
-    rng.words = 2;
-    const std::string text = random_call_program(rng, seed);
-    const CompiledProgram p = build(text);
-    const FusedProgram fp = fused_program(p, Machine(p, model, true));
+  auto faults = compare_random_programs(random_call_program, [&](const FusedProgram& fp) {
     linked += fp.linked_calls();
     // File 3's first rung (SBR, a contact, OTE) is a contact network built as a word rung when
     // a word rung follows it, so calls into file 3 continue in the word-rung loop.
     word_form += fp.word_form_rungs();
-    compare_transfer_scans(text, seed, rng, faults);
-  }
+  });
   EXPECT_GT(linked, 80u * 8);
   EXPECT_GT(word_form, 40u);
   for (std::uint16_t code : {std::uint16_t{0x0030}, std::uint16_t{0x0034}, std::uint16_t{0x0022}})
@@ -761,19 +770,13 @@ std::string random_several_action_program(Rng& rng) {
 }
 
 TEST(Fused, SeveralActionRungsMatchTheGeneralPath) {
-  const SlowDistinctCosts model;
   std::size_t several = 0, transfers = 0;
-  std::map<std::uint16_t, std::size_t> faults;
-  for (unsigned seed = 1; seed <= 80; ++seed) {
-    Rng rng(seed);
-    rng.words = 2;
-    const std::string text = random_several_action_program(rng);
-    const CompiledProgram p = build(text);
-    const FusedProgram fp = fused_program(p, Machine(p, model, true));
-    several += fp.several_action_rungs();
-    transfers += fp.transfer_rungs();
-    compare_transfer_scans(text, seed, rng, faults);
-  }
+  auto faults = compare_random_programs(
+      [](Rng& rng, unsigned) { return random_several_action_program(rng); },
+      [&](const FusedProgram& fp) {
+        several += fp.several_action_rungs();
+        transfers += fp.transfer_rungs();
+      });
   // Most programs' rungs of several actions were fused (a fifth of them have a late condition or a
   // timer: general), some with a transfer, and the scans met the overflow trap (0020h), a COP past
   // its file (002Ah) and the watchdog (0022h).

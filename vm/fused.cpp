@@ -72,7 +72,7 @@ static_assert(row_is_action(Opcode::TON, 0, OperandKind::Timer) &&
 static_assert(row_is_action(Opcode::CTU, 0, OperandKind::Counter) &&
               row_is_action(Opcode::CTD, 0, OperandKind::Counter));
 static_assert(row_is_action(Opcode::RES, 0, OperandKind::Resettable));
-static_assert(row_is_action(Opcode::MOV, 1, OperandKind::Dest));
+static_assert(row_is_action(Opcode::MOV, 1, OperandKind::Dest) && row_is_action(Opcode::CLR, 0, OperandKind::Dest));
 static_assert(row_is_action(Opcode::ADD, 2, OperandKind::Dest) && row_is_action(Opcode::SUB, 2, OperandKind::Dest));
 // A file instruction's row: an Output reading one File, writing another, with a length Literal,
 // which (unlike a timer's presets) its handler reads from the instruction, so it is recorded too.
@@ -104,7 +104,7 @@ constexpr bool is_coil(FusedRule r) {
 
 // The actions a word rung may end in, in the order of the word-rung loop's kernels (execute).
 constexpr Op kActions[] = {Op::SOR, Op::TON, Op::TOF, Op::RTO, Op::CTU, Op::CTD,
-                           Op::RES, Op::MOV, Op::ADD, Op::SUB, Op::COP};
+                           Op::RES, Op::MOV, Op::ADD, Op::SUB, Op::COP, Op::CLR};
 constexpr bool is_timer(Op a) { return a == Op::TON || a == Op::TOF || a == Op::RTO; }
 
 // What a fused rung does with each op (fused_rule). A per-opcode list kept here rather than as a
@@ -136,7 +136,8 @@ constexpr FusedRule rule_of(Opcode op) {
     case Opcode::MOV:
     case Opcode::ADD:
     case Opcode::SUB:
-    case Opcode::COP: return FusedRule::Action;
+    case Opcode::COP:
+    case Opcode::CLR: return FusedRule::Action;
     case Opcode::JSR:
     case Opcode::RET: return FusedRule::Transfer;
     default: return FusedRule::None;
@@ -158,7 +159,8 @@ constexpr bool rule_fits_row(Opcode op, FusedRule r) {
     case FusedRule::Compare: return row_is_compare(op);
     case FusedRule::Action:
       return row_is_action(op, 0, OperandKind::Timer) || row_is_action(op, 0, OperandKind::Counter) ||
-             row_is_action(op, 0, OperandKind::Resettable) || row_is_action(op, 1, OperandKind::Dest) ||
+             row_is_action(op, 0, OperandKind::Resettable) || row_is_action(op, 0, OperandKind::Dest) ||
+             row_is_action(op, 1, OperandKind::Dest) ||
              row_is_action(op, 2, OperandKind::Dest) || row_is_file_copy(op);
     case FusedRule::Transfer: return row_is_transfer(op);
   }
@@ -229,6 +231,7 @@ class FusedProgram::Builder {
     coils_.clear();
     compares_.clear();
     action_operands_.clear();
+    steps_.clear();
     action_ = Op::SOR;
     transfer_ = Op::SOR;
     int depth = 0;
@@ -237,10 +240,11 @@ class FusedProgram::Builder {
       const Op op = bc::op_of(h);
       // Only BNDs follow a transfer: after a taken JSR the general path resumes at the next SOR.
       if (transfer_ != Op::SOR && op != Op::BND) return false;
-      // After the action only branch structure and a transfer: every condition and coil is
-      // evaluated before the action writes.
+      // After the first action only branch structure, more actions and a transfer: every
+      // condition and coil is evaluated before an action writes.
       if (action_ != Op::SOR && op != Op::NXB && op != Op::BND &&
-          !(is_instruction(op) && fused_rule(to_opcode(op)) == FusedRule::Transfer))
+          !(is_instruction(op) && (fused_rule(to_opcode(op)) == FusedRule::Transfer ||
+                                   fused_rule(to_opcode(op)) == FusedRule::Action)))
         return false;
       switch (op) {
         case Op::BST: ++depth; break;
@@ -264,8 +268,12 @@ class FusedProgram::Builder {
             break;
           }
           if (rule == FusedRule::Action) {
+            // Several actions hold no timer (vm/fused.h, "Several actions").
+            if (!steps_.empty() && (is_timer(op) || is_timer(action_))) return false;
+            const auto first_operand = static_cast<std::uint32_t>(action_operands_.size());
             if (!take_action(op, h, o)) return false;
             action_ = op;
+            steps_.push_back({op, bc::aux_of(h), first_operand});
             break;
           }
           if (rule == FusedRule::Transfer) {
@@ -307,6 +315,8 @@ class FusedProgram::Builder {
 
   // The rung parse() read is a word rung: compares, an action or a transfer.
   bool word_rung() const { return !compares_.empty() || action_ != Op::SOR || transfer_ != Op::SOR; }
+  // ... holding several actions (vm/fused.h, "Several actions").
+  bool several_actions() const { return steps_.size() > 1; }
 
   // Appends the record of the rung parse() accepted and returns its shape. `as_word`: a contact
   // network is built as a word rung (run in the word-rung loop beside word rungs, instead of as a
@@ -375,7 +385,19 @@ class FusedProgram::Builder {
     for (std::uint32_t c : contacts_) r.push_back(word_bit(c));
     for (std::uint32_t o : compares_) r.push_back(encode(o));
     for (std::uint32_t c : coils_) r.push_back(word_bit(c));
-    r.insert(r.end(), action_operands_.begin(), action_operands_.end());
+    if (several_actions()) {
+      // A step word before each action's operands, and the step ending the rung.
+      for (std::size_t i = 0; i < steps_.size(); ++i) {
+        const Step& st = steps_[i];
+        const std::uint32_t end =
+            i + 1 < steps_.size() ? steps_[i + 1].operands : static_cast<std::uint32_t>(action_operands_.size());
+        r.push_back((st.aux << kStepAuxShift) | (kFirstStep + action_index(st.op)));
+        r.insert(r.end(), action_operands_.begin() + st.operands, action_operands_.begin() + end);
+      }
+      r.push_back(transfer_ != Op::SOR ? kStepsEndTransfer : kStepsEnd);
+    } else {
+      r.insert(r.end(), action_operands_.begin(), action_operands_.end());
+    }
     if (transfer_ == Op::JSR) {
       // The call words (FusedProgram::kCallWords); the runs are filled in once every file's runs
       // are known (the FusedProgram constructor).
@@ -426,7 +448,7 @@ class FusedProgram::Builder {
     const unsigned nc = static_cast<unsigned>(contacts_.size());
     const unsigned n = conditions();
     const unsigned outputs =
-        static_cast<unsigned>(coils_.size()) + (action_ != Op::SOR ? 1 : 0) + (transfer_ != Op::SOR ? 1 : 0);
+        static_cast<unsigned>(coils_.size() + steps_.size()) + (transfer_ != Op::SOR ? 1 : 0);
     s.contacts = static_cast<std::uint8_t>(nc);
     s.compares = static_cast<std::uint8_t>(n - nc);
     s.coils = static_cast<std::uint8_t>(coils_.size());
@@ -451,11 +473,15 @@ class FusedProgram::Builder {
     for (std::uint32_t h : key_)
       if (is_instruction(bc::op_of(h)) && fused_rule(to_opcode(bc::op_of(h))) == FusedRule::Compare)
         out_.rules_.push_back(static_cast<std::uint8_t>(word_ops::compare_mask(bc::op_of(h))));
-    if (s.word) {
+    if (s.word && several_actions()) {
+      // Its step words: one per action and the last.
+      s.stride = static_cast<std::uint16_t>(1 + n + (n - nc) + coils_.size() + action_operands_.size() +
+                                            steps_.size() + 1 + (s.transfer ? 2 : 0) + (s.call ? kCallWords : 0));
+      s.kernel = static_cast<std::uint8_t>(kMultiRung);
+    } else if (s.word) {
       s.stride = static_cast<std::uint16_t>(1 + n + (n - nc) + coils_.size() + action_operands_.size() +
                                             (s.transfer ? 2 : 0) + (s.call ? kCallWords : 0));
-      unsigned a = 0;
-      while (kActions[a] != action_) ++a;
+      const unsigned a = action_index(action_);
       unsigned variant = word_variant(nc, n - nc, s.coils);
       // The fixed-count kernels advance by fixed_word_stride; a record of another size (none is
       // expected: the layout above is the one take_action records) runs the any-count kernel.
@@ -524,8 +550,23 @@ class FusedProgram::Builder {
   const std::vector<Nanoseconds>& cost_;
   std::map<std::vector<std::uint32_t>, std::uint32_t> shape_index_;
   std::map<std::vector<std::uint32_t>, std::uint32_t> word_form_index_;  // contact networks built as word rungs
+  // Its index in kActions (every action has one: every_rule_fits_its_row_and_kernels).
+  static unsigned action_index(Op op) {
+    unsigned a = 0;
+    while (kActions[a] != op) ++a;
+    return a;
+  }
+
   std::vector<std::uint32_t> key_, contacts_, coils_, compares_, action_operands_;
-  Op action_ = Op::SOR;
+  // Each action of the rung in program order: its op, its header's aux, and its first operand in
+  // action_operands_.
+  struct Step {
+    Op op;
+    std::uint32_t aux;
+    std::uint32_t operands;
+  };
+  std::vector<Step> steps_;
+  Op action_ = Op::SOR;             // the rung's (last) action, or SOR
   Op transfer_ = Op::SOR;           // JSR or RET ending the rung, or SOR
   std::uint32_t transfer_at_ = 0;   // its code offset
   std::uint32_t rung_number_ = 0;   // the rung's number in its file
@@ -594,6 +635,7 @@ FusedProgram::FusedProgram(const CompiledProgram& program, const std::vector<Nan
       ++fused_rungs_;
       const bool word = shapes_[static_cast<std::size_t>(shape)].word;
       if (word_rung) ++word_rungs_;
+      if (b.several_actions()) ++several_action_rungs_;
       if (as_word) ++word_form_rungs_;
       const auto at = static_cast<std::uint32_t>(word ? wrecords_before : records_before);
       const auto rung_index = static_cast<std::uint32_t>(sor_.size() - 1);
@@ -724,6 +766,32 @@ inline void apply_coil(unsigned rule, std::uint16_t& word, std::uint16_t mask, s
   }
 }
 
+// A word rung's condition bits v (contact k at bit k, then each compare) from its record's
+// operands at `o`; returns the operands after them (its coils'). `masks`: the compares'
+// word_ops::compare_mask values.
+[[gnu::always_inline]] inline const std::uint32_t* word_conditions(const std::uint16_t* w, const std::uint32_t* o,
+                                                                  unsigned nc, unsigned nm,
+                                                                  const std::uint8_t* masks, unsigned& v) {
+  v = 0;
+  for (unsigned i = 0; i < nc; ++i, ++o)
+    v |= ((static_cast<unsigned>(w[*o >> 8]) >> (*o & 31)) & 1u) << i;  // word_bit: the bit is below 16
+  for (unsigned j = 0; j < nm; ++j, o += 2)
+    v |= static_cast<unsigned>(word_ops::compare_by_mask(masks[j], read_operand(w, o[0]), read_operand(w, o[1])))
+         << (nc + j);
+  return o;
+}
+
+// A word rung's coils (operands at `o`, FusedRules in `rules`) with their rung-ins for v.
+template <bool Small>
+[[gnu::always_inline]] inline void word_coils(std::uint16_t* w, const std::uint32_t* o, unsigned coils,
+                                              const std::uint8_t* rules, std::uint32_t on_bits,
+                                              const std::uint16_t* on, unsigned n, unsigned v) {
+  for (unsigned j = 0; j < coils; ++j, ++o)
+    apply_coil(static_cast<unsigned>(rules[j]) - static_cast<unsigned>(FusedRule::Energize) + 1, w[*o >> 8],
+               static_cast<std::uint16_t>(1u << (*o & 31)),
+               static_cast<std::uint16_t>(0u - static_cast<unsigned>(output_on<Small>(on_bits, on, j, n, v))));
+}
+
 }  // namespace
 
 template <unsigned N, bool Wide, unsigned Coil>
@@ -759,59 +827,22 @@ std::uint32_t FusedProgram::run_segment(const FusedProgram& p, const Segment& se
   return done;
 }
 
-// One word rung whose record (after its shape word) is `rec`: its action is A (SOR: none), with
-// NC contacts, NM compares and NK coils, or (NC = NM = NK = kAnyCount) any counts, and when Transfer
-// a JSR or RET last. Adds its charge to t; returns kRungGeneral, having changed nothing, when the
-// general path must run it, kRungTransfer when its JSR or RET is taken.
-template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
-[[gnu::always_inline]] inline unsigned FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
-                                    std::uint16_t* w, Nanoseconds& t, const FusedScan& scan,
-                                    word_ops::TickClock& ticks) {
-  constexpr bool fixed = NC != kAnyCount;
-  static_assert(!fixed || (NC + NM <= kSmallConditions && NK + 2 <= kSmallOutputs),
-                "a fixed-count kernel's rung-ins are in Shape::on_bits");
-  const Nanoseconds* const cost = sh.cost;
-  const std::uint16_t* const on = sh.on;
-  const unsigned nc = fixed ? NC : sh.contacts;
-  const unsigned nm = fixed ? NM : sh.compares;
-  const unsigned coils = fixed ? NK : sh.coils;
-  const unsigned n = nc + nm;
-  // The coils' FusedRules, then the compares' masks (word_ops::compare_mask).
-  const std::uint8_t* const rules = sh.rules;
-  const std::uint32_t* o = rec;
-  unsigned v = 0;
-  for (unsigned i = 0; i < nc; ++i, ++o)
-    v |= ((static_cast<unsigned>(w[*o >> 8]) >> (*o & 31)) & 1u) << i;  // word_bit: the bit is below 16
-  for (unsigned j = 0; j < nm; ++j, o += 2)
-    v |= static_cast<unsigned>(
-             word_ops::compare_by_mask(rules[coils + j], read_operand(w, o[0]), read_operand(w, o[1])))
-         << (nc + j);
-  const std::uint32_t* const act = o + coils;
-  if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
-    // Fault 0034h: the general path runs this rung and raises it (before anything is written).
-    if (word_ops::timer_negative(w + act[0])) [[unlikely]]
-      return kRungGeneral;
-  }
-  if constexpr (fixed)
-    t += sh.small_cost[v];
-  else
-    t += cost[v];
-  const std::uint32_t on_bits = sh.on_bits;
-  for (unsigned j = 0; j < coils; ++j, ++o)
-    apply_coil(static_cast<unsigned>(rules[j]) - static_cast<unsigned>(FusedRule::Energize) + 1,
-               w[*o >> 8], static_cast<std::uint16_t>(1u << (*o & 31)),
-               static_cast<std::uint16_t>(0u - static_cast<unsigned>(output_on<fixed>(on_bits, on, j, n, v))));
-  // The action's rung-in; it is the rung's last instruction, so the scan time it sees is t.
-  [[maybe_unused]] const bool rung = output_on<fixed>(on_bits, on, coils, n, v);
+// Action A on its operands (vm/fused.h, run_action): the interpreter's rule for each (vm/word_ops.h).
+template <Op A>
+[[gnu::always_inline]] inline void FusedProgram::run_action(const FusedProgram& p, const std::uint32_t* act,
+                                                            std::uint16_t* w, Nanoseconds& t, const FusedScan& scan,
+                                                            word_ops::TickClock& ticks, bool rung,
+                                                            [[maybe_unused]] std::uint8_t flags,
+                                                            [[maybe_unused]] std::uint16_t aux) {
   if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
     if (scan.timers) [[unlikely]]
-      word_ops::record_timer(*scan.timers, A, w, act[0], rung, scan.scan_start + t, sh.action_flags);
-    word_ops::timer(A, w + act[0], rung, scan.first_pass, ticks.at(scan.scan_start + t, sh.action_flags),
-                    (sh.action_flags & bc::kFlagA) != 0);
+      word_ops::record_timer(*scan.timers, A, w, act[0], rung, scan.scan_start + t, flags);
+    word_ops::timer(A, w + act[0], rung, scan.first_pass, ticks.at(scan.scan_start + t, flags),
+                    (flags & bc::kFlagA) != 0);
   } else if constexpr (A == Op::CTU || A == Op::CTD) {
     word_ops::counter(A, w + act[0], rung, scan.first_pass);
   } else if constexpr (A == Op::RES) {
-    if (rung) word_ops::reset(static_cast<FileType>(sh.action_aux), w + act[0]);
+    if (rung) word_ops::reset(static_cast<FileType>(aux), w + act[0]);
   } else if constexpr (A == Op::MOV) {
     // Interpreter::move: an integer that does not fit saturates and sets V.
     if (rung) {
@@ -836,11 +867,62 @@ template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
     // Interpreter::copy_file with both spans resolved (flag B): the words, S:24, and the
     // per-word charge after the instruction's own.
     if (rung) {
-      const std::uint32_t words = sh.action_aux;
+      const std::uint32_t words = aux;
       word_ops::copy_direct(w, act[0], act[1], words, p.s24_, static_cast<std::int32_t>(act[2] << 1) >> 1);
       t += p.cop_per_word_ * static_cast<Nanoseconds>(words);
     }
+  } else if constexpr (A == Op::CLR) {
+    if (rung) word_ops::clear(w, act[0], p.s0_, p.s5_);
   }
+}
+
+// The head of a rung of several actions: word_rung's conditions and coils for any counts (no
+// timer, so nothing is handed back).
+[[gnu::always_inline]] inline const std::uint32_t* FusedProgram::multi_head(const Shape& sh, const std::uint32_t* rec,
+                                                                           std::uint16_t* w, Nanoseconds& t,
+                                                                           unsigned& v) {
+  const std::uint32_t* const o = word_conditions(w, rec, sh.contacts, sh.compares, sh.rules + sh.coils, v);
+  t += sh.cost[v];
+  word_coils<false>(w, o, sh.coils, sh.rules, 0, sh.on, sh.contacts + sh.compares, v);
+  return o + sh.coils;
+}
+
+// One word rung whose record (after its shape word) is `rec`: its action is A (SOR: none), with
+// NC contacts, NM compares and NK coils, or (NC = NM = NK = kAnyCount) any counts, and when Transfer
+// a JSR or RET last. Adds its charge to t; returns kRungGeneral, having changed nothing, when the
+// general path must run it, kRungTransfer when its JSR or RET is taken.
+template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
+[[gnu::always_inline]] inline unsigned FusedProgram::word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec,
+                                    std::uint16_t* w, Nanoseconds& t, const FusedScan& scan,
+                                    word_ops::TickClock& ticks) {
+  constexpr bool fixed = NC != kAnyCount;
+  static_assert(!fixed || (NC + NM <= kSmallConditions && NK + 2 <= kSmallOutputs),
+                "a fixed-count kernel's rung-ins are in Shape::on_bits");
+  const Nanoseconds* const cost = sh.cost;
+  const std::uint16_t* const on = sh.on;
+  const unsigned nc = fixed ? NC : sh.contacts;
+  const unsigned nm = fixed ? NM : sh.compares;
+  const unsigned coils = fixed ? NK : sh.coils;
+  const unsigned n = nc + nm;
+  // The coils' FusedRules, then the compares' masks (word_ops::compare_mask).
+  const std::uint8_t* const rules = sh.rules;
+  unsigned v = 0;
+  const std::uint32_t* const o = word_conditions(w, rec, nc, nm, rules + coils, v);
+  const std::uint32_t* const act = o + coils;
+  if constexpr (A == Op::TON || A == Op::TOF || A == Op::RTO) {
+    // Fault 0034h: the general path runs this rung and raises it (before anything is written).
+    if (word_ops::timer_negative(w + act[0])) [[unlikely]]
+      return kRungGeneral;
+  }
+  if constexpr (fixed)
+    t += sh.small_cost[v];
+  else
+    t += cost[v];
+  const std::uint32_t on_bits = sh.on_bits;
+  word_coils<fixed>(w, o, coils, rules, on_bits, on, n, v);
+  // The action's rung-in; it is the rung's last instruction, so the scan time it sees is t.
+  [[maybe_unused]] const bool rung = output_on<fixed>(on_bits, on, coils, n, v);
+  if constexpr (A != Op::SOR) run_action<A>(p, act, w, t, scan, ticks, rung, sh.action_flags, sh.action_aux);
   if constexpr (Transfer) {
     constexpr unsigned kAction = A == Op::SOR ? 0 : 1;
     if (output_on<fixed>(on_bits, on, coils + kAction, n, v)) return kRungTransfer;
@@ -858,8 +940,7 @@ const FusedProgram::Kernel FusedProgram::kKernels[] = {
     SOFTSLC_FUSED_KERNELS(6), SOFTSLC_FUSED_KERNELS(7), SOFTSLC_FUSED_KERNELS(8),
 #undef SOFTSLC_FUSED_KERNELS
 };
-static_assert(std::size(kActions) * 2 * kWordVariants <= 256, "a shape's kernel index is one byte");
-static_assert(std::size(kActions) == 11, "the word-rung loop has a kernel for every action");
+static_assert(std::size(kActions) == 12, "the word-rung loop has a kernel and a step kernel for every action");
 static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every contact count");
 
 // Hot: run at every scan (vm/runtime.cpp, "The scan cycle", says why it is marked).
@@ -895,6 +976,11 @@ static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every co
       const Shape* const shapes = shapes_.data();
       const Shape* sh = nullptr;
       unsigned rung = kRungDone;
+      // A rung of several actions: its next step word, and the next action's rung-in in its
+      // shape's table (one row of 2^n entries per output, so a step moves on by `step_row`).
+      const std::uint32_t* step = nullptr;
+      const std::uint16_t* step_on = nullptr;
+      std::uint32_t step_row = 0;
       // The rungs before `at` and their instructions: a segment that stops early counts them
       // then, so a rung adds nothing to the count as it runs.
       auto completed = [&](const std::uint32_t* at) {
@@ -906,6 +992,8 @@ static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every co
       // Kernel ((A * 2 + T) * kWordVariants + V), as Builder::build_shape numbers them, then
       // kEndOfSegment; the builder makes no other kernel number.
       static_assert(kLastWordKernel == (std::size(kActions) * 2 - 1) * kWordVariants + kWordVariants - 1);
+      static_assert(kStepsEnd == kFirstStep + std::size(kActions) && kStepsEndTransfer <= kKernelMask,
+                    "a step kernel for every action, and every kernel number in one byte");
 #define SOFTSLC_WORD_LABEL(A, T, V) &&word_##A##_##T##_##V
 #define SOFTSLC_WORD_LABELS_T(A, T)                                                                        \
   SOFTSLC_WORD_LABEL(A, T, 0), SOFTSLC_WORD_LABEL(A, T, 1), SOFTSLC_WORD_LABEL(A, T, 2),                 \
@@ -922,7 +1010,14 @@ static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every co
           SOFTSLC_WORD_LABELS_T(2, 0), SOFTSLC_NO_WORD_LABELS,      SOFTSLC_WORD_LABELS_T(3, 0),
           SOFTSLC_NO_WORD_LABELS,      SOFTSLC_WORD_LABELS(4),      SOFTSLC_WORD_LABELS(5),
           SOFTSLC_WORD_LABELS(6),      SOFTSLC_WORD_LABELS(7),      SOFTSLC_WORD_LABELS(8),
-          SOFTSLC_WORD_LABELS(9),      SOFTSLC_WORD_LABELS(10),     &&word_segment_end};
+          SOFTSLC_WORD_LABELS(9),      SOFTSLC_WORD_LABELS(10),     SOFTSLC_WORD_LABELS(11),
+          &&word_segment_end,
+          // A rung of several actions (never a timer, so no timer steps), and its steps' kernels.
+          &&word_multi,                &&word_not_built,            &&word_not_built,
+          &&word_not_built,            &&word_not_built,            &&word_step_4,
+          &&word_step_5,               &&word_step_6,               &&word_step_7,
+          &&word_step_8,               &&word_step_9,               &&word_step_10,
+          &&word_step_11,              &&word_steps_end,            &&word_steps_end_transfer};
 #undef SOFTSLC_WORD_LABELS
 #undef SOFTSLC_NO_WORD_LABELS
 #undef SOFTSLC_WORD_LABELS_T
@@ -947,10 +1042,42 @@ static_assert(FusedProgram::kMaxContacts == 8, "the kernel table covers every co
 #define SOFTSLC_WORD_RUNGS(A) SOFTSLC_WORD_RUNGS_T(A, 0) SOFTSLC_WORD_RUNGS_T(A, 1)
       SOFTSLC_WORD_RUNGS(0) SOFTSLC_WORD_RUNGS_T(1, 0) SOFTSLC_WORD_RUNGS_T(2, 0) SOFTSLC_WORD_RUNGS_T(3, 0)
       SOFTSLC_WORD_RUNGS(4) SOFTSLC_WORD_RUNGS(5) SOFTSLC_WORD_RUNGS(6) SOFTSLC_WORD_RUNGS(7) SOFTSLC_WORD_RUNGS(8)
-      SOFTSLC_WORD_RUNGS(9) SOFTSLC_WORD_RUNGS(10)
+      SOFTSLC_WORD_RUNGS(9) SOFTSLC_WORD_RUNGS(10) SOFTSLC_WORD_RUNGS(11)
 #undef SOFTSLC_WORD_RUNGS
 #undef SOFTSLC_WORD_RUNGS_T
 #undef SOFTSLC_WORD_RUNG
+    word_multi:
+      // A rung of several actions: its conditions, charge and coils, then its steps in order.
+      {
+        sh = shapes + (*rec >> kShapeShift);
+        unsigned v = 0;
+        step = multi_head(*sh, rec + 1, w, t, v);
+        step_row = 1u << (sh->contacts + sh->compares);
+        step_on = sh->on + (std::size_t{sh->coils} << (sh->contacts + sh->compares)) + v;
+        goto* kRungKernels[*step & kKernelMask];
+      }
+      // One step: action A with its rung-in and its operands after the step word; then the next step's kernel.
+#define SOFTSLC_WORD_STEP(A)                                                                                \
+  word_step_##A:                                                                                            \
+    run_action<kActions[A]>(*this, step + 1, w, t, this_scan, ticks, *step_on != 0, 0,                      \
+                            static_cast<std::uint16_t>(*step >> kStepAuxShift));                            \
+    step += 1 + action_words(kActions[A]);                                                                  \
+    step_on += step_row;                                                                                    \
+    goto* kRungKernels[*step & kKernelMask];
+      SOFTSLC_WORD_STEP(4) SOFTSLC_WORD_STEP(5) SOFTSLC_WORD_STEP(6) SOFTSLC_WORD_STEP(7)
+      SOFTSLC_WORD_STEP(8) SOFTSLC_WORD_STEP(9) SOFTSLC_WORD_STEP(10) SOFTSLC_WORD_STEP(11)
+#undef SOFTSLC_WORD_STEP
+    word_steps_end_transfer:
+      // The transfer is the output after the actions.
+      if (*step_on != 0) {
+        rung = kRungTransfer;
+        goto word_stopped;
+      }
+    word_steps_end:
+      rec += sh->stride;
+      if (t >= limit) [[unlikely]]
+        goto word_limit;
+      goto* kRungKernels[*rec & kKernelMask];
     word_not_built:
       // Never reached (no record names these kernels); the general path would run the rung.
       sh = shapes + (*rec >> kShapeShift);

@@ -32,8 +32,9 @@
 //
 // Word rungs. The commonest non-bit rungs are fused the same way: a network of contacts and
 // integer compares (EQU NEQ LES LEQ GRT GEQ on direct words or immediates), optional coils, and
-// after them one action on direct words: TON TOF RTO, CTU CTD, RES, MOV, ADD, SUB or COP (only
-// branch structure, and a JSR or RET, may follow it). A compare is a contact whose bit is
+// after them one action on direct words: TON TOF RTO, CTU CTD, RES, MOV, ADD, SUB, COP or CLR
+// (only branch structure, more actions ("Several actions" below) and a JSR or RET may follow it).
+// A compare is a contact whose bit is
 // computed (bit k of v for contacts, then one bit per compare); the action is one more "coil" of
 // the truth table, so its rung-in and every instruction's charge still come from running the
 // rung's ops for every v. The
@@ -58,6 +59,19 @@
 // action or a transfer) is built as a word rung too, with a word-rung record and its own shape
 // (the same tables), so the word-rung loop runs it with a jump instead of leaving for a segment
 // and a kernel call of its own; a stretch of contact networks keeps its one-shape segments.
+//
+// Several actions (session 19). A word rung may hold several actions, each in a branch leg or in
+// series, after every condition and coil of the rung (only branch structure, further actions and
+// a transfer follow the first action): the five unconditional MOVs of `BST MOV NXB MOV ... BND`
+// that keep a DII's configuration in S:46-S:50, or a COP beside a counter. Each action is one more
+// output of the truth table, and the actions run in program order, each reading its words when it
+// runs, so an action sees what an earlier one wrote, as on the general path. Such a rung holds no
+// timer (a timer reads the clock at its own instruction and must see every charge before it, and
+// an earlier action could make its preset negative after the 0034h test): it stays general. Its
+// record holds a step word before each action's operands, naming that action's step kernel, one per
+// action of the actions' list (kActions in vm/fused.cpp, the same list and the same run_action code
+// as the single-action kernels), and a last step word ending the rung; the word-rung loop jumps
+// from step to step as from rung to rung.
 //
 // Transfers (issue 20). A word rung may end in a JSR or RET (followed by nothing but BNDs), after
 // its action if it has one (COP NXB JSR: a file copy and a subroutine call in parallel legs). The
@@ -222,6 +236,8 @@ class FusedProgram {
   std::size_t word_rungs() const { return word_rungs_; }
   // Contact networks built as word rungs, beside a word rung of their run (run in the word-rung loop).
   std::size_t word_form_rungs() const { return word_form_rungs_; }
+  // Fused word rungs holding several actions ("Several actions").
+  std::size_t several_action_rungs() const { return several_action_rungs_; }
   // Fused rungs ending in a JSR or RET.
   std::size_t transfer_rungs() const { return transfer_rungs_; }
   // Fused JSRs whose subroutine starts with a fused run (a run enters it itself).
@@ -300,10 +316,33 @@ class FusedProgram {
   template <Op A, unsigned NC, unsigned NM, unsigned NK, bool Transfer>
   static unsigned word_rung(const FusedProgram& p, const Shape& sh, const std::uint32_t* rec, std::uint16_t* w,
                         Nanoseconds& t, const FusedScan& scan, word_ops::TickClock& ticks);
-  // The largest Shape::kernel of a word rung (the word-rung loop's last rung kernel), and the
-  // kernel number of the one-word record that ends every word segment (the loop's exit).
-  static constexpr unsigned kLastWordKernel = 197;
+  // Action A (vm/word_ops.h) on its recorded operands `act`, with its rung-in, its header's flags
+  // (a timer's time base) and aux (RES: the element's FileType; COP: its words), at scan time t
+  // (COP adds its per-word charge). The one place a fused rung's action is done: word_rung's
+  // single action and each step of a rung of several actions run it.
+  template <Op A>
+  static void run_action(const FusedProgram& p, const std::uint32_t* act, std::uint16_t* w, Nanoseconds& t,
+                         const FusedScan& scan, word_ops::TickClock& ticks, bool rung, std::uint8_t flags,
+                         std::uint16_t aux);
+  // The conditions and coils of a rung of several actions (any counts): gathers v, adds the
+  // rung's charge and applies the coils; returns the record's first step word.
+  static const std::uint32_t* multi_head(const Shape& sh, const std::uint32_t* rec, std::uint16_t* w, Nanoseconds& t,
+                                         unsigned& v);
+  // The largest Shape::kernel of a word rung of one action (the word-rung loop's last rung kernel
+  // of that kind), and the kernel number of the one-word record that ends every word segment (the
+  // loop's exit).
+  static constexpr unsigned kLastWordKernel = 215;
   static constexpr unsigned kEndOfSegment = kLastWordKernel + 1;
+  // A rung of several actions ("Several actions" above): its record's kernel, then in its record
+  // one step word per action (the step's kernel, kFirstStep + the action's index in the actions'
+  // list, in the low byte; the action header's aux above kStepAuxShift) before that action's
+  // operands, and a last step word whose kernel ends the rung (kStepsEnd, or with a transfer
+  // kStepsEndTransfer).
+  static constexpr unsigned kMultiRung = kEndOfSegment + 1;
+  static constexpr unsigned kFirstStep = kMultiRung + 1;
+  static constexpr unsigned kStepsEnd = kFirstStep + 12;
+  static constexpr unsigned kStepsEndTransfer = kStepsEnd + 1;
+  static constexpr unsigned kStepAuxShift = 16;
   // A word-rung record's first word: its kernel number in the low byte, its shape's index above.
   static constexpr unsigned kShapeShift = 8;
   static constexpr std::uint32_t kKernelMask = 0xFF;
@@ -349,6 +388,7 @@ class FusedProgram {
   std::size_t word_rungs_ = 0;
   std::size_t word_form_rungs_ = 0;
   std::size_t transfer_rungs_ = 0;
+  std::size_t several_action_rungs_ = 0;
   std::size_t linked_calls_ = 0;
 };
 

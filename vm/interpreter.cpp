@@ -1116,6 +1116,10 @@ void Interpreter::math(Op op, const std::uint32_t* o, std::uint32_t h) {
 void Interpreter::unary(Op op, const std::uint32_t* o, std::uint32_t h) {
   bool overflow = false;
   if (op == Op::CLR) {
+    if (bc::mode_of(o[0]) == bc::kWord) {  // a direct word: the rule the fused word rungs run too
+      word_ops::clear(w_, bc::payload_of(o[0]), s0_, s5_);
+      return;
+    }
     if (dest_type(o[0]) == ValueType::Float32) st_flt(o[0], 0.0f, overflow);
     else st_bits(o[0], 0);
     set_flags(false, false, true, false);

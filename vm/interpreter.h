@@ -148,6 +148,9 @@ struct DiiState {
   VirtualTime requested_at = 0;   // the input transition that generated the pending interrupt
   Nanoseconds last_latency = 0;   // from that transition to the routine's first rung
   std::uint64_t runs = 0;         // DII routine executions since the runtime was created
+  // S:46-S:50 as last applied with a DII configured (file != 0): applying the same words again
+  // changes nothing, so apply_dii_config skips them (docs/performance.md, session 19).
+  std::uint16_t applied[5] = {};
 };
 
 // A MicroLogix event interrupt as the interpreter keeps it: an EII:n (event input interrupt) or an

@@ -43,6 +43,7 @@
 // one waits (update_limit), so it runs at the next rung start once its UIE is set.
 #include <algorithm>
 #include <array>
+#include <cstring>
 #include <string>
 
 #include "vm/interpreter.h"
@@ -317,6 +318,10 @@ bool Interpreter::discrete_input_card(int slot) {
 
 bool Interpreter::apply_dii_config() {
   if (!dii_supported_) return true;
+  // The words this DII was configured from: the checks below depend only on them, the program and
+  // the chassis, so the result is the configuration already held. (Entering Run and stopping the
+  // interrupts clear dii_.file, so the words are applied again then.)
+  if (dii_.file != 0 && std::memcmp(dii_.applied, w_ + s46_, sizeof dii_.applied) == 0) return true;
   const int file = static_cast<std::int16_t>(w_[s46_]);
   if (file == 0) {
     // No DII: nothing waits (a pending one is dropped with it).
@@ -347,6 +352,7 @@ bool Interpreter::apply_dii_config() {
   dii_.mask = static_cast<std::uint16_t>(w_[s46_ + 2] & 0xFF);
   dii_.compare = static_cast<std::uint16_t>(w_[s46_ + 3] & 0xFF);
   dii_.preset = preset;
+  std::memcpy(dii_.applied, w_ + s46_, sizeof dii_.applied);
   return true;
 }
 

@@ -321,6 +321,15 @@ inline void reset(FileType type, std::uint16_t* e) {
   }
 }
 
+// ---- CLR into a 16-bit word ----
+
+// The destination becomes 0; Z set, C, V and S clear (docs/semantics.md, "CLR: destination 0,
+// flags Z only"). The interpreter's CLR on a direct word and the fused word rungs both run this.
+[[gnu::always_inline]] inline void clear(std::uint16_t* w, std::uint32_t dest, std::uint32_t s0, std::uint32_t s5) {
+  w[dest] = 0;
+  set_arith_flags(w, s0, s5, false, false, true, false);
+}
+
 // ---- COP (RM 7-5) with both spans resolved by the compiler (bytecode.h, COP flag B) ----
 
 // Moves `words` raw words from src to dst as one block (overlapping ranges behave as memmove:

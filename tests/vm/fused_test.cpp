@@ -590,6 +590,23 @@ void compare_transfer_scans(const std::string& text, unsigned seed, Rng& rng, st
   }
 }
 
+// Scans the programs `make` writes for 80 seeds fused and unfused (compare_transfer_scans), passing
+// each one's FusedProgram to `count`; returns how often each fault occurred.
+template <class Make, class Count>
+std::map<std::uint16_t, std::size_t> compare_random_programs(Make make, Count count) {
+  const SlowDistinctCosts model;
+  std::map<std::uint16_t, std::size_t> faults;
+  for (unsigned seed = 1; seed <= 80; ++seed) {
+    Rng rng(seed);
+    rng.words = 2;
+    const std::string text = make(rng, seed);
+    const CompiledProgram p = build(text);
+    count(fused_program(p, Machine(p, model, true)));
+    compare_transfer_scans(text, seed, rng, faults);
+  }
+  return faults;
+}
+
 TEST(Fused, TransferAndCopyRungsMatchTheGeneralPath) {
   const SlowDistinctCosts model;
   std::size_t transfer_total = 0, word_total = 0, rungs_total = 0;
@@ -658,25 +675,141 @@ std::string random_call_program(Rng& rng, unsigned seed) {
 }
 
 TEST(Fused, CallsTakenInsideARunMatchTheGeneralPath) {
-  const SlowDistinctCosts model;
   std::size_t linked = 0, word_form = 0;
-  std::map<std::uint16_t, std::size_t> faults;
-  for (unsigned seed = 1; seed <= 80; ++seed) {
-    Rng rng(seed);
-    rng.words = 2;
-    const std::string text = random_call_program(rng, seed);
-    const CompiledProgram p = build(text);
-    const FusedProgram fp = fused_program(p, Machine(p, model, true));
+  auto faults = compare_random_programs(random_call_program, [&](const FusedProgram& fp) {
     linked += fp.linked_calls();
     // File 3's first rung (SBR, a contact, OTE) is a contact network built as a word rung when
     // a word rung follows it, so calls into file 3 continue in the word-rung loop.
     word_form += fp.word_form_rungs();
-    compare_transfer_scans(text, seed, rng, faults);
-  }
+  });
   EXPECT_GT(linked, 80u * 8);
   EXPECT_GT(word_form, 40u);
   for (std::uint16_t code : {std::uint16_t{0x0030}, std::uint16_t{0x0034}, std::uint16_t{0x0022}})
     EXPECT_GT(faults[code], 5u) << std::hex << code;
+}
+
+// ---- Several actions in one rung (vm/fused.h, "Several actions"), and CLR ----
+
+// One action of a rung of several: MOV, ADD, SUB, CLR, CTU, CTD, RES or COP on the word-rung
+// pools (so an action often reads what an earlier action of its rung writes, an ADD overflows, a
+// counter wraps), now and then a timer (the rung then stays general).
+std::string random_step(Rng& rng) {
+  const std::string e = std::to_string(rng() % 3);
+  switch (rng() % 17) {
+    case 0:
+    case 1:
+    case 2: return "MOV " + random_source(rng) + " " + random_dest(rng);
+    case 3:
+    case 4: return "ADD " + random_source(rng) + " " + random_source(rng) + " " + random_dest(rng);
+    case 5: return "SUB " + random_source(rng) + " " + random_source(rng) + " " + random_dest(rng);
+    case 6:
+    case 7: return "CLR " + random_dest(rng);
+    case 8: return "CTU C5:" + e + " " + std::to_string(rng() % 5) + " 0";
+    case 9: return "CTD C5:" + e + " " + std::to_string(-static_cast<int>(rng() % 5)) + " 0";
+    case 10: return std::string("RES ") + (rng() % 2 ? "T4:" : rng() % 2 ? "C5:" : "R6:") + e;
+    case 11:
+    case 12: return random_copy(rng);
+    case 13: return "TON T4:" + e + " 0.01 " + std::to_string(rng() % 12) + " 0";
+    default: return "MOV " + random_source(rng) + " N7:" + std::to_string(rng() % 4);
+  }
+}
+
+// A rung of several actions: contacts and compares, a coil now and then, then two to five actions
+// in parallel legs (the first leg may have conditions of its own, so the actions' rung-ins
+// differ) or in series, sometimes with a JSR or RET in the last leg. A fifth of the branched ones
+// put a condition after an action (general).
+std::string random_several_action_rung(Rng& rng, const std::string& transfer) {
+  static const char* const kCompares[] = {"EQU", "NEQ", "LES", "LEQ", "GRT", "GEQ"};
+  std::string s;
+  const int contacts = static_cast<int>(rng() % 3);
+  for (int i = 0; i < contacts; ++i) s += random_word_contact(rng);
+  if (rng() % 3 == 0) s += std::string(kCompares[rng() % 6]) + " " + random_source(rng) + " " + random_source(rng) + " ";
+  if (rng() % 5 == 0) s += random_coil(rng);
+  const int actions = 2 + static_cast<int>(rng() % 4);
+  const bool late_condition = rng() % 5 == 0;
+  if (rng() % 4 == 0) {
+    for (int i = 0; i < actions; ++i) s += random_step(rng) + " ";
+    return transfer.empty() ? s : s + transfer;
+  }
+  s += "BST ";
+  if (rng() % 2) s += random_word_contact(rng);
+  if (rng() % 3 == 0) s += random_coil(rng) + "NXB " + random_word_contact(rng);
+  for (int i = 0; i < actions; ++i) {
+    if (i > 0) s += "NXB ";
+    if (late_condition && i == actions - 1) s += random_word_contact(rng);
+    s += random_step(rng) + " ";
+  }
+  if (!transfer.empty()) s += "NXB " + transfer + " ";
+  return s + "BND";
+}
+
+// File 2: rungs of several actions among word rungs (a bare CLR among them) and the DII's own
+// configuration rung (five unconditional MOVs in parallel legs, into N7 here); files 3 and 4: a
+// subroutine each, called from rungs of several actions ending in a JSR, with RETs after actions.
+std::string random_several_action_program(Rng& rng) {
+  std::string s = "START 1747-L532\nLADDER 2\n"
+                  "SOR BST MOV 3 N7:4 NXB MOV 1 N7:5 NXB MOV 1 N7:6 NXB MOV 1 N7:7 NXB MOV 5 N7:8 BND EOR\n"
+                  // Sizes N7 (twelve elements) and N9; N10:0 is the indirect COP's element.
+                  "SOR XIC B3:1/14 EQU N7:11 N9:9 MOV N10:0 N10:1 EOR\n";
+  const int rungs = 20 + static_cast<int>(rng() % 20);
+  for (int r = 0; r < rungs; ++r) {
+    const unsigned kind = rng() % 10;
+    if (kind < 5) s += "SOR " + random_several_action_rung(rng, "") + " EOR\n";
+    else if (kind == 5) s += "SOR " + random_several_action_rung(rng, rng() % 2 ? "JSR 3" : "JSR 4") + " EOR\n";
+    else if (kind == 6) s += "SOR " + random_word_contact(rng) + "CLR " + random_dest(rng) + " EOR\n";
+    else s += "SOR " + random_word_rung(rng) + " EOR\n";
+  }
+  s += "SOR XIC B3:0/0 OTU S:5/0 EOR\n";
+  for (const char* file : {"3", "4"}) {
+    s += std::string("LADDER ") + file + "\nSOR SBR " + random_several_action_rung(rng, "") + " EOR\n";
+    for (int r = 0; r < 3; ++r) s += "SOR XIC B3:0/13 " + random_several_action_rung(rng, "") + " EOR\n";
+    s += "SOR " + random_several_action_rung(rng, "RET") + " EOR\n";
+    s += "SOR " + random_word_rung(rng) + " EOR\nSOR RET EOR\n";
+  }
+  return s;
+}
+
+TEST(Fused, SeveralActionRungsMatchTheGeneralPath) {
+  std::size_t several = 0, transfers = 0;
+  auto faults = compare_random_programs(
+      [](Rng& rng, unsigned) { return random_several_action_program(rng); },
+      [&](const FusedProgram& fp) {
+        several += fp.several_action_rungs();
+        transfers += fp.transfer_rungs();
+      });
+  // Most programs' rungs of several actions were fused (a fifth of them have a late condition or a
+  // timer: general), some with a transfer, and the scans met the overflow trap (0020h), a COP past
+  // its file (002Ah) and the watchdog (0022h).
+  EXPECT_GT(several, 80u * 10);
+  EXPECT_GT(transfers, 80u * 2);
+  for (std::uint16_t code : {std::uint16_t{0x0020}, std::uint16_t{0x002A}, std::uint16_t{0x0022}})
+    EXPECT_GT(faults[code], 5u) << std::hex << code;
+}
+
+// The DII's configuration rung of examples/ladder/dii/dii_batch.slc, fused: each MOV writes its
+// word and leaves S:0 as MOV does (docs/semantics.md: MOV sets Z and S from the value, clears C
+// and V; CLR sets Z only), and the scan time is every instruction's true charge under the default
+// model (vm/scan_time_model.h: an output instruction 2 us true), with the branch structure free.
+TEST(Fused, ConfigurationRungOfFiveMovsWritesEachWord) {
+  const DefaultScanTimeModel model;
+  const CompiledProgram p = build(
+      "START 1747-L532\nLADDER 2\nSOR BST MOV 3 N7:0 NXB MOV 1 N7:1 NXB MOV 1 N7:2 NXB MOV 1 N7:3 NXB MOV 0 N7:4 BND EOR\n"
+      "SOR CLR N7:5 EOR\n");
+  Machine m(p, model, true);
+  const FusedProgram fp = fused_program(p, m);
+  ASSERT_EQ(fp.several_action_rungs(), 1u);
+  ASSERT_EQ(fp.fused_rungs(), 2u);
+  const std::uint32_t n7 = p.layout->files[7].base, s0 = p.layout->status_word(status::kArith);
+  m.table.set_word(n7 + 5, 9);
+  m.table.set_word(s0, status::kCarry | status::kSign);
+  const auto r = m.interp.program_scan(0, 0, false, INT64_MAX);
+  EXPECT_EQ(m.table.word(n7 + 0), 3);
+  EXPECT_EQ(m.table.word(n7 + 1), 1);
+  EXPECT_EQ(m.table.word(n7 + 4), 0);
+  EXPECT_EQ(m.table.word(n7 + 5), 0);
+  EXPECT_EQ(m.table.word(s0) & 0xF, status::kZero);  // CLR last: Z only
+  EXPECT_EQ(r.instructions, 6u);
+  EXPECT_EQ(r.elapsed, 6 * 2'000);
 }
 
 // docs/bytecode.md "Rung logic": each leg starts from the condition at BST, and an output acts on

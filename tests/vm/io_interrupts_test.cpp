@@ -234,6 +234,24 @@ TEST(Dii, ZeroFileIsOff) {
   EXPECT_FALSE(plc->fault().has_value());
 }
 
+// RM 11-24: S:46-S:50 are applied at each end of scan, so a DII switched off (S:46 = 0) for one
+// scan and back on with the same words watches again. (The runtime skips applying words it has
+// already applied while a DII is configured; after a scan with the DII off they must apply again.)
+TEST(Dii, SwitchedOffAndOnAgainWithTheSameWordsWatchesAgain) {
+  Plc plc = dii_plc(0x01, 0x01, 0);
+  plc.run_scans(2);
+  plc.set("S:46", 0);
+  plc.run_scans(1);
+  EXPECT_EQ(plc->dii().file, 0) << "off";
+  plc.set("S:46", 3);
+  plc.run_scans(1);
+  EXPECT_EQ(plc->dii().file, 3) << "on again, with the words it had before";
+  plc.set("I:1/0", 1);
+  plc->scan(1);
+  EXPECT_EQ(plc.i("N7:0"), 1) << "the matching transition runs the routine";
+  EXPECT_FALSE(plc->fault().has_value());
+}
+
 // ---- The I/O event-driven interrupt -------------------------------------------------------------------------
 
 // A specialty card that requests service when told to and counts how often it was answered.

@@ -1001,6 +1001,12 @@ std::int64_t Runtime::run_for(Nanoseconds duration) {
   return false;
 }
 
+bool Runtime::network_kept() {
+  if (!network_) return net_before_probe_.empty();
+  network_->holdings(station_, net_after_cycle_);
+  return net_after_cycle_ == net_before_probe_;
+}
+
 void Runtime::wait_longer_before_probing() {
   probe_wait_ = probe_backoff_;
   probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
@@ -1080,7 +1086,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const std::uint64_t module_time_reads = probe.module_time_reads;
   const std::uint64_t between_scan_writes = probe.between_scan_writes;
   const StiTimer& sti_before = probe.sti;
-  if (cycles_allowed_ && network_) network_->holdings(station_, net_before_probe_);
+  if (network_) network_->holdings(station_, net_before_probe_);
   else net_before_probe_.clear();
   interp_->reset_pid_same_until();
   probing_ = true;
@@ -1136,12 +1142,15 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     repeats = across_events && process_writes_ == process_writes && probe_reads_the_same();
   if (!repeats) {
     // The probe changed the table and nothing else, with no event at its end and the network holding
-    // what it held: it may be the first scan of a cycle of two (probe_cycle). (A probe that started a
+    // what it held, and so did the probe before it (probes follow at once after a failure): it may be
+    // the first scan of a cycle of two (probe_cycle). Not after one changing probe alone: a change that
+    // settles at the next scan (ProbesFollowAtOnceAfterAFewChangingScans) would spend that scan, which
+    // then repeats, as the pair's second. (A probe that started a
     // message that stays in a buffer, or took one's reply, changed the network: the next scan would not
     // bring it back, and is probed on its own.) The S:33 word goes back as the probe found it (the cycle
     // compares it aside).
-    if (steady && cycles_allowed_ && events_at_last_scan_end_ == 0 && t < end &&
-        (!network_ || (network_->holdings(station_, net_after_cycle_), net_after_cycle_ == net_before_probe_))) {
+    if (steady && cycles_allowed_ && probe_failures_ > 0 && events_at_last_scan_end_ == 0 && t < end &&
+        network_kept()) {
       before_probe_[L.status_word(status::kCommBits)] = s33_before;
       return 1 + probe_cycle(end, probe);
     }
@@ -1241,8 +1250,12 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // housekeeping are still the probe's (every other bound lets it start and end, and no event runs before
   // its end), so it is taken as a repeat and the servicing runs at its end as scan_once runs it, before
   // the events due then (none is). Executing it would give the same; a probe of it would only find the
-  // servicing's change (msg/filler alone: one executed scan fewer in each 12 ms poll).
-  if (network_quiet && !changed_between && t < end && t + d >= *network_quiet && t + d < program_horizon) {
+  // servicing's change (msg/filler alone: one executed scan fewer in each 12 ms poll). Only when the
+  // probe's scan left the network holding what it held (network_kept): a scan that restarts a message
+  // its own rungs cleared (OTU of EN, then the MSG rung true) shows nothing in the table, but replaces the
+  // message before the servicing, which then drops the old one's frame; taken as a repeat, it would not.
+  if (network_quiet && !changed_between && t < end && t + d >= *network_quiet && t + d < program_horizon &&
+      network_kept()) {
     const std::optional<VirtualTime> next = events_.next_time();
     const bool same_second = !rtc.present || (rtc_second_ + 1) * kNsPerS - t - input_scan_ns_ > 0;
     if ((!next || *next > t + d) && same_second && scans_before_the_clock_bits_change(t, d) >= 1) {

@@ -297,6 +297,8 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // probe recorded before its scan. Returns the scans run and taken after the probe's.
   struct ProbeStart;
   std::int64_t probe_cycle(VirtualTime end, const ProbeStart& probe);
+  // The network holds for this station what it held before the probe (MessageNetwork::holdings).
+  bool network_kept();
   void probe_failed();
   void wait_longer_before_probing();  // the wait before the next probe doubles, up to 64 scans
   // Every scanned module says it is passive (Module::passive).

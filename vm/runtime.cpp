@@ -1071,6 +1071,8 @@ struct Runtime::ProbeStart {
   StiTimer sti;
 };
 
+constexpr std::uint32_t kScansAfterAServicedChange = 2;
+
 std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   before_probe_.assign(data_.words(), data_.words() + data_.size());
   const ProbeStart probe{clock_.now(),
@@ -1208,6 +1210,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const VirtualTime program_horizon = horizon;  // without the network's
   if (network_quiet) horizon = std::min(horizon, *network_quiet);
   bool changed_between = false;  // the events between repeats changed something: the repeats stop here
+  bool serviced_change = false;  // the last scan taken ran the servicing that met the network's change
   for (;;) {
     // How many scans would repeat it: those that start before `end`, end before the next event,
     // and (with a real-time clock) start their program scan in the same second, so the clock
@@ -1262,6 +1265,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
       take(1);
       network_->scanned(station_, t);
       events_at_last_scan_end_ = events_.run_until(t);
+      serviced_change = true;
     }
   }
   // A probe that could take no scan (the next event, a timer's tick or the STI was due within one)
@@ -1281,6 +1285,12 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // executed without a probe, and the scan after it probes (ml1100_sti: two executed scans in each
   // 10 ms period instead of three).
   if (sti.file != 0 && t < end && t + d >= sti.due) probe_wait_ = std::max<std::uint32_t>(probe_wait_, 1);
+  // After the servicing that met the network's change (a message ended: DN or ER; a seconds word moved),
+  // the program reacts in the scans that follow: a polling rung (`XIO EN MSG`) clears EN at the next scan
+  // and starts the message again at the one after, so probes of those two could only find the change.
+  // They are executed without a probe, and the third probes (decision: a program that does not react
+  // loses at most two repeats).
+  if (serviced_change) probe_wait_ = std::max<std::uint32_t>(probe_wait_, kScansAfterAServicedChange);
   return 1 + taken;
 }
 

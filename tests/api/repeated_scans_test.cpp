@@ -1295,7 +1295,8 @@ TEST(RepeatedScans, APairThatLeavesAnotherMessageInTheNetworkIsNotRepeated) {
 // scan, but replaces the message before the servicing, which then drops the old one's frame: its scans
 // repeat only up to the frame's arrival, and the scan at the arrival is executed. Tried: taking that
 // scan as a repeat without the test of the network's holdings sets ER at the arrival (the data tables
-// differ). msg/filler and ml1100_msg_pump alone execute about 3 scans in each 12 ms poll (they did 4).
+// differ). msg/filler, ml1100_msg_pump and ml1500_lrp_gateway alone execute fewer scans with the rule
+// (below; without it, tried, each of the three fails its bound).
 TEST(RepeatedScans, TheScanAtTheNetworksChangeIsTakenWithItsServicing) {
   const std::string text =
       "START 1747-L532\nLADDER 2\nSOR XIC N9:0/15 OTU N9:0/15 EOR\n"
@@ -1306,12 +1307,19 @@ TEST(RepeatedScans, TheScanAtTheNetworksChangeIsTakenWithItsServicing) {
     EXPECT_GT(repeated, 0u);
     EXPECT_EQ(p.skipping.get_bit("N9:0/12"), false);
   }
-  for (const char* program : {"msg/filler.slc", "micrologix/ml1100_msg_pump.slc", "micrologix/ml1500_lrp_gateway.slc"}) {
-    Controller skipping = Controller::load(example(program));
-    Controller executing = Controller::load(example(program));
-    run_side_by_side(skipping, executing, 1000, milliseconds(10), program);
+  // Executed scans in 10 s observed every 10 ms, in percent of the scans: with the rule 35.9, 11.7 and
+  // 17.5; without it (the scan at the change probed, and the two after it too) 44.1, 14.6 and 22.9.
+  struct Share {
+    const char* program;
+    std::uint64_t percent;
+  };
+  for (const Share& c : {Share{"msg/filler.slc", 40}, Share{"micrologix/ml1100_msg_pump.slc", 13},
+                         Share{"micrologix/ml1500_lrp_gateway.slc", 20}}) {
+    Controller skipping = Controller::load(example(c.program));
+    Controller executing = Controller::load(example(c.program));
+    run_side_by_side(skipping, executing, 1000, milliseconds(10), c.program);
     const ScanStats& s = skipping.runtime().stats();
-    EXPECT_LT(s.scans - s.repeated, s.scans * 45 / 100) << program;
+    EXPECT_LT((s.scans - s.repeated) * 100, s.scans * c.percent) << c.program;
   }
 }
 

@@ -131,6 +131,10 @@ class EventHeap {
     return id;
   }
 
+  // The id the next push will get: unchanged while nothing was scheduled (repeated cycles,
+  // docs/semantics.md "Repeated cycles", check that a cycle scheduled nothing).
+  EventId next_id() const { return next_id_; }
+
   // Removes one pending event; false when it already ran or never existed.
   bool cancel(EventId id) {
     const auto it = std::find_if(heap_.begin(), heap_.end(), [id](const Key& k) { return k.id == id; });

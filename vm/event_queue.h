@@ -51,6 +51,8 @@ class EventQueue {
   std::size_t run_until(VirtualTime until);
 
   std::optional<VirtualTime> next_time() const { return heap_.next_time(); }
+  // Counts the events ever scheduled, ran or not: the same before and after a stretch that scheduled none.
+  EventId scheduled() const { return heap_.next_id() - 1; }
   std::size_t size() const { return heap_.size(); }
   bool empty() const { return heap_.empty(); }
   VirtualTime now() const { return clock_.now(); }

@@ -743,6 +743,26 @@ std::optional<VirtualTime> MessageNetwork::quiet_until(std::size_t station, Virt
   return until;
 }
 
+void MessageNetwork::holdings(std::size_t station, std::vector<std::uint64_t>& out) const {
+  out.clear();
+  const Station& st = stations_[station];
+  for (const Channel& ch : st.channels) {
+    // The count first, so that a message moved from the queue into a buffer reads differently.
+    for (const auto* list : {&ch.buffers, &ch.queue}) {
+      out.push_back(list->size());
+      for (const Message& m : *list) {
+        out.push_back(m.serial);
+        out.push_back(m.sent ? 1 : 0);
+        out.push_back(m.acked ? static_cast<std::uint64_t>(*m.acked) + 1 : 0);
+      }
+    }
+  }
+  for (const auto& [key, frame] : st.inbox) {
+    out.push_back(static_cast<std::uint64_t>(key.first));
+    out.push_back(key.second);
+  }
+}
+
 void MessageNetwork::service_now(std::size_t station, VirtualTime at, std::uint16_t channel_mask) {
   service(station, at, channel_mask);
 }

@@ -245,6 +245,11 @@ class MessageNetwork {
   // message's timer words, a timeout; the largest time when nothing is in flight). nullopt when
   // another station is on the link (its scans could send at any time) or something waits to go out.
   std::optional<VirtualTime> quiet_until(std::size_t station, VirtualTime at) const;
+  // For repeated cycles (docs/semantics.md "Repeated cycles"): what the network holds for `station` that the
+  // data table does not show, as numbers in `out` (replaced): each channel's messages in its buffers and
+  // queue (serial, whether sent, when acknowledged) and the frames waiting for it (arrival, sequence).
+  // Two equal holdings are the same messages in the same states: a serial is never reused.
+  void holdings(std::size_t station, std::vector<std::uint64_t>& out) const;
 
  private:
   struct Message {

@@ -353,6 +353,8 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
     }
     rt.processes_.push_back(std::move(p));
   }
+  rt.cycles_allowed_ = rt.program_repeatable_ && rt.clock_bits_read_ == 0 && !rt.ascii_channel_ && !rt.modbus_channel_ &&
+                      rt.interp_->data_logs().queues().empty();
   if (!peers.empty() || channel1_node != 0 || channel0_df1) {
     if (std::string why = rt.join_peers(peers, channel1_node, channel1_network, channel0_df1); !why.empty()) {
       CompileError e;
@@ -1007,6 +1009,12 @@ std::int64_t Runtime::run_for(Nanoseconds duration) {
   return false;
 }
 
+bool Runtime::network_kept() {
+  if (!network_) return net_before_probe_.empty();
+  network_->holdings(station_, net_after_cycle_);
+  return net_after_cycle_ == net_before_probe_;
+}
+
 void Runtime::wait_longer_before_probing() {
   probe_wait_ = probe_backoff_;
   probe_backoff_ = std::min<std::uint32_t>(probe_backoff_ * 2, 64);
@@ -1060,14 +1068,36 @@ void Runtime::probe_failed() {
   if (++probe_failures_ >= kProbesBeforeBackoff) wait_longer_before_probing();
 }
 
+// What a probe records before its scan, for its own test and for a cycle's (probe_cycle).
+struct Runtime::ProbeStart {
+  VirtualTime start;
+  std::uint64_t instructions;
+  std::uint64_t process_writes;
+  std::uint64_t module_time_reads;
+  std::uint64_t between_scan_writes;
+  EventQueue::EventId scheduled;
+  StiTimer sti;
+};
+
+constexpr std::uint32_t kScansAfterAServicedChange = 2;
+
 std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   before_probe_.assign(data_.words(), data_.words() + data_.size());
-  const VirtualTime start = clock_.now();
-  const std::uint64_t instructions = stats_.instructions;
-  const std::uint64_t process_writes = process_writes_;
-  const std::uint64_t module_time_reads = interp_->module_time_reads();
-  const std::uint64_t between_scan_writes = interp_->between_scan_writes();
-  const StiTimer sti_before = interp_->sti();
+  const ProbeStart probe{clock_.now(),
+                         stats_.instructions,
+                         process_writes_,
+                         interp_->module_time_reads(),
+                         interp_->between_scan_writes(),
+                         events_.scheduled(),
+                         interp_->sti()};
+  const VirtualTime start = probe.start;
+  const std::uint64_t instructions = probe.instructions;
+  const std::uint64_t process_writes = probe.process_writes;
+  const std::uint64_t module_time_reads = probe.module_time_reads;
+  const std::uint64_t between_scan_writes = probe.between_scan_writes;
+  const StiTimer& sti_before = probe.sti;
+  if (network_) network_->holdings(station_, net_before_probe_);
+  else net_before_probe_.clear();
   interp_->reset_pid_same_until();
   probing_ = true;
   probe_unsteady_ = false;
@@ -1113,12 +1143,27 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // after the probe); any other timer that read the clock bounds the repeats to the
   // tick the probe started in (sort_timer_executions).
   accumulating_.clear();
+  carried_before_.clear();
   const bool timing = repeats && sort_timer_executions(d);
+  const bool steady = repeats;  // everything held but, perhaps, the table
   repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);
   const bool across_events = interp_->module_time_reads() == module_time_reads;
   if (repeats && events_at_last_scan_end_ != 0)
     repeats = across_events && process_writes_ == process_writes && probe_reads_the_same();
   if (!repeats) {
+    // The probe changed the table and nothing else, with no event at its end and the network holding
+    // what it held, and so did the probe before it (probes follow at once after a failure): it may be
+    // the first scan of a cycle of two (probe_cycle). Not after one changing probe alone: a change that
+    // settles at the next scan (ProbesFollowAtOnceAfterAFewChangingScans) would spend that scan, which
+    // then repeats, as the pair's second. (A probe that started a
+    // message that stays in a buffer, or took one's reply, changed the network: the next scan would not
+    // bring it back, and is probed on its own.) The S:33 word goes back as the probe found it (the cycle
+    // compares it aside).
+    if (steady && cycles_allowed_ && probe_failures_ > 0 && events_at_last_scan_end_ == 0 && t < end &&
+        network_kept()) {
+      before_probe_[L.status_word(status::kCommBits)] = s33_before;
+      return 1 + probe_cycle(end, probe);
+    }
     probe_failed();
     return 1;
   }
@@ -1170,7 +1215,10 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     const VirtualTime reach = (a.stamp0 + (pre - a.acc0) * a.units_per_acc) * a.unit;
     horizon = std::min(horizon, reach - (a.read_at - start) + d);
   }
+  const VirtualTime program_horizon = horizon;  // without the network's
   if (network_quiet) horizon = std::min(horizon, *network_quiet);
+  bool changed_between = false;  // the events between repeats changed something: the repeats stop here
+  bool serviced_change = false;  // the last scan taken ran the servicing that met the network's change
   for (;;) {
     // How many scans would repeat it: those that start before `end`, end before the next event,
     // and (with a real-time clock) start their program scan in the same second, so the clock
@@ -1203,8 +1251,30 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     events_at_last_scan_end_ = events_.run_until(t);
     if (mode_ != Mode::Run || fault_ || !interp_->nothing_pending_between_scans() || !modules_passive() ||
         process_writes_ != process_writes || interp_->between_scan_writes() != between_scan_writes ||
-        !probe_reads_the_same())
+        !probe_reads_the_same()) {
+      changed_between = true;
       break;
+    }
+  }
+  // The repeats ended at the MSG network's next change alone: the next scan's servicing, at its end, would
+  // find a frame arrived, a message's second or its timeout. Its program scan, input and output scans and
+  // housekeeping are still the probe's (every other bound lets it start and end, and no event runs before
+  // its end), so it is taken as a repeat and the servicing runs at its end as scan_once runs it, before
+  // the events due then (none is). Executing it would give the same; a probe of it would only find the
+  // servicing's change (msg/filler alone: one executed scan fewer in each 12 ms poll). Only when the
+  // probe's scan left the network holding what it held (network_kept): a scan that restarts a message
+  // its own rungs cleared (OTU of EN, then the MSG rung true) shows nothing in the table, but replaces the
+  // message before the servicing, which then drops the old one's frame; taken as a repeat, it would not.
+  if (network_quiet && !changed_between && t < end && t + d >= *network_quiet && t + d < program_horizon &&
+      network_kept()) {
+    const std::optional<VirtualTime> next = events_.next_time();
+    const bool same_second = !rtc.present || (rtc_second_ + 1) * kNsPerS - t - input_scan_ns_ > 0;
+    if ((!next || *next > t + d) && same_second && scans_before_the_clock_bits_change(t, d) >= 1) {
+      take(1);
+      network_->scanned(station_, t);
+      events_at_last_scan_end_ = events_.run_until(t);
+      serviced_change = true;
+    }
   }
   // A probe that could take no scan (the next event, a timer's tick or the STI was due within one)
   // was an executed scan like any other, but its saving and comparing of the table was wasted: it
@@ -1223,7 +1293,134 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // executed without a probe, and the scan after it probes (ml1100_sti: two executed scans in each
   // 10 ms period instead of three).
   if (sti.file != 0 && t < end && t + d >= sti.due) probe_wait_ = std::max<std::uint32_t>(probe_wait_, 1);
+  // After the servicing that met the network's change (a message ended: DN or ER; a seconds word moved),
+  // the program reacts in the scans that follow: a polling rung (`XIO EN MSG`) clears EN at the next scan
+  // and starts the message again at the one after, so probes of those two could only find the change.
+  // They are executed without a probe, and the third probes (decision: a program that does not react
+  // loses at most two repeats).
+  if (serviced_change) probe_wait_ = std::max<std::uint32_t>(probe_wait_, kScansAfterAServicedChange);
   return 1 + taken;
+}
+
+// Repeated cycles (docs/semantics.md "Repeated cycles"). A program whose MSG fails at once (D0h on Ethernet
+// without an IP address, 12h on a channel 0 with no DF1) and that starts it again when its rung finds EN
+// clear changes its table at every scan, so no scan repeats the one before; but two scans in a row, the
+// one that starts the message and ends it with ER and the one whose false rung clears EN, bring the table
+// back to where it was. The probe (scan A) has passed every test of a repeat but the table; scan B is
+// executed here (a scan like any other), and the pair repeats when, after it:
+// - the table is the one the probe found, but the runtime's own status words and the carried timers
+//   (a timer private to its TON/TOF/RTO, executed once in each of A and B, advancing: after n pairs its
+//   words are a function of the tick of its last read, which moves by the pair's length D);
+// - A and B left everything outside the table as the probe found it: the network holds the same
+//   messages and frames (MessageNetwork::holdings; a message that failed at once left nothing), no event
+//   was scheduled or ran, no field process or between-scan write touched the table, the STI timer is the
+//   same, the modules reached counted no change and are passive after both scans, and A's output image
+//   was B's (the O file at A's end as the probe found it: modules saw the same image);
+// - the controller is in Run without a fault and nothing is pending.
+// Then a pair that starts from that table at a later time executes the same instructions on the same
+// words (each instruction of a repeatable program is a function of the table, the rung and the time the
+// bounds below keep: the same as for one scan), takes A's and B's times, and leaves the same table. The
+// pairs are taken whole, each one ending before everything that ends the repeats of one scan: the next
+// event, an STI expiry, a timed PID's update, a timer's tick (a timer reading the clock but not carried:
+// the tick the probe started in), the scan whose read of a carried timer reaches PRE, the MSG network's
+// next change (quiet_until after B), the clock's next second (RTC), and run_for's end (B of the last pair
+// starts before it). The status words follow as executing would give: S:4 at the last program scan,
+// S:33/9 toggled once per pair that toggled it, and housekeeping with A's and B's scan times in turn
+// until a pair leaves S:3, S:22, S:23 and S:35 as it found them (S:23's average is a monotone map of
+// itself over a pair, so it settles), the rest counted in bulk. A program that reads S:4, an ASCII or
+// Modbus channel (their jobs live outside the table) or a data log queue (DLG's records) never cycles.
+std::int64_t Runtime::probe_cycle(VirtualTime end, const ProbeStart& probe) {
+  std::uint16_t* const w = data_.words();
+  const DataTableLayout& L = *program_->layout;
+  const FileLayout& out_file = L.files[0];
+  // A's output image is the probe's: the O words as the probe found them.
+  const bool same_outputs = std::equal(w + out_file.base, w + out_file.base + out_file.words(),
+                                       before_probe_.begin() + out_file.base);
+  for (const auto& [word, value] : carried_before_) before_probe_[word] = value;
+  carried_before_.clear();
+  accumulating_.clear();
+  const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
+  const VirtualTime mid = clock_.now();
+  const Nanoseconds d_a = mid - probe.start;
+  const Nanoseconds scan_time_a = stats_.last;
+  const std::size_t second = timer_executions_.size();
+  probing_ = true;
+  interp_->record_timer_executions(&timer_executions_);
+  scan_once(false);
+  interp_->record_timer_executions(nullptr);
+  probing_ = false;
+  VirtualTime t = clock_.now();
+  const Nanoseconds d = t - probe.start;  // the pair's length
+  const Nanoseconds scan_time_b = stats_.last;
+  const StiTimer& sti = interp_->sti();
+  bool repeats = same_outputs && mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti == probe.sti &&
+                 events_at_last_scan_end_ == 0 && events_.scheduled() == probe.scheduled &&
+                 process_writes_ == probe.process_writes && interp_->between_scan_writes() == probe.between_scan_writes &&
+                 interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
+  std::optional<VirtualTime> network_quiet;
+  if (repeats && network_) {
+    network_quiet = network_->quiet_until(station_, t);
+    network_->holdings(station_, net_after_cycle_);
+    repeats = network_quiet && net_after_cycle_ == net_before_probe_;
+  }
+  for (int st : kRuntimeStatusWords) before_probe_[L.status_word(st)] = w[L.status_word(st)];
+  const bool timing = repeats && sort_timer_executions(d, second);
+  repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);
+  if (!repeats) {
+    probe_failed();
+    return 1;
+  }
+  VirtualTime horizon = std::numeric_limits<VirtualTime>::max();
+  if (sti.file != 0) horizon = sti.due;
+  if (const VirtualTime pid_until = interp_->pid_same_until(); pid_until != std::numeric_limits<VirtualTime>::max())
+    horizon = std::min(horizon, pid_until + 1);
+  if (timing) horizon = std::min(horizon, (probe.start / timer_tick_ns_ + 1) * timer_tick_ns_ + 1);
+  // A carried timer's last read in a pair is B's: the pair starting at s reads it at s + (read_at - start).
+  for (const AccumulatingTimer& a : accumulating_) {
+    const std::int64_t pre = static_cast<std::int16_t>(w[a.word + 1]);
+    const VirtualTime reach = (a.stamp0 + (pre - a.acc0) * a.units_per_acc) * a.unit;
+    horizon = std::min(horizon, reach - (a.read_at - probe.start) + d);
+  }
+  if (network_quiet) horizon = std::min(horizon, *network_quiet);
+  // Pairs whose B starts before `end`, that end before the next event and the horizon, and (with a
+  // real-time clock) end by the next second, so that every program scan in them starts in this one.
+  std::int64_t k = end - t > d_a ? (end - t - d_a + d - 1) / d : 0;
+  if (const std::optional<VirtualTime> next = events_.next_time()) k = std::min<std::int64_t>(k, (*next - t - 1) / d);
+  if (horizon != std::numeric_limits<VirtualTime>::max())
+    k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (horizon - t - 1) / d));
+  if (L.function_file(FunctionFile::RTC).present)
+    k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, ((rtc_second_ + 1) * kNsPerS - t) / d));
+  if (k <= 0) {
+    probe_failed();
+    return 1;
+  }
+  const std::uint64_t per_pair = stats_.instructions - probe.instructions;
+  advance_free_running_clock(t + (k - 1) * d + d_a + input_scan_ns_);
+  const std::uint16_t s33_toggle = (data_.status(status::kCommBits) ^ s33_before) & 0x0200u;
+  if (k % 2 == 1) data_.set_status(status::kCommBits, static_cast<std::uint16_t>(data_.status(status::kCommBits) ^ s33_toggle));
+  constexpr std::array<int, 4> kHousekeeping = {status::kWatchdog, status::kMaxScan, status::kAvgScan, status::kLastScanMs};
+  for (std::int64_t i = 0; i < k; ++i) {
+    std::array<std::uint16_t, 4> found{};
+    for (std::size_t j = 0; j < found.size(); ++j) found[j] = data_.status(kHousekeeping[j]);
+    housekeeping(scan_time_a, true);
+    housekeeping(scan_time_b, true);
+    bool same = true;
+    for (std::size_t j = 0; j < found.size(); ++j) same = same && found[j] == data_.status(kHousekeeping[j]);
+    if (same) {  // every later pair leaves them as they are
+      const auto rest = static_cast<std::uint64_t>(k - i - 1);
+      stats_.scans += 2 * rest;
+      stats_.total += static_cast<Nanoseconds>(rest) * (scan_time_a + scan_time_b);
+      break;
+    }
+  }
+  stats_.instructions += per_pair * static_cast<std::uint64_t>(k);
+  stats_.repeated += 2 * static_cast<std::uint64_t>(k);
+  t += k * d;
+  if (!accumulating_.empty()) set_accumulated_timers(k, d);
+  events_.run_until(t);
+  probe_failures_ = 0;
+  probe_backoff_ = 1;
+  return 1 + 2 * k;
 }
 
 // Timers accumulating across ticks (docs/semantics.md "Timers accumulating across ticks"). A timer
@@ -1240,31 +1437,42 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
 // restart, a second execution, a timer another instruction reaches) bounds the repeats to the tick
 // the probe started in, the rule before this one. A timer timing that the probe did not execute (its
 // subroutine not called, a JMP over it) is not executed in a repeat either: it reads nothing.
-bool Runtime::sort_timer_executions(Nanoseconds d) {
+bool Runtime::sort_timer_executions(Nanoseconds d, std::size_t second) {
   std::uint16_t* const w = data_.words();
   bool timing = false;
-  std::stable_sort(timer_executions_.begin(), timer_executions_.end(),
-            [](const word_ops::TimerExecution& a, const word_ops::TimerExecution& b) { return a.word < b.word; });
+  // Which scan of a cycle each execution was in (second: the first of the second scan's; 0 for a probe
+  // of one scan), kept in the flags' unused top bit while the executions are sorted by element.
+  constexpr std::uint32_t kSecondScan = 1u << 31;
+  for (std::size_t i = second; second != 0 && i < timer_executions_.size(); ++i) timer_executions_[i].flags |= kSecondScan;
+  // Most probes record one timer or none: no sort (std::stable_sort takes a buffer from the heap).
+  if (timer_executions_.size() > 1)
+    std::stable_sort(timer_executions_.begin(), timer_executions_.end(),
+                     [](const word_ops::TimerExecution& a, const word_ops::TimerExecution& b) { return a.word < b.word; });
   for (std::size_t i = 0; i < timer_executions_.size();) {
-    const word_ops::TimerExecution& x = timer_executions_[i];
+    const std::size_t first = i;
+    const std::uint32_t word = timer_executions_[i].word;
     std::size_t end = i;
-    bool reads = false;
-    for (; end < timer_executions_.size() && timer_executions_[end].word == x.word; ++end) {
+    bool reads = false, all_advance = true;
+    for (; end < timer_executions_.size() && timer_executions_[end].word == word; ++end) {
       const word_ops::TimerExecution& e = timer_executions_[end];
-      reads = reads || word_ops::timer_clock_use(e.op, e.control, e.acc, e.pre, e.rung, false) !=
-                           word_ops::TimerClockUse::None;
+      const word_ops::TimerClockUse use = word_ops::timer_clock_use(e.op, e.control, e.acc, e.pre, e.rung, false);
+      reads = reads || use != word_ops::TimerClockUse::None;
+      all_advance = all_advance && use == word_ops::TimerClockUse::Advance;
     }
-    const bool once = end == i + 1;
     i = end;
     if (!reads) continue;
+    // The last execution (the sort is stable): the one whose read the timer's words now show.
+    const word_ops::TimerExecution& x = timer_executions_[end - 1];
+    // Once in the probe's scan; in a cycle, once in each of its two scans (the first in the first).
+    const bool once = second == 0 ? end == first + 1
+                                  : end == first + 2 && (timer_executions_[first].flags & kSecondScan) == 0 &&
+                                        (x.flags & kSecondScan) != 0;
     const bool base1s = (x.flags & bc::kFlagA) != 0;
     const Nanoseconds unit = (x.flags & bc::kFlagB) ? kNsPerMs : kTick;
     const std::int64_t tick = x.at / unit;  // word_ops::timer_tick, unwrapped
     const std::int64_t stamp_lag = (tick - (w[x.word] & bits::kStampMask)) & 0xFF;
-    const bool advanced = word_ops::timer_clock_use(x.op, x.control, x.acc, x.pre, x.rung, false) ==
-                          word_ops::TimerClockUse::Advance;
     const auto acc = static_cast<std::int16_t>(w[x.word + 2]);
-    const bool carried = once && advanced && x.word < timer_private_.size() && timer_private_[x.word] &&
+    const bool carried = once && all_advance && x.word < timer_private_.size() && timer_private_[x.word] &&
                          (w[x.word] & bits::kTT) != 0 && acc < static_cast<std::int16_t>(w[x.word + 1]) &&
                          d < (base1s ? 155 : 255) * unit && stamp_lag < (base1s ? 100 : 1);
     if (!carried) {
@@ -1272,6 +1480,8 @@ bool Runtime::sort_timer_executions(Nanoseconds d) {
       continue;
     }
     accumulating_.push_back({x.word, x.at, unit, tick - stamp_lag, base1s ? 100 : 1, acc});
+    carried_before_.emplace_back(x.word, before_probe_[x.word]);
+    carried_before_.emplace_back(x.word + 2, before_probe_[x.word + 2]);
     before_probe_[x.word] =
         static_cast<std::uint16_t>((before_probe_[x.word] & ~bits::kStampMask) | (w[x.word] & bits::kStampMask));
     before_probe_[x.word + 2] = w[x.word + 2];

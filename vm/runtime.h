@@ -291,6 +291,14 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // due) are taken without executing them. Returns the scans run and taken.
   bool probe_due();
   std::int64_t probe_and_repeat(VirtualTime end);
+  // Repeated cycles (docs/semantics.md "Repeated cycles"): after a probe whose scan changed the table and
+  // nothing else, the scan after it is executed too, and when the two left everything as the probe found
+  // it, the pairs of scans that would repeat them are taken without executing them. `probe` is what the
+  // probe recorded before its scan. Returns the scans run and taken after the probe's.
+  struct ProbeStart;
+  std::int64_t probe_cycle(VirtualTime end, const ProbeStart& probe);
+  // The network holds for this station what it held before the probe (MessageNetwork::holdings).
+  bool network_kept();
   void probe_failed();
   void wait_longer_before_probing();  // the wait before the next probe doubles, up to 64 scans
   // Every scanned module says it is passive (Module::passive).
@@ -408,7 +416,9 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // Sorts the probe's timer executions: fills accumulating_ with the timers that may accumulate across
   // ticks, sets their ACC and stamp in before_probe_ to the probe's, and returns whether any timer read
   // the clock otherwise, which bounds the repeats to the tick.
-  bool sort_timer_executions(Nanoseconds d);
+  // A cycle (probe_cycle) passes its two scans' executions with `second` the index of the first of the
+  // second scan's and `d` the cycle's length: a timer is then carried when it ran once in each scan.
+  bool sort_timer_executions(Nanoseconds d, std::size_t second = 0);
   // Writes the carried timers' ACC and stamp as `n` scans after the probe, each `d` long, leave them.
   void set_accumulated_timers(std::int64_t n, Nanoseconds d);
   std::uint32_t probe_wait_ = 0;
@@ -416,6 +426,13 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::uint32_t probe_failures_ = 0;  // probes in a row that repeated nothing (probe_failed)
   static constexpr std::uint32_t kProbesBeforeBackoff = 4;
   std::vector<std::uint16_t> before_probe_;
+  // The words of before_probe_ that sort_timer_executions replaced with a carried timer's (word, value as
+  // saved), for a cycle that compares with the table as the probe found it; the network's holdings before
+  // the probe and after a cycle (MessageNetwork::holdings); a cycle may be tried: no channel whose state
+  // lies outside the table (ASCII, Modbus), no data log queue, no read of S:4 (set by create).
+  std::vector<std::pair<std::uint32_t, std::uint16_t>> carried_before_;
+  std::vector<std::uint64_t> net_before_probe_, net_after_cycle_;
+  bool cycles_allowed_ = false;
   Nanoseconds input_scan_ns_ = 0;
   std::size_t events_at_last_scan_end_ = 0;  // events the last scan cycle ran at its end
   // What a probe did with the modules (docs/semantics.md "Repeated scans"): the modules it reached

@@ -526,6 +526,7 @@ int run_run(const RunOptions& o) {
     rt.scan(1);
     after_scans();
   };
+  rt.skip_repeated_scans(!o.every_scan);
   if (duration > 0) {
     const VirtualTime end = rt.now() + duration;
     // A fault or a SUS (Suspend Idle) ends the run: nothing executes after either. Scans that

@@ -58,6 +58,7 @@ struct RunOptions {
   std::string processor;                 // CATALOG[:SERIES] overriding START
   std::string timing;                    // user timing profile
   bool realtime = false;                 // pace scans to the wall clock
+  bool every_scan = false;               // no repeated scans (docs/semantics.md "Repeated scans")
   std::string state;                     // retentive state file: loaded at start, saved at the end
   bool force_state = false;              // accept a state file saved by another program
   std::string checkpoint;                // also save every this much virtual time

@@ -59,6 +59,8 @@ int run_main(int argc, char** argv) {
   run_cmd->add_option("--processor", run.processor, "processor catalog (CATALOG or CATALOG:SERIES) overriding START");
   run_cmd->add_option("--timing", run.timing, "timing profile JSON overriding the built-in figures");
   run_cmd->add_flag("--realtime", run.realtime, "pace scans to the wall clock (interactive use)");
+  run_cmd->add_flag("--every-scan", run.every_scan,
+                    "execute every scan, none taken as a repeat (the same results, slower: for checking repeats)");
   run_cmd->add_option("--state", run.state,
                       "retentive state file: loaded at start if it exists, saved atomically at the end and on "
                       "SIGINT/SIGTERM");

@@ -229,6 +229,9 @@ class Interpreter {
   const EventInterrupt* event_interrupt(bool counter, int number) const;
   const DiiState& dii() const { return dii_; }
   std::uint64_t isr_runs() const { return isr_runs_; }
+  // Interrupt routines (STI, DII, I/O event, EII, HSC) and fault routines run since the runtime was
+  // created: a probe that ran one is not repeated (docs/semantics.md "Repeated scans").
+  std::uint64_t routine_runs() const { return routine_runs_; }
   // How many times a module instruction asked the time of its execution
   // (ModuleInstructionContext::now): a repeated scan cannot stand for such an instruction past an
   // event (docs/semantics.md "Repeated scans").
@@ -546,6 +549,7 @@ class Interpreter {
   std::array<bool, 31> io_requested_{};   // a module's request not yet serviced
   int io_requests_ = 0;                   // how many of io_requested_ are set
   std::uint64_t isr_runs_ = 0;
+  std::uint64_t routine_runs_ = 0;  // interrupt and fault routine runs (routine_runs)
   std::uint64_t module_time_reads_ = 0;
   std::uint64_t between_scan_writes_ = 0;
   VirtualTime pid_same_until_ = std::numeric_limits<VirtualTime>::max();

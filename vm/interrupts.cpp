@@ -262,6 +262,7 @@ bool Interpreter::service_interrupts(Nanoseconds& elapsed) {
 }
 
 bool Interpreter::run_interrupt_routine(int file, int priority, Nanoseconds& elapsed) {
+  ++routine_runs_;
   const SavedStatus saved = save_status();
   elapsed += cost_[static_cast<std::size_t>(Op::JSR) * 2 + 1];  // entry, charged as a true JSR
   const int outer = priority_;
@@ -382,6 +383,8 @@ void Interpreter::dii_input(int slot, int word, std::uint16_t before, std::uint1
   const bool matched_before = ((before ^ dii_.compare) & mask) == 0;
   const bool matches = ((after ^ dii_.compare) & mask) == 0;
   if (mask == 0 || matched_before || !matches) return;
+  // Every counted transition writes the table (S:52, or S:2/S:5/S:36): repeats across events stop.
+  ++between_scan_writes_;
   const auto transitions = static_cast<std::uint16_t>((before ^ after) & mask);
   std::uint16_t& acc = w_[s46_ + 6];
   if (dii_.preset >= 2) {
@@ -715,8 +718,14 @@ bool Interpreter::nothing_pending_between_scans() const {
   // An HSC with no pulses arriving counts nothing (its loads by SP, HSL and RAC take the table's
   // values, the same in every repeat), and an idle PTO's scan follows the table alone. An ASCII
   // port acts between scans only in its events (Repeat::AsciiPort in the instruction table).
+  // A configured DII with nothing pending is allowed (docs/semantics.md "A DII waiting for its input"):
+  // it acts only on the card's input transitions, which reach it between scans in events (dii_input
+  // counts its writes as between-scan writes, which stop the repeats), and its end-of-scan
+  // configuration from S:46-S:50, table words the probe compares, changes nothing when they are the
+  // ones it applied. A pending one runs at the next interrupt point.
   const bool no_isr = std::all_of(isr_file_.begin(), isr_file_.end(), [](int f) { return f == 0; });
-  return sti_queued_ == 0 && dii_.file == 0 && no_isr && events_queued_ == 0 && !hsc_.pulses_arriving() &&
+  const bool no_dii_pending = dii_.file == 0 || (table_.words()[s2_] & status::kDiiPending) == 0;
+  return sti_queued_ == 0 && no_dii_pending && no_isr && events_queued_ == 0 && !hsc_.pulses_arriving() &&
          pulse_trains_.idle() && coverage_ == nullptr;
 }
 
@@ -868,6 +877,7 @@ bool Interpreter::user_fault_routine(Nanoseconds& elapsed) {
   if (non_user_fault(code)) return false;
   const int file = static_cast<std::int16_t>(w_[s29_]);
   if (file < 3 || file > 255 || !prog_.file(file)) return false;
+  ++routine_runs_;
   // RM 11-2: the routine runs with the fault posted (S:6 code, S:1/13 set) for one pass.
   w_[s6_] = code;
   w_[s1_] = static_cast<std::uint16_t>(w_[s1_] | status::kMajorHalt);

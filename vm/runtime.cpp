@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "parser/checker.h"
@@ -131,11 +132,12 @@ struct RepeatFacts {
   Nanoseconds timer_tick = kTick;
 };
 
-bool elements_repeatable(const std::vector<RungElement>& elements, RepeatFacts& facts) {
+// `interrupt_only`: the elements are in a file that only an interrupt may run (routines_only_by_interrupt).
+bool elements_repeatable(const std::vector<RungElement>& elements, RepeatFacts& facts, bool interrupt_only) {
   for (const RungElement& e : elements) {
     if (e.kind == RungElement::Kind::Branch) {
       for (const auto& leg : e.legs)
-        if (!elements_repeatable(leg, facts)) return false;
+        if (!elements_repeatable(leg, facts, interrupt_only)) return false;
       continue;
     }
     const InstructionSpec& sp = spec(e.instruction.opcode);
@@ -151,7 +153,8 @@ bool elements_repeatable(const std::vector<RungElement>& elements, RepeatFacts& 
       case Repeat::AsciiPort:
         break;
       case Repeat::Never:
-        return false;
+        if (!interrupt_only) return false;
+        break;
     }
     for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
       const Operand& operand = e.instruction.operands[i];
@@ -164,12 +167,60 @@ bool elements_repeatable(const std::vector<RungElement>& elements, RepeatFacts& 
   return true;
 }
 
+// The program files that no JSR chain from the main file (2) reaches, whatever its rungs: only an
+// interrupt (an STI, DII, I/O event, EII or HSC routine, the fault routine) can run them. A repeat
+// never stands for a scan that runs an interrupt routine: the probe is not repeated when one ran in
+// it (Interpreter::routine_runs), and what makes one run — a pending DII, a configured ISR, an EII or
+// HSC interrupt queued, an STI expiry — ends the repeats or keeps them from starting. So an
+// instruction that is never repeated (an IOM sending the DII's batch lamp) may stand in such a file
+// (decision, issue 20, session 20: docs/semantics.md "Repeated scans").
+std::array<bool, 256> routines_only_by_interrupt(const Program& program) {
+  std::array<std::vector<int>, 256> calls{};
+  for (const ProgramFile& f : program.files) {
+    if (f.number < 0 || f.number >= 256) continue;
+    std::vector<const RungElement*> stack;
+    for (const Rung& r : f.rungs)
+      for (const auto& e : r.elements) stack.push_back(&e);
+    while (!stack.empty()) {
+      const RungElement* e = stack.back();
+      stack.pop_back();
+      if (e->kind == RungElement::Kind::Branch) {
+        for (const auto& leg : e->legs)
+          for (const auto& x : leg) stack.push_back(&x);
+        continue;
+      }
+      const Instruction& in = e->instruction;
+      if (in.opcode == Opcode::JSR && !in.operands.empty() && in.operands[0].kind == Operand::Kind::Integer &&
+          in.operands[0].integer >= 0 && in.operands[0].integer < 256)
+        calls[static_cast<std::size_t>(f.number)].push_back(static_cast<int>(in.operands[0].integer));
+    }
+  }
+  std::array<bool, 256> reached{};
+  std::vector<int> todo = {2};
+  reached[2] = true;
+  while (!todo.empty()) {
+    const int f = todo.back();
+    todo.pop_back();
+    for (const int g : calls[static_cast<std::size_t>(f)])
+      if (!reached[static_cast<std::size_t>(g)]) {
+        reached[static_cast<std::size_t>(g)] = true;
+        todo.push_back(g);
+      }
+  }
+  std::array<bool, 256> only{};
+  for (std::size_t n = 0; n < only.size(); ++n) only[n] = !reached[n];
+  return only;
+}
+
 // Whether the program's scans may repeat, and what `facts` the repeats need.
 bool program_scans_repeatable(const Program& program, RepeatFacts& facts) {
   facts = {};
-  for (const ProgramFile& f : program.files)
+  const std::array<bool, 256> interrupt_only = routines_only_by_interrupt(program);
+  for (const ProgramFile& f : program.files) {
+    const bool only = f.number >= 0 && f.number < 256 && interrupt_only[static_cast<std::size_t>(f.number)];
     for (const Rung& r : f.rungs)
-      if (!elements_repeatable(r.elements, facts)) return false;
+      if (!elements_repeatable(r.elements, facts, only)) return false;
+  }
   return true;
 }
 
@@ -271,6 +322,291 @@ std::vector<std::uint8_t> private_timers(const Program& program, const DataTable
   return out;
 }
 
+// Counted words (docs/semantics.md "Counted words carried across repeats"). A direct N or B word that
+// the program's text reaches only through
+// - one ADD W k W, ADD k W W or SUB W k W with a constant k != 0 (the counting instruction),
+// - compares of the word with constants (EQU NEQ LES LEQ GRT GEQ, LIM with the other two constants),
+// - CLR W and MOV c W with a constant c (resets),
+// where the counting instruction runs at most once a scan (its file is loop-free and is the main file or
+// a subroutine that only one JSR calls, from such a file): a probe that advanced the word by k with
+// nothing else changed may be followed by repeats that advance it by k each. Anything else that may
+// name the word makes it shared: any other instruction naming it (a MOV, a bit of it, a CPT atom, a
+// JSR parameter ...), a file operand or any multi-word operand in its file (COP, FLL, a BTR's data file,
+// a PID's block: the whole file), an indexed or indirect address in its file (every file of its type for
+// an indirect file number), an indirect reference whose pointer is the word. A MSG anywhere shares every
+// word: a MicroLogix MSG names its local data in its MG element, out of the program's text.
+struct WordSharing {
+  const DataTableLayout& layout;
+  std::vector<std::uint8_t> shared;                    // by word
+  std::array<bool, 256> file{};                        // every word of the file shared
+  bool every_integer = false, every_bit = false, everything = false;
+  struct Candidate {
+    CountedWord counted;
+    int counting_instructions = 0;
+    int program_file = -1;  // the file of its counting instruction
+    int data_file = -1;
+  };
+  std::map<std::uint32_t, Candidate> candidate;  // by word, in word order
+
+  explicit WordSharing(const DataTableLayout& L) : layout(L), shared(L.total_words, 0) {}
+
+  static bool counted_type(FileType t) { return t == FileType::Integer || t == FileType::Bit; }
+  // The word of a direct, word-level N or B address, or nullopt.
+  std::optional<std::uint32_t> direct_word(const Operand& o) {
+    if (!o.is_address()) return std::nullopt;
+    const Address& a = o.address;
+    if (!counted_type(a.type) || a.indexed || a.is_indirect() || a.has_bit() || a.bit_offset_form) return std::nullopt;
+    const std::optional<Location> loc = layout.locate(a);
+    if (!loc || loc->bit >= 0 || loc->vtype != ValueType::Int16) return std::nullopt;
+    return loc->word;
+  }
+  static std::optional<std::int64_t> constant(const Operand& o) {
+    if (o.kind != Operand::Kind::Integer || o.integer < INT16_MIN || o.integer > INT16_MAX) return std::nullopt;
+    return o.integer;
+  }
+  void pointer(const std::optional<IndirectRef>& r) {
+    if (!r) return;
+    Address p;
+    p.type = r->type;
+    p.file = r->file;
+    p.element = r->element;
+    p.word = r->word;
+    if (const std::optional<Location> loc = layout.locate(p)) shared[loc->word] = 1;
+  }
+  // An address that may name counted words in a way the rule does not allow.
+  void note(const Address& a, const OperandSpec* os) {
+    pointer(a.indirect_file());
+    pointer(a.indirect_element());
+    pointer(a.indirect_word());
+    pointer(a.indirect_bit());
+    if (!counted_type(a.type)) return;
+    if (a.is_indirect() && a.indirect_file()) {
+      (a.type == FileType::Integer ? every_integer : every_bit) = true;
+      return;
+    }
+    if (a.file >= file.size()) {
+      everything = true;
+      return;
+    }
+    const bool single = !os || os->kind == OperandKind::Bit || os->kind == OperandKind::Source ||
+                        os->kind == OperandKind::Dest || os->kind == OperandKind::WordSource ||
+                        os->kind == OperandKind::WordDest;
+    if (a.is_indirect() || a.indexed || !single) {
+      file[static_cast<std::size_t>(a.file)] = true;
+      return;
+    }
+    if (const std::optional<Location> loc = layout.locate(a)) shared[loc->word] = 1;
+    else file[static_cast<std::size_t>(a.file)] = true;
+  }
+  Candidate& use(const Operand& o, std::uint32_t word) {
+    Candidate& c = candidate[word];
+    c.counted.word = word;
+    c.data_file = o.address.file;
+    return c;
+  }
+  // Whether the instruction is one of the allowed uses; records it when it is.
+  bool allowed(const Instruction& in, int file_number) {
+    const auto& o = in.operands;
+    switch (in.opcode) {
+      case Opcode::ADD:
+      case Opcode::SUB: {
+        if (o.size() != 3) return false;
+        const std::optional<std::uint32_t> d = direct_word(o[2]);
+        if (!d) return false;
+        const bool first = direct_word(o[0]) == d && constant(o[1]);
+        const bool second = in.opcode == Opcode::ADD && constant(o[0]) && direct_word(o[1]) == d;
+        if (!first && !second) return false;
+        const std::int64_t k = *constant(first ? o[1] : o[0]);
+        if (k == 0) return false;
+        Candidate& c = use(o[2], *d);
+        c.counted.subtract = in.opcode == Opcode::SUB;
+        c.counted.constant_first = !first;
+        c.counted.k = k;
+        ++c.counting_instructions;
+        c.program_file = file_number;
+        return true;
+      }
+      case Opcode::CLR:
+        if (o.size() != 1 || !direct_word(o[0])) return false;
+        use(o[0], *direct_word(o[0])).counted.resets.push_back(0);
+        return true;
+      case Opcode::MOV:
+        if (o.size() != 2 || !constant(o[0]) || !direct_word(o[1])) return false;
+        use(o[1], *direct_word(o[1])).counted.resets.push_back(*constant(o[0]));
+        return true;
+      case Opcode::EQU:
+      case Opcode::NEQ:
+      case Opcode::LES:
+      case Opcode::LEQ:
+      case Opcode::GRT:
+      case Opcode::GEQ:
+      case Opcode::LIM: {
+        const std::size_t n = in.opcode == Opcode::LIM ? 3 : 2;
+        if (o.size() != n) return false;
+        std::optional<std::uint32_t> word;
+        CountedWord::Compare cmp{in.opcode, {}, 0};
+        for (std::size_t i = 0; i < n; ++i) {
+          if (const std::optional<std::int64_t> c = constant(o[i])) {
+            cmp.operand[i] = *c;
+          } else if (const std::optional<std::uint32_t> w = direct_word(o[i]); w && !word) {
+            word = w;
+            cmp.at = i;
+          } else {
+            return false;
+          }
+        }
+        if (!word) return false;
+        use(o[cmp.at], *word).counted.compares.push_back(cmp);
+        return true;
+      }
+      default: return false;
+    }
+  }
+  void walk(const std::vector<RungElement>& elements_of_rung, int file_number) {
+    for (const RungElement& e : elements_of_rung) {
+      if (e.kind == RungElement::Kind::Branch) {
+        for (const auto& leg : e.legs) walk(leg, file_number);
+        continue;
+      }
+      if (e.instruction.opcode == Opcode::MSG) everything = true;
+      if (allowed(e.instruction, file_number)) continue;
+      const InstructionSpec& sp = spec(e.instruction.opcode);
+      for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
+        const Operand& operand = e.instruction.operands[i];
+        if (operand.kind == Operand::Kind::Expression) {
+          ExpressionError err;
+          const auto items = parse_expression(operand.spelling, err);
+          if (!items) {
+            everything = true;  // never repeated (expression_reads_only_program_words)
+            continue;
+          }
+          for (const ExprItem& it : *items) {
+            NumberValue v;
+            if (it.code != ExprCode::Push || parse_number_text(it.text, v)) continue;
+            if (const auto a = parse_address(it.text)) note(*a, nullptr);
+          }
+          continue;
+        }
+        if (!operand.is_address()) continue;
+        if (i < sp.operand_count && sp.operands[i].kind == OperandKind::RemoteAddress) continue;
+        note(operand.address, i < sp.operand_count ? &sp.operands[i] : nullptr);
+      }
+    }
+  }
+};
+
+// Whether each program file's instructions run at most once a scan: a file is loop-free when no LBL
+// stands at or before a JMP's rung (a JMP can only go forward), and runs at most once a scan when it is
+// the main file (2), which no JSR calls, or a subroutine that exactly one JSR calls, from another file
+// that is loop-free and runs at most once a scan. An interrupt routine's run shows in the probe (an STI's
+// timer, a DII's pending bit), so the repeats never stand for one.
+std::vector<std::uint8_t> files_run_once(const Program& program) {
+  struct FileFacts {
+    bool present = false;
+    int first_label = std::numeric_limits<int>::max(), last_jump = -1;
+    std::vector<int> callers;  // the file of each JSR calling it
+  };
+  std::array<FileFacts, 256> facts{};
+  for (const ProgramFile& f : program.files) {
+    if (f.number < 0 || f.number >= 256) continue;
+    facts[static_cast<std::size_t>(f.number)].present = true;
+  }
+  for (const ProgramFile& f : program.files) {
+    if (f.number < 0 || f.number >= 256) continue;
+    FileFacts& ff = facts[static_cast<std::size_t>(f.number)];
+    for (std::size_t r = 0; r < f.rungs.size(); ++r) {
+      std::vector<const RungElement*> stack;
+      for (const auto& e : f.rungs[r].elements) stack.push_back(&e);
+      while (!stack.empty()) {
+        const RungElement* e = stack.back();
+        stack.pop_back();
+        if (e->kind == RungElement::Kind::Branch) {
+          for (const auto& leg : e->legs)
+            for (const auto& x : leg) stack.push_back(&x);
+          continue;
+        }
+        const Instruction& in = e->instruction;
+        if (in.opcode == Opcode::LBL) ff.first_label = std::min(ff.first_label, static_cast<int>(r));
+        if (in.opcode == Opcode::JMP) ff.last_jump = std::max(ff.last_jump, static_cast<int>(r));
+        if (in.opcode == Opcode::JSR && !in.operands.empty() && in.operands[0].kind == Operand::Kind::Integer &&
+            in.operands[0].integer >= 0 && in.operands[0].integer < 256)
+          facts[static_cast<std::size_t>(in.operands[0].integer)].callers.push_back(f.number);
+      }
+    }
+  }
+  std::vector<std::uint8_t> once(256, 0);
+  // Following the single callers up to file 2; a chain longer than the files is a cycle.
+  for (std::size_t n = 2; n < facts.size(); ++n) {
+    std::size_t f = n;
+    bool ok = facts[f].present;
+    for (int depth = 0; ok && depth < 257; ++depth) {
+      if (facts[f].first_label <= facts[f].last_jump) ok = false;
+      else if (f == 2) break;
+      else if (facts[f].callers.size() != 1 || facts[f].callers[0] == static_cast<int>(f)) ok = false;
+      else f = static_cast<std::size_t>(facts[f].callers[0]);
+      if (depth == 256) ok = false;
+    }
+    ok = ok && f == 2 && facts[2].callers.empty();
+    once[n] = ok ? 1 : 0;
+  }
+  return once;
+}
+
+std::vector<CountedWord> counted_words(const Program& program, const DataTableLayout& L) {
+  WordSharing sharing(L);
+  for (const ProgramFile& f : program.files)
+    for (const Rung& r : f.rungs) sharing.walk(r.elements, f.number);
+  std::vector<CountedWord> out;
+  if (sharing.everything || sharing.candidate.empty()) return out;
+  const std::vector<std::uint8_t> once = files_run_once(program);
+  for (auto& [word, c] : sharing.candidate) {
+    if (sharing.shared[word] || c.counting_instructions != 1) continue;
+    if (c.data_file < 0 || c.data_file >= 256) continue;
+    const FileType type = L.files[static_cast<std::size_t>(c.data_file)].type;
+    if (sharing.file[static_cast<std::size_t>(c.data_file)] || (type == FileType::Integer && sharing.every_integer) ||
+        (type == FileType::Bit && sharing.every_bit))
+      continue;
+    if (c.program_file < 0 || c.program_file >= 256 || !once[static_cast<std::size_t>(c.program_file)]) continue;
+    out.push_back(std::move(c.counted));
+  }
+  return out;
+}
+
+
+// What the counting instruction of `c` leaves in S:0's arithmetic flags when the word holds v, as
+// Interpreter::math and the fused ADD/SUB compute them (C, V, Z, N in bits 0-3); V also means the
+// result did not fit.
+unsigned counted_flags(const CountedWord& c, std::int64_t v) {
+  const std::int64_t a = c.constant_first ? c.k : v, b = c.constant_first ? v : c.k;
+  const bool carry = c.subtract ? word_ops::sub_carry(a, b, 0xFFFF) : word_ops::add_carry(a, b, 0xFFFF);
+  const std::int64_t r = c.subtract ? a - b : a + b;
+  const bool overflow = r < INT16_MIN || r > INT16_MAX;
+  return (carry ? 1u : 0u) | (overflow ? 2u : 0u) | (r == 0 ? 4u : 0u) | (r < 0 ? 8u : 0u);
+}
+
+// A compare of the counted word with constants when the word holds v, as Interpreter::compare computes it.
+bool counted_compare(const CountedWord::Compare& cmp, std::int64_t v) {
+  std::array<std::int64_t, 3> x = cmp.operand;
+  x[cmp.at] = v;
+  if (cmp.op == Opcode::LIM) return x[0] <= x[2] ? (x[0] <= x[1] && x[1] <= x[2]) : (x[1] >= x[0] || x[1] <= x[2]);
+  return word_ops::compare(to_op(cmp.op), x[0], x[1]);
+}
+
+// The last value, going from `from` by `dir` (+1 or -1) within the 16-bit range, up to which `same`
+// holds at every value (same(from) holds). `cuts` holds every p at which same(p) and same(p + 1) may
+// differ: between two cuts `same` is constant, so only the values beside the cuts are asked.
+template <class Same>
+std::int64_t last_value_where(std::int64_t from, int dir, std::vector<std::int64_t> cuts, const Same& same) {
+  std::sort(cuts.begin(), cuts.end());
+  if (dir > 0) {
+    for (const std::int64_t p : cuts)
+      if (p >= from && p < INT16_MAX && !same(p + 1)) return p;
+    return INT16_MAX;
+  }
+  for (auto it = cuts.rbegin(); it != cuts.rend(); ++it)
+    if (*it < from && *it >= INT16_MIN && !same(*it)) return *it + 1;
+  return INT16_MIN;
+}
 }  // namespace
 
 std::string RuntimeResult::render_errors() const {
@@ -329,6 +665,7 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   rt.clock_bits_read_ = facts.clock_bits;
   rt.timer_tick_ns_ = facts.timer_tick;
   if (rt.program_repeatable_) rt.timer_private_ = private_timers(program, *rt.program_->layout);
+  if (rt.program_repeatable_) rt.counted_words_ = counted_words(program, *rt.program_->layout);
   rt.process_host_ = std::make_unique<ProcessHost>(rt);
   if (make_channel) {
     rt.ascii_channel_ = make_channel();
@@ -1077,6 +1414,7 @@ struct Runtime::ProbeStart {
   std::uint64_t between_scan_writes;
   EventQueue::EventId scheduled;
   StiTimer sti;
+  std::uint64_t routine_runs;
 };
 
 constexpr std::uint32_t kScansAfterAServicedChange = 2;
@@ -1089,7 +1427,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
                          interp_->module_time_reads(),
                          interp_->between_scan_writes(),
                          events_.scheduled(),
-                         interp_->sti()};
+                         interp_->sti(),
+                         interp_->routine_runs()};
   const VirtualTime start = probe.start;
   const std::uint64_t instructions = probe.instructions;
   const std::uint64_t process_writes = probe.process_writes;
@@ -1127,7 +1466,8 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   const StiTimer& sti = interp_->sti();
   const bool sti_same = sti == sti_before;
   bool repeats = mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti_same &&
-                 interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
+                 interp_->routine_runs() == probe.routine_runs && interp_->nothing_pending_between_scans() &&
+                 modules_passive() && reached_modules_unchanged();
   // Alone on a MSG network: its end-of-scan servicing left nothing to send, and the repeats end
   // before the network's next change (quiet_until). A probe that started a message set its EN, one
   // that aborted it its ER: the table shows both. A MicroLogix 1000 MSG whose transmit buffer is busy
@@ -1145,6 +1485,11 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   accumulating_.clear();
   carried_before_.clear();
   const bool timing = repeats && sort_timer_executions(d);
+  // Counted words (sort_counted_words): those the probe advanced by their step are carried, and bound
+  // the repeats to the scans whose compares and flags stay the probe's.
+  counting_.clear();
+  const std::int64_t count_limit =
+      repeats && !counted_words_.empty() ? sort_counted_words() : std::numeric_limits<std::int64_t>::max();
   const bool steady = repeats;  // everything held but, perhaps, the table
   repeats = repeats && std::equal(before_probe_.begin(), before_probe_.end(), w);
   const bool across_events = interp_->module_time_reads() == module_time_reads;
@@ -1196,8 +1541,9 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     stats_.repeated += static_cast<std::uint64_t>(k);
     t += k * d;
     taken += k;
-    // The carried timers' words as the k scans leave them, before any event can read them.
+    // The carried timers' and counted words as the k scans leave them, before any event can read them.
     if (!accumulating_.empty()) set_accumulated_timers(taken, d);
+    if (!counting_.empty()) set_counted_words(taken);
   };
   // Every repeated scan must end before `horizon`: a timing STI's expiry falls in the middle of the
   // scan that reaches it, a timer's tick ends (a scan may end on it: its reads come before), a timed
@@ -1237,6 +1583,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     if (next) k = std::min<std::int64_t>(k, (*next - t - 1) / d);
     if (horizon != std::numeric_limits<VirtualTime>::max())
       k = std::min<std::int64_t>(k, std::max<std::int64_t>(0, (horizon - t - 1) / d));
+    k = std::min(k, count_limit - taken);
     if (k > 0) {
       take(k);
       events_.run_until(t);  // none is due before t: this moves the clock
@@ -1245,11 +1592,13 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     // (the event runs after it), so it is taken too when the probe may repeat across events; the
     // events then run as at the end of an executed scan, and the repeats go on while they changed
     // nothing the program reads.
-    if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || same_clock <= k || t + d >= horizon)
+    if (!across_events || !next || t >= end || (rtc.present && in_second <= k) || same_clock <= k || t + d >= horizon ||
+        taken >= count_limit)
       break;
     take(1);
     events_at_last_scan_end_ = events_.run_until(t);
-    if (mode_ != Mode::Run || fault_ || !interp_->nothing_pending_between_scans() || !modules_passive() ||
+    if (mode_ != Mode::Run || fault_ || interp_->routine_runs() != probe.routine_runs ||
+        !interp_->nothing_pending_between_scans() || !modules_passive() ||
         process_writes_ != process_writes || interp_->between_scan_writes() != between_scan_writes ||
         !probe_reads_the_same()) {
       changed_between = true;
@@ -1266,7 +1615,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // its own rungs cleared (OTU of EN, then the MSG rung true) shows nothing in the table, but replaces the
   // message before the servicing, which then drops the old one's frame; taken as a repeat, it would not.
   if (network_quiet && !changed_between && t < end && t + d >= *network_quiet && t + d < program_horizon &&
-      network_kept()) {
+      taken < count_limit && network_kept()) {
     const std::optional<VirtualTime> next = events_.next_time();
     const bool same_second = !rtc.present || (rtc_second_ + 1) * kNsPerS - t - input_scan_ns_ > 0;
     if ((!next || *next > t + d) && same_second && scans_before_the_clock_bits_change(t, d) >= 1) {
@@ -1339,6 +1688,7 @@ std::int64_t Runtime::probe_cycle(VirtualTime end, const ProbeStart& probe) {
   for (const auto& [word, value] : carried_before_) before_probe_[word] = value;
   carried_before_.clear();
   accumulating_.clear();
+  counting_.clear();  // a cycle carries no counted word: its table must come back whole
   const std::uint16_t s33_before = before_probe_[L.status_word(status::kCommBits)];
   const VirtualTime mid = clock_.now();
   const Nanoseconds d_a = mid - probe.start;
@@ -1354,6 +1704,7 @@ std::int64_t Runtime::probe_cycle(VirtualTime end, const ProbeStart& probe) {
   const Nanoseconds scan_time_b = stats_.last;
   const StiTimer& sti = interp_->sti();
   bool repeats = same_outputs && mode_ == Mode::Run && !fault_ && !probe_unsteady_ && sti == probe.sti &&
+                 interp_->routine_runs() == probe.routine_runs &&
                  events_at_last_scan_end_ == 0 && events_.scheduled() == probe.scheduled &&
                  process_writes_ == probe.process_writes && interp_->between_scan_writes() == probe.between_scan_writes &&
                  interp_->nothing_pending_between_scans() && modules_passive() && reached_modules_unchanged();
@@ -1499,6 +1850,67 @@ void Runtime::set_accumulated_timers(std::int64_t n, Nanoseconds d) {
                                                       (static_cast<std::uint16_t>(stamp) & bits::kStampMask)));
     data_.set_word(a.word + 2, static_cast<std::uint16_t>(a.acc0 + units));
   }
+}
+
+// Counted words carried across repeats (docs/semantics.md "Counted words carried across repeats"). A
+// counted word's counting instruction runs at most once a scan, and its resets (CLR, MOV c) write
+// constants. So when the probe left it at W0 + step (step = k, or -k for SUB; in the 16-bit range),
+// W0 being its value before, and at neither a reset's constant c nor at c + step, the counting
+// instruction ran once and no reset ran (a reset would leave c, or c + step when the count followed
+// it). Every other word is the probe's (the table comparison), so a later scan whose compares on the
+// word give the probe's results and whose count sets the probe's flags takes the probe's path: its
+// resets stay false, its count runs once, and S:0 is the same at every instruction. Scan n after the
+// probe counts from W0 + n step, and its compares read W0 + n step or W0 + (n + 1) step: the repeats
+// end before the first scan whose count would set other flags (C, Z, N, or V: an overflow, with the
+// S:5/0 trap) than the probe's, or one of whose compares could read a value outside the run of values
+// from W0 on at which every compare gives its result at W0 (the probe may have read W0 or W0 + step).
+std::int64_t Runtime::sort_counted_words() {
+  counting_.clear();
+  std::int64_t limit = std::numeric_limits<std::int64_t>::max();
+  const std::uint16_t* w = data_.words();
+  for (const CountedWord& c : counted_words_) {
+    const std::int64_t before = static_cast<std::int16_t>(before_probe_[c.word]);
+    const std::int64_t after = static_cast<std::int16_t>(w[c.word]);
+    if (before == after) continue;
+    const std::int64_t step = c.subtract ? -c.k : c.k;
+    if (after != before + step) continue;
+    bool reset = false;
+    for (const std::int64_t r : c.resets) {
+      const std::int64_t counted = r + step;  // as a count after the reset would leave it, either overflow rule
+      bool overflow = false;
+      reset = reset || after == r || after == word_ops::fit_integer(counted, false, false, overflow) ||
+              after == word_ops::fit_integer(counted, false, true, overflow);
+    }
+    if (reset) continue;
+    const int dir = step > 0 ? 1 : -1;
+    const unsigned flags = counted_flags(c, before);
+    std::vector<std::int64_t> cuts = {-1, 0, -c.k - 1, -c.k, c.k - 1, c.k, INT16_MAX - c.k, INT16_MIN - 1 - c.k,
+                                      INT16_MAX + c.k, INT16_MIN - 1 + c.k};
+    const std::int64_t counts_to = last_value_where(before, dir, cuts, [&](std::int64_t v) { return counted_flags(c, v) == flags; });
+    cuts.clear();
+    for (const CountedWord::Compare& cmp : c.compares)
+      for (std::size_t i = 0; i < cmp.operand.size(); ++i)
+        if (i != cmp.at) {
+          cuts.push_back(cmp.operand[i] - 1);
+          cuts.push_back(cmp.operand[i]);
+        }
+    const std::int64_t reads_to = last_value_where(before, dir, cuts, [&](std::int64_t v) {
+      return std::all_of(c.compares.begin(), c.compares.end(),
+                         [&](const CountedWord::Compare& cmp) { return counted_compare(cmp, v) == counted_compare(cmp, before); });
+    });
+    // Scan n counts from before + n step (n <= counts_to's) and reads up to before + (n + 1) step.
+    const std::int64_t n = std::min((counts_to - before) / step, (reads_to - before) / step - 1);
+    if (n < 1) continue;
+    limit = std::min(limit, n);
+    counting_.push_back({c.word, after, step});
+    carried_before_.emplace_back(c.word, before_probe_[c.word]);
+    before_probe_[c.word] = w[c.word];
+  }
+  return limit;
+}
+
+void Runtime::set_counted_words(std::int64_t n) {
+  for (const CarriedCount& c : counting_) data_.set_word(c.word, static_cast<std::uint16_t>(c.after + n * c.step));
 }
 
 // S:4 counts ticks of virtual time, brought up to date at each program scan (advance_free_running_clock).

@@ -137,6 +137,23 @@ struct ScanStats {
   std::int64_t avg_us() const { return avg() / kNsPerUs; }
 };
 
+// A word counted alone (docs/semantics.md "Counted words carried across repeats"): a direct N or B word
+// that the program's text reaches only through one ADD or SUB of a constant into itself, compares with
+// constants, and CLR or MOV of a constant. Found by Runtime::create.
+struct CountedWord {
+  std::uint32_t word = 0;
+  bool subtract = false;        // SUB W k W; else ADD W k W or ADD k W W
+  bool constant_first = false;  // ADD k W W: the constant is source A (ADD's carry is symmetric)
+  std::int64_t k = 0;           // the constant, non-zero
+  std::vector<std::int64_t> resets;  // the constants of the CLR (0) and MOV c W that may write it
+  struct Compare {
+    Opcode op;
+    std::array<std::int64_t, 3> operand;  // the constants; the word's own place is `at`
+    std::size_t at;                        // which operand is the word
+  };
+  std::vector<Compare> compares;
+};
+
 class Runtime;
 
 struct RuntimeResult {
@@ -421,6 +438,23 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   bool sort_timer_executions(Nanoseconds d, std::size_t second = 0);
   // Writes the carried timers' ACC and stamp as `n` scans after the probe, each `d` long, leave them.
   void set_accumulated_timers(std::int64_t n, Nanoseconds d);
+  // Counted words carried across repeats (docs/semantics.md "Counted words carried across repeats"):
+  // the program's counted words (set by create, by word), and those a probe found counting, which the
+  // repeats advance by their step.
+  std::vector<CountedWord> counted_words_;
+  struct CarriedCount {
+    std::uint32_t word;
+    std::int64_t after;  // the value the probe left
+    std::int64_t step;   // per scan
+  };
+  std::vector<CarriedCount> counting_;
+  // Finds the counted words the probe advanced by their step with nothing else moving them, sets them
+  // in before_probe_ to the probe's value (carried_before_ keeps the saved one), fills counting_, and
+  // returns how many scans after the probe may repeat before one would compare, flag or overflow
+  // otherwise (the maximum of int64 when none is carried).
+  std::int64_t sort_counted_words();
+  // Writes the carried counted words as `n` scans after the probe leave them.
+  void set_counted_words(std::int64_t n);
   std::uint32_t probe_wait_ = 0;
   std::uint32_t probe_backoff_ = 1;
   std::uint32_t probe_failures_ = 0;  // probes in a row that repeated nothing (probe_failed)

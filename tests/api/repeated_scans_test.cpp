@@ -252,6 +252,125 @@ TEST(RepeatedScans, ATimerAccumulatingAloneRepeatsAcrossItsTicks) {
   }
 }
 
+// Counted words carried across repeats (docs/semantics.md "Counted words carried across repeats"): a
+// word that only its ADD/SUB of a constant, compares with constants and CLR/MOV of a constant reach
+// advances by its step through the repeats, which stop before a compare, S:0's flags or an overflow
+// would change. Each program runs with and without repeats, observed every 3 ms (in the middle of the
+// batches) and every 100 ms, and must agree at every observation; most of its scans must be repeats.
+// Tried, each reverted: the compare bound ignored (EQU/CLR wrap, thresholds, LIM and two counters
+// fail); the flags bound ignored (SUB through zero and the S:2/14 wrap fail at their S:0 bits, the
+// overflow without a handler faults late); the words not written after each batch (every case fails);
+// the reset check left out (the MOV reset at the threshold fails).
+struct CountCase {
+  const char* rungs;
+  const char* data;  // DATA lines
+  const char* what;
+};
+std::string count_program(const CountCase& c, const char* processor = "1747-L552") {
+  return std::string("START ") + processor + "\nLADDER 2\n" + c.rungs + c.data;
+}
+
+TEST(RepeatedScans, ACountedWordAdvancesThroughTheRepeatsWithTheSameResults) {
+  const CountCase cases[] = {
+      // dii_batch's scan counter: the EQU is true only at 32767, where the CLR wraps the count.
+      {"SOR EQU N7:1 32767 CLR N7:1 EOR\nSOR ADD N7:1 1 N7:1 EOR\n", "DATA N7:0\n 0 31000\n", "EQU/CLR wrap"},
+      // Thresholds crossed in the middle of batches: GRT, LES, LIM and NEQ, then a MOV reset at 1500.
+      {"SOR ADD N7:1 1 N7:1 EOR\nSOR GRT N7:1 300 OTE B3:0/2 EOR\nSOR LES 700 N7:1 OTE B3:0/3 EOR\n"
+       "SOR LIM 100 N7:1 200 OTE B3:0/4 EOR\nSOR NEQ N7:1 1000 OTE B3:0/5 EOR\n"
+       "SOR GEQ N7:1 1500 MOV 7 N7:1 EOR\n",
+       "", "thresholds and a MOV reset"},
+      // A LIM outside its band (low > high) and a count of 3 from a negative start through zero.
+      {"SOR ADD 3 N7:1 N7:1 EOR\nSOR LIM 200 N7:1 -200 OTE B3:0/2 EOR\nSOR XIC S:0/2 OTE B3:0/3 EOR\n"
+       "SOR XIC S:0/3 OTE B3:0/4 EOR\nSOR XIC S:0/0 OTE B3:0/5 EOR\n",
+       "DATA N7:0\n 0 -1500\n", "ADD k W W up through zero"},
+      // SUB counting down through zero: Z at the scan that reaches 0, N from then on, C (the borrow)
+      // while the count goes from 0 to -1 ... as the rungs copy the flags to bits.
+      {"SOR SUB N7:1 1 N7:1 EOR\nSOR XIC S:0/2 OTE B3:0/3 EOR\nSOR XIC S:0/3 OTE B3:0/4 EOR\n"
+       "SOR XIC S:0/0 OTE B3:0/5 EOR\nSOR LEQ N7:1 -1000 MOV 400 N7:1 EOR\n",
+       "DATA N7:0\n 0 400\n", "SUB through zero"},
+      // S:2/14 set: the ADD past 32767 wraps to -32768 with V (handled: S:5/0 cleared), then counts on.
+      {"SOR ADD N7:1 7 N7:1 EOR\nSOR XIC S:5/0 OTU S:5/0 EOR\nSOR XIC S:0/1 OTE B3:0/6 EOR\n",
+       "DATA N7:0\n 0 31000\n", "S:2/14 wrap, trap handled"},
+      // Clamped at 32767 (S:2/14 clear) with the trap handled: the word then stays.
+      {"SOR ADD N7:1 5 N7:1 EOR\nSOR XIC S:5/0 OTU S:5/0 EOR\n", "DATA N7:0\n 0 31000\n", "clamp, trap handled"},
+      // Two counters, one up and one down by 3, each with its compare, and a B word counting.
+      {"SOR ADD N7:1 1 N7:1 EOR\nSOR SUB N7:2 3 N7:2 EOR\nSOR EQU N7:1 900 CLR N7:1 EOR\n"
+       "SOR LES N7:2 -2000 MOV 0 N7:2 EOR\nSOR ADD B3:5 2 B3:5 EOR\nSOR GRT B3:5 1000 CLR B3:5 EOR\n",
+       "", "two counters and a B word"},
+      // A counter beside a carried timer, each bounding the batches.
+      {"SOR XIC B3:0/0 XIO T4:0/DN TON T4:0 0.01 23 0 EOR\nSOR ADD N7:1 1 N7:1 EOR\n"
+       "SOR EQU N7:1 777 CLR N7:1 EOR\n",
+       "", "counter and timer"},
+      // In a subroutine that one JSR calls.
+      {"SOR JSR 3 EOR\nLADDER 3\nSOR SBR ADD N7:1 2 N7:1 EOR\nSOR GEQ N7:1 1200 CLR N7:1 EOR\nSOR RET EOR\n", "",
+       "in a subroutine"},
+      // On a rung whose condition flips: the timer's TT counts 23 ticks of every 24.
+      {"SOR XIC B3:0/0 XIO T4:0/DN TON T4:0 0.01 23 0 EOR\nSOR XIC T4:0/TT ADD N7:1 1 N7:1 EOR\n"
+       "SOR EQU N7:1 2000 CLR N7:1 EOR\n",
+       "", "conditional rung"},
+  };
+  for (const CountCase& c : cases) {
+    SideBySide p = side_by_side(count_program(c));
+    if (std::string(c.what) == "S:2/14 wrap, trap handled")
+      for (Controller* ctl : {&p.skipping, &p.executing}) ctl->set("S:2/14", 1);
+    for (Controller* ctl : {&p.skipping, &p.executing}) ctl->set("B3:0/0", 1);
+    const ScanStats before = p.skipping.runtime().stats();
+    p.run(150, milliseconds(3), std::string(c.what) + ", every 3 ms");
+    p.run(20, milliseconds(100), std::string(c.what) + ", every 100 ms");
+    const ScanStats& after = p.skipping.runtime().stats();
+    EXPECT_FALSE(p.skipping.runtime().fault().has_value()) << c.what;
+    EXPECT_GT(after.repeated - before.repeated, (after.scans - before.scans) * 8 / 10) << c.what;
+  }
+}
+
+// The ADD past 32767 with nothing clearing S:5/0: the overflow scan is executed and faults (0020h at
+// its end) at the same scan as when executing every scan. Tried: without the overflow bound, the
+// repeats carry the word past 32767 and never fault.
+TEST(RepeatedScans, ACountedWordOverflowingFaultsAtTheSameScan) {
+  const CountCase c{"SOR ADD N7:1 1 N7:1 EOR\n", "DATA N7:0\n 0 31500\n", "overflow"};
+  SideBySide p = side_by_side(count_program(c));
+  const std::uint64_t repeated = p.run(100, milliseconds(20), c.what);
+  ASSERT_TRUE(p.executing.runtime().fault().has_value());
+  EXPECT_EQ(p.executing.runtime().fault()->code, 0x0020);
+  EXPECT_EQ(p.skipping.runtime().fault()->code, 0x0020);
+  EXPECT_EQ(p.skipping.get_int("N7:1"), 32767);
+  EXPECT_GT(repeated, 1000u);
+}
+
+// Whatever else reads or writes the word keeps it from being counted: its scans then never repeat
+// (the word changes every scan) and the programs agree. The reference program alone repeats.
+TEST(RepeatedScans, ACountedWordAnotherInstructionReachesIsNotCarried) {
+  const std::string counter = "SOR ADD N7:1 1 N7:1 EOR\nSOR EQU N7:1 200 CLR N7:1 EOR\n";
+  {
+    SideBySide p = side_by_side("START 1747-L552\nLADDER 2\n" + counter);
+    const std::uint64_t repeated = p.run(100, milliseconds(3), "alone");
+    EXPECT_GT(repeated, p.skipping.runtime().stats().scans * 7 / 10);
+  }
+  for (const char* reader :
+       {"SOR MOV N7:1 N10:0 EOR\n", "SOR COP #N7:0 #N10:0 3 EOR\n", "SOR MOV #N7:0 N10:0 EOR\n",
+        "SOR MOV N7:[N10:1] N10:0 EOR\n", "SOR CPT N10:0 N7:1*2 EOR\n", "SOR XIC N7:1/4 OTE B3:0/3 EOR\n",
+        "SOR MOV N[N10:2]:1 N10:0 EOR\n", "SOR MOV N10:[N7:1] N10:0 EOR\n", "SOR ADD N7:1 N7:1 N10:0 EOR\n",
+        "SOR EQU N7:1 N10:3 OTE B3:0/3 EOR\n", "SOR ADD N7:1 1 N7:1 EOR\n", "SOR XIC B3:0/9 MOV N10:4 N7:1 EOR\n",
+        "SOR FLL 0 #N7:5 3 EOR\n"}) {
+    // N10:1 = 1 (N7:[N10:1] is N7:1), N10:2 = 7 (N[N10:2]:1 is N7:1); the MOV to N10:201 gives
+    // N10:[N7:1] room up to 200.
+    SideBySide p = side_by_side("START 1747-L552\nLADDER 2\n" + counter + reader +
+                                "SOR MOV 0 N10:201 EOR\nDATA N10:0\n 0 1 7 0 0\n");
+    EXPECT_EQ(p.run(100, milliseconds(3), reader), 0u) << reader;
+  }
+}
+
+// A counting instruction in a subroutine called twice a scan, or on a rung a backward JMP loops over,
+// may run more than once: not counted (files_run_once), and the programs agree.
+TEST(RepeatedScans, ACountRunningMoreThanOnceAScanIsNotCarried) {
+  for (const char* rungs :
+       {"SOR JSR 3 EOR\nSOR JSR 3 EOR\nLADDER 3\nSOR SBR ADD N7:1 1 N7:1 EOR\nSOR RET EOR\n",
+        "SOR LBL 1 ADD N7:1 1 N7:1 EOR\nSOR ADD N10:0 1 N10:0 EOR\nSOR LES N10:0 2 JMP 1 EOR\nSOR CLR N10:0 EOR\n"}) {
+    SideBySide p = side_by_side(std::string("START 1747-L552\nLADDER 2\n") + rungs);
+    EXPECT_EQ(p.run(100, milliseconds(3), rungs), 0u) << rungs;
+  }
+}
+
 // Whatever else reads or writes a timer's control word or ACC keeps it from being carried: then the
 // repeats stop at its tick as before, and each of these programs gives the same words with and
 // without repeats. Tried: with every timer taken as its instruction's alone (the sharing check left
@@ -366,10 +485,11 @@ TEST(RepeatedScans, AProgramReadingTheScanToggleBitIsNeverRepeated) {
 // row (Runtime::probe_failed): a change the program makes itself often lasts a few scans and then
 // settles (a message started, its reply taken, its EN cleared). Here N7:0 counts up for three scans
 // after B3:0/0 is set: those three probes change it, the fourth finds nothing and repeats the rest
-// of the slice, so four scans are executed. With the wait doubling after each failure (1, 2, 4
+// of the slice, so four scans are executed (the MOV makes N7:0 shared: a counted word would be
+// carried from the first probe on, docs/semantics.md "Counted words carried across repeats"). With the wait doubling after each failure (1, 2, 4
 // scans, as before session 16) the probes fall on scans 1, 3 and 6, and six are executed (tried).
 TEST(RepeatedScans, ProbesFollowAtOnceAfterAFewChangingScans) {
-  SideBySide p = side_by_side("START 1747-L552\nLADDER 2\nSOR XIC B3:0/0 LES N7:0 3 ADD N7:0 1 N7:0 EOR\n");
+  SideBySide p = side_by_side("START 1747-L552\nLADDER 2\nSOR XIC B3:0/0 LES N7:0 3 ADD N7:0 1 N7:0 EOR\nSOR MOV N7:0 N7:1 EOR\n");
   p.run(5, milliseconds(20), "idle");
   const ScanStats before = p.skipping.runtime().stats();
   EXPECT_GT(before.repeated, 0u);
@@ -502,6 +622,31 @@ fs::path example(const std::string& relative) { return fs::path(SOFTSLC_SOURCE_D
 std::string file_text(const fs::path& p) {
   std::ifstream in(p);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A DII configured with nothing pending may repeat (docs/semantics.md "A DII waiting for its input"):
+// dii_batch's scan counter repeats between the photo-eye's pulses, which arrive 2 ms after each
+// injection, in the middle of batches, rising and falling at once (the input image does not change,
+// only the DII's count S:52 does, which a rung added to the main file reads). Every pulse is counted
+// and every fifth runs the routine at the same scan as executing every scan. Tried: dii_input's
+// writes not counted as between-scan writes, B3:0/7 (S:52 > 2) differs after the third pulse.
+TEST(RepeatedScans, ADiiWaitingForItsInputRepeatsAndCountsEveryEdge) {
+  std::string text = file_text(example("dii/dii_batch.slc"));
+  text.insert(text.find("LADDER 3"), "SOR GRT S:52 2 OTE B3:0/7 EOR\n");
+  const std::string bench = "io EYE slot=1 input_delay=2ms\nio LAMPS slot=2\n";
+  Controller skipping = Controller::from_text(text, bench);
+  Controller executing = Controller::from_text(text, bench);
+  executing.runtime().skip_repeated_scans(false);
+  run_side_by_side(skipping, executing, 5, milliseconds(10), "before the pulses");
+  for (int i = 0; i < 24; ++i) {
+    for (Controller* c : {&skipping, &executing}) {
+      c->inject("EYE", "input", {"1"});
+      c->inject("EYE", "input", {"0"});
+    }
+    run_side_by_side(skipping, executing, 3, milliseconds(1 + i % 3), "pulse " + std::to_string(i));
+  }
+  EXPECT_EQ(skipping.get_int("N7:0"), 4);
+  EXPECT_GT(skipping.runtime().stats().repeated, skipping.runtime().stats().scans / 2);
 }
 
 // The 1203-SM1's drives are not events: they are brought up to date at each image scan, and a

@@ -167,6 +167,55 @@ bool elements_repeatable(const std::vector<RungElement>& elements, RepeatFacts& 
   return true;
 }
 
+// Calls `f` with every instruction of a rung's elements, branch legs included.
+template <class F>
+void for_each_instruction(const std::vector<RungElement>& elements, const F& f) {
+  for (const RungElement& e : elements) {
+    if (e.kind == RungElement::Kind::Branch) {
+      for (const auto& leg : e.legs) for_each_instruction(leg, f);
+      continue;
+    }
+    f(e.instruction);
+  }
+}
+
+// The file a JSR calls (0-255), or -1 for any other instruction.
+int jsr_target(const Instruction& in) {
+  if (in.opcode != Opcode::JSR || in.operands.empty() || in.operands[0].kind != Operand::Kind::Integer ||
+      in.operands[0].integer < 0 || in.operands[0].integer >= 256)
+    return -1;
+  return static_cast<int>(in.operands[0].integer);
+}
+
+// Calls note(address, operand index, spec) for each address the instruction names: its address operands
+// (the spec null past the row's operands) and each address atom of a CPT expression (spec null, a
+// read). Returns false when an expression does not parse.
+template <class Note>
+bool each_address(const Instruction& in, const Note& note) {
+  const InstructionSpec& sp = spec(in.opcode);
+  bool parsed = true;
+  for (std::size_t i = 0; i < in.operands.size(); ++i) {
+    const Operand& operand = in.operands[i];
+    if (operand.kind == Operand::Kind::Expression) {
+      ExpressionError err;
+      const auto items = parse_expression(operand.spelling, err);
+      if (!items) {
+        parsed = false;
+        continue;
+      }
+      for (const ExprItem& it : *items) {
+        NumberValue v;
+        if (it.code != ExprCode::Push || parse_number_text(it.text, v)) continue;
+        if (const auto a = parse_address(it.text)) note(*a, i, nullptr);
+      }
+      continue;
+    }
+    if (!operand.is_address()) continue;
+    note(operand.address, i, i < sp.operand_count ? &sp.operands[i] : nullptr);
+  }
+  return parsed;
+}
+
 // The program files that no JSR chain from the main file (2) reaches, whatever its rungs: only an
 // interrupt (an STI, DII, I/O event, EII or HSC routine, the fault routine) can run them. A repeat
 // never stands for a scan that runs an interrupt routine: the probe is not repeated when one ran in
@@ -178,22 +227,10 @@ std::array<bool, 256> routines_only_by_interrupt(const Program& program) {
   std::array<std::vector<int>, 256> calls{};
   for (const ProgramFile& f : program.files) {
     if (f.number < 0 || f.number >= 256) continue;
-    std::vector<const RungElement*> stack;
     for (const Rung& r : f.rungs)
-      for (const auto& e : r.elements) stack.push_back(&e);
-    while (!stack.empty()) {
-      const RungElement* e = stack.back();
-      stack.pop_back();
-      if (e->kind == RungElement::Kind::Branch) {
-        for (const auto& leg : e->legs)
-          for (const auto& x : leg) stack.push_back(&x);
-        continue;
-      }
-      const Instruction& in = e->instruction;
-      if (in.opcode == Opcode::JSR && !in.operands.empty() && in.operands[0].kind == Operand::Kind::Integer &&
-          in.operands[0].integer >= 0 && in.operands[0].integer < 256)
-        calls[static_cast<std::size_t>(f.number)].push_back(static_cast<int>(in.operands[0].integer));
-    }
+      for_each_instruction(r.elements, [&](const Instruction& in) {
+        if (const int target = jsr_target(in); target >= 0) calls[static_cast<std::size_t>(f.number)].push_back(target);
+      });
   }
   std::array<bool, 256> reached{};
   std::vector<int> todo = {2};
@@ -275,29 +312,10 @@ struct TimerSharing {
     elements.emplace_back(a.file, a.element);
   }
   void walk(const std::vector<RungElement>& elements_of_rung) {
-    for (const RungElement& e : elements_of_rung) {
-      if (e.kind == RungElement::Kind::Branch) {
-        for (const auto& leg : e.legs) walk(leg);
-        continue;
-      }
-      const InstructionSpec& sp = spec(e.instruction.opcode);
-      for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
-        const Operand& operand = e.instruction.operands[i];
-        if (operand.kind == Operand::Kind::Expression) {
-          ExpressionError err;
-          const auto items = parse_expression(operand.spelling, err);
-          if (!items) continue;  // never repeated (expression_reads_only_program_words)
-          for (const ExprItem& it : *items) {
-            NumberValue v;
-            if (it.code != ExprCode::Push || parse_number_text(it.text, v)) continue;
-            if (const auto a = parse_address(it.text)) note(*a, e.instruction.opcode, i, nullptr);
-          }
-          continue;
-        }
-        if (!operand.is_address()) continue;
-        note(operand.address, e.instruction.opcode, i, i < sp.operand_count ? &sp.operands[i] : nullptr);
-      }
-    }
+    for_each_instruction(elements_of_rung, [&](const Instruction& in) {
+      // An expression that does not parse is never repeated (expression_reads_only_program_words).
+      each_address(in, [&](const Address& a, std::size_t i, const OperandSpec* os) { note(a, in.opcode, i, os); });
+    });
   }
 };
 
@@ -463,35 +481,15 @@ struct WordSharing {
     }
   }
   void walk(const std::vector<RungElement>& elements_of_rung, int file_number) {
-    for (const RungElement& e : elements_of_rung) {
-      if (e.kind == RungElement::Kind::Branch) {
-        for (const auto& leg : e.legs) walk(leg, file_number);
-        continue;
-      }
-      if (e.instruction.opcode == Opcode::MSG) everything = true;
-      if (allowed(e.instruction, file_number)) continue;
-      const InstructionSpec& sp = spec(e.instruction.opcode);
-      for (std::size_t i = 0; i < e.instruction.operands.size(); ++i) {
-        const Operand& operand = e.instruction.operands[i];
-        if (operand.kind == Operand::Kind::Expression) {
-          ExpressionError err;
-          const auto items = parse_expression(operand.spelling, err);
-          if (!items) {
-            everything = true;  // never repeated (expression_reads_only_program_words)
-            continue;
-          }
-          for (const ExprItem& it : *items) {
-            NumberValue v;
-            if (it.code != ExprCode::Push || parse_number_text(it.text, v)) continue;
-            if (const auto a = parse_address(it.text)) note(*a, nullptr);
-          }
-          continue;
-        }
-        if (!operand.is_address()) continue;
-        if (i < sp.operand_count && sp.operands[i].kind == OperandKind::RemoteAddress) continue;
-        note(operand.address, i < sp.operand_count ? &sp.operands[i] : nullptr);
-      }
-    }
+    for_each_instruction(elements_of_rung, [&](const Instruction& in) {
+      if (in.opcode == Opcode::MSG) everything = true;
+      if (allowed(in, file_number)) return;
+      // An expression that does not parse is never repeated (expression_reads_only_program_words).
+      const bool parsed = each_address(in, [&](const Address& a, std::size_t, const OperandSpec* os) {
+        if (!os || os->kind != OperandKind::RemoteAddress) note(a, os);
+      });
+      everything = everything || !parsed;
+    });
   }
 };
 
@@ -514,25 +512,13 @@ std::vector<std::uint8_t> files_run_once(const Program& program) {
   for (const ProgramFile& f : program.files) {
     if (f.number < 0 || f.number >= 256) continue;
     FileFacts& ff = facts[static_cast<std::size_t>(f.number)];
-    for (std::size_t r = 0; r < f.rungs.size(); ++r) {
-      std::vector<const RungElement*> stack;
-      for (const auto& e : f.rungs[r].elements) stack.push_back(&e);
-      while (!stack.empty()) {
-        const RungElement* e = stack.back();
-        stack.pop_back();
-        if (e->kind == RungElement::Kind::Branch) {
-          for (const auto& leg : e->legs)
-            for (const auto& x : leg) stack.push_back(&x);
-          continue;
-        }
-        const Instruction& in = e->instruction;
+    for (std::size_t r = 0; r < f.rungs.size(); ++r)
+      for_each_instruction(f.rungs[r].elements, [&](const Instruction& in) {
         if (in.opcode == Opcode::LBL) ff.first_label = std::min(ff.first_label, static_cast<int>(r));
         if (in.opcode == Opcode::JMP) ff.last_jump = std::max(ff.last_jump, static_cast<int>(r));
-        if (in.opcode == Opcode::JSR && !in.operands.empty() && in.operands[0].kind == Operand::Kind::Integer &&
-            in.operands[0].integer >= 0 && in.operands[0].integer < 256)
-          facts[static_cast<std::size_t>(in.operands[0].integer)].callers.push_back(f.number);
-      }
-    }
+        if (const int target = jsr_target(in); target >= 0)
+          facts[static_cast<std::size_t>(target)].callers.push_back(f.number);
+      });
   }
   std::vector<std::uint8_t> once(256, 0);
   // Following the single callers up to file 2; a chain longer than the files is a cycle.

@@ -290,15 +290,29 @@ MAccess RioScanner::read_m(MFile f, int word, std::uint16_t& value) {
   return MAccess::Ok;
 }
 
+// read_m for each word, at once: both files are plain words.
+MAccess RioScanner::read_m_block(MFile f, int word, std::span<std::uint16_t> out, std::size_t& done) {
+  const auto& file = f == MFile::M0 ? m0_ : m1_;
+  done = 0;
+  if (word < 0 || static_cast<std::size_t>(word) >= file.size()) return out.empty() ? MAccess::Ok : MAccess::NoSuchWord;
+  done = std::min(out.size(), file.size() - static_cast<std::size_t>(word));
+  std::copy_n(file.begin() + word, done, out.begin());
+  return done == out.size() ? MAccess::Ok : MAccess::NoSuchWord;
+}
+
 MAccess RioScanner::write_m(MFile f, int word, std::uint16_t value) {
   auto& file = f == MFile::M0 ? m0_ : m1_;
   if (word < 0 || static_cast<std::size_t>(word) >= file.size()) return MAccess::NoSuchWord;
   // "M1 is a read only file; do not write to this file" (chapter 4; appendix B: the M1 file is a
   // module input file, read only to the processor).
   if (f == MFile::M1) return MAccess::Forbidden;
-  if (!m_write_changes_nothing(f, word, value)) ++program_changes_;
-  file[static_cast<std::size_t>(word)] = value;
-  if (const int x = rio::buffer_at(word)) note_control_write(x, value);
+  // m_write_changes_nothing's test, made here once: the word changes, or a control word's EN or TO
+  // differs from those noted last (note_control_write notes them).
+  std::uint16_t& w = file[static_cast<std::size_t>(word)];
+  bool changes = w != value;
+  w = value;
+  if (const int x = rio::buffer_at(word)) changes = note_control_write(x, value) || changes;
+  if (changes) ++program_changes_;
   return MAccess::Ok;
 }
 
@@ -696,15 +710,16 @@ void RioScanner::update_status() {
 
 // ---- Block transfers ---------------------------------------------------------------------------------
 
-void RioScanner::note_control_write(int x, std::uint16_t value) {
+bool RioScanner::note_control_write(int x, std::uint16_t value) {
   Buffer& b = bt_[static_cast<std::size_t>(x)];
   const bool en = value & rio::kEN, to = value & rio::kTO;
-  if (en == b.en_written && to == b.to_written) return;
+  if (en == b.en_written && to == b.to_written) return false;
   b.en_written = en;
   b.to_written = to;
-  if (!link_running_) return;
+  if (!link_running_) return true;
   notes_.push_back({x, en, to});
   request_tick();
+  return true;
 }
 
 void RioScanner::request_tick() {

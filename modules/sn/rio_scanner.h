@@ -85,6 +85,7 @@ class RioScanner final : public Module {
   void output_scan(std::span<const std::uint16_t> image) override;
   int m_file_words(MFile f) const override;
   MAccess read_m(MFile f, int word, std::uint16_t& value) override;
+  MAccess read_m_block(MFile f, int word, std::span<std::uint16_t> out, std::size_t& done) override;
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
   bool passive() const override;
@@ -234,7 +235,7 @@ class RioScanner final : public Module {
   void set_module_input(int adapter, int module, std::uint32_t value, std::uint32_t mask);
 
   // Block transfers.
-  void note_control_write(int buffer, std::uint16_t value);
+  bool note_control_write(int buffer, std::uint16_t value);  // true: EN or TO differ from those noted
   void request_tick();
   void tick(VirtualTime t);
   bool apply_note(const Note& n);

@@ -582,11 +582,14 @@ std::uint16_t Interpreter::span_get(const Span& s, std::uint32_t i) {
   if (!s.mfile) return w_[s.base + i];
   std::uint16_t v = 0;
   const MAccess a = chassis_.read_m(s.slot, s.which, static_cast<int>(s.base + i), v);
-  if (a != MAccess::Ok)
-    raise(fault::module_access(s.slot), "reading M" + std::to_string(static_cast<int>(s.which)) + ":" +
-                                            std::to_string(s.slot) + "." + std::to_string(s.base + i) + ": " +
-                                            refused(a, s.slot, s.which, static_cast<int>(s.base + i), false));
+  if (a != MAccess::Ok) m_read_refused(s, i, a);
   return v;
+}
+
+void Interpreter::m_read_refused(const Span& s, std::uint32_t i, MAccess a) {
+  raise(fault::module_access(s.slot), "reading M" + std::to_string(static_cast<int>(s.which)) + ":" +
+                                          std::to_string(s.slot) + "." + std::to_string(s.base + i) + ": " +
+                                          refused(a, s.slot, s.which, static_cast<int>(s.base + i), false));
 }
 
 void Interpreter::span_set(const Span& s, std::uint32_t i, std::uint16_t v) {
@@ -1448,6 +1451,29 @@ void Interpreter::copy_file(const std::uint32_t* o, std::uint32_t h) {
   if (!file_span(o[0], (dst.count + src_wpe - 1) / src_wpe, src, "COP source")) return;
   if (!src.mfile && !dst.mfile) {
     std::memmove(w_ + dst.base, w_ + src.base, dst.count * sizeof(std::uint16_t));
+  } else if (!dst.mfile) {
+    // An M file into the data table (a status block copied every scan, issue 20): read in blocks,
+    // one call into the module instead of one per word, with the word-by-word loop's results: the
+    // words before a refused one copied, span_get's fault, then the refused word set to what the
+    // module left in a zeroed word (span_get's v).
+    charge_m(src.row, static_cast<int>(dst.count));
+    constexpr std::uint32_t kChunk = 128;
+    std::array<std::uint16_t, kChunk> got;
+    for (std::uint32_t i = 0; i < dst.count;) {
+      const std::uint32_t n = std::min(kChunk, dst.count - i);
+      std::fill_n(got.begin(), n, std::uint16_t{0});
+      std::size_t done = 0;
+      const MAccess a = chassis_.read_m_block(src.slot, src.which, static_cast<int>(src.base + i),
+                                              std::span<std::uint16_t>(got.data(), n), done);
+      std::copy_n(got.begin(), done, w_ + dst.base + i);
+      if (a != MAccess::Ok) {
+        const auto bad = i + static_cast<std::uint32_t>(done);
+        m_read_refused(src, bad, a);
+        w_[dst.base + bad] = got[done];
+        break;
+      }
+      i += n;
+    }
   } else {
     if (src.mfile) charge_m(src.row, static_cast<int>(dst.count));
     if (dst.mfile) charge_m(dst.row, static_cast<int>(dst.count));

@@ -330,6 +330,8 @@ class Interpreter {
   void set_flags(bool c, bool v, bool z, bool s);
   bool file_span(std::uint32_t o, std::uint32_t elements, Span& out, std::string_view what);
   std::uint16_t span_get(const Span& s, std::uint32_t i);
+  // span_get's fault for word i of an M-file span that the module refused.
+  [[gnu::noinline, gnu::cold]] void m_read_refused(const Span& s, std::uint32_t i, MAccess a);
   void span_set(const Span& s, std::uint32_t i, std::uint16_t v);
 
   // Instruction handlers that are too long to inline in the dispatch loop. They are kept out of

@@ -24,6 +24,14 @@ std::string_view to_string(MAccess a) {
   return "?";
 }
 
+MAccess Module::read_m_block(MFile f, int word, std::span<std::uint16_t> out, std::size_t& done) {
+  for (done = 0; done < out.size(); ++done) {
+    const MAccess a = read_m(f, word + static_cast<int>(done), out[done]);
+    if (a != MAccess::Ok) return a;
+  }
+  return MAccess::Ok;
+}
+
 void Module::execute(ModuleInstructionContext& ctx) {
   ctx.fault(fault::kUnsupportedInstruction, std::string(spec(ctx.opcode()).mnemonic) + ": the module in slot " +
                                                std::to_string(slot_) + " (" + catalog_ + ") has no such instruction");

@@ -207,6 +207,11 @@ class Module {
   virtual int m_file_words(MFile) const { return 0; }
   virtual MAccess read_m(MFile, int /*word*/, std::uint16_t& /*value*/) { return MAccess::NoSuchWord; }
   virtual MAccess write_m(MFile, int /*word*/, std::uint16_t /*value*/) { return MAccess::NoSuchWord; }
+  // Reads out.size() words from `word` on, as read_m word by word: stops at the first word refused
+  // and returns its status (Ok when none was), with `done` the words read before it. A module
+  // whose reads are plain copies answers the block at once (a BTR reads its status and data as
+  // blocks, issue 20); the default calls read_m for each word.
+  virtual MAccess read_m_block(MFile f, int word, std::span<std::uint16_t> out, std::size_t& done);
   // Why the module refuses that access, in its own terms (for the fault message; empty: no more
   // to say than the MAccess status), e.g. the AutoMax master's "bus error: drop 2 slot 5 ...".
   virtual std::string m_refusal(MFile, int /*word*/, bool /*write*/) const { return {}; }

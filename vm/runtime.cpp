@@ -2172,13 +2172,10 @@ MAccess Runtime::read_m_block(int slot, MFile f, int word, std::span<std::uint16
   Module* m = module(slot);
   if (!m) return MAccess::NoSuchWord;
   if (probing_) [[unlikely]] reach(slot);
-  for (; done < out.size(); ++done) {
-    const int k = word + static_cast<int>(done);
-    const MAccess a = m->read_m(f, k, out[done]);
-    if (a != MAccess::Ok) return a;
-    if (probing_) [[unlikely]] m_reads_.push_back({slot, f, k, out[done]});
-  }
-  return MAccess::Ok;
+  const MAccess a = m->read_m_block(f, word, out, done);
+  if (probing_) [[unlikely]]
+    for (std::size_t i = 0; i < done; ++i) m_reads_.push_back({slot, f, word + static_cast<int>(i), out[i]});
+  return a;
 }
 
 MAccess Runtime::write_m(int slot, MFile f, int word, std::uint16_t value) {

@@ -101,6 +101,14 @@ RioScanner::RioScanner(const SlotConfig& slot, int m0_words, int m1_words, std::
       adapters_.push_back(std::move(a));
     }
   }
+  for (std::size_t ai = 0; ai < adapters_.size(); ++ai) {
+    const auto& spec = adapters_[ai].spec;
+    for (int o = 0; o < spec.groups; ++o) {
+      const int w = spec.first_word() + o;
+      if (w >= 0 && w < static_cast<int>(image_sources_.size()))
+        image_sources_[static_cast<std::size_t>(w)].push_back({ai, static_cast<std::size_t>(o)});
+    }
+  }
   build_devices();
 }
 
@@ -239,9 +247,17 @@ RioScanner::Command RioScanner::command_for(const Device& d) const {
 void RioScanner::attach(ModuleHost& host) {
   Module::attach(host);
   // The adapters' chassis run from power-up, whatever the scanner does.
-  for (std::size_t i = 0; i < adapters_.size(); ++i)
-    if (adapters_[i].spec.backplane_scan > 0)
-      schedule_backplane(static_cast<int>(i), host.now() + adapters_[i].spec.backplane_scan);
+  backplane_groups_.clear();
+  for (std::size_t i = 0; i < adapters_.size(); ++i) {
+    const Nanoseconds period = adapters_[i].spec.backplane_scan;
+    if (period <= 0) continue;
+    const auto g = std::find_if(backplane_groups_.begin(), backplane_groups_.end(),
+                                [&](const BackplaneGroup& bg) { return bg.period == period; });
+    if (g != backplane_groups_.end()) g->adapters.push_back(static_cast<int>(i));
+    else backplane_groups_.push_back({period, {static_cast<int>(i)}});
+  }
+  for (std::size_t g = 0; g < backplane_groups_.size(); ++g)
+    schedule_backplanes(static_cast<int>(g), host.now() + backplane_groups_[g].period);
 }
 
 void RioScanner::input_scan(std::span<std::uint16_t> image) {
@@ -274,15 +290,29 @@ MAccess RioScanner::read_m(MFile f, int word, std::uint16_t& value) {
   return MAccess::Ok;
 }
 
+// read_m for each word, at once: both files are plain words.
+MAccess RioScanner::read_m_block(MFile f, int word, std::span<std::uint16_t> out, std::size_t& done) {
+  const auto& file = f == MFile::M0 ? m0_ : m1_;
+  done = 0;
+  if (word < 0 || static_cast<std::size_t>(word) >= file.size()) return out.empty() ? MAccess::Ok : MAccess::NoSuchWord;
+  done = std::min(out.size(), file.size() - static_cast<std::size_t>(word));
+  std::copy_n(file.begin() + word, done, out.begin());
+  return done == out.size() ? MAccess::Ok : MAccess::NoSuchWord;
+}
+
 MAccess RioScanner::write_m(MFile f, int word, std::uint16_t value) {
   auto& file = f == MFile::M0 ? m0_ : m1_;
   if (word < 0 || static_cast<std::size_t>(word) >= file.size()) return MAccess::NoSuchWord;
   // "M1 is a read only file; do not write to this file" (chapter 4; appendix B: the M1 file is a
   // module input file, read only to the processor).
   if (f == MFile::M1) return MAccess::Forbidden;
-  if (!m_write_changes_nothing(f, word, value)) ++program_changes_;
-  file[static_cast<std::size_t>(word)] = value;
-  if (const int x = rio::buffer_at(word)) note_control_write(x, value);
+  // m_write_changes_nothing's test, made here once: the word changes, or a control word's EN or TO
+  // differs from those noted last (note_control_write notes them).
+  std::uint16_t& w = file[static_cast<std::size_t>(word)];
+  bool changes = w != value;
+  w = value;
+  if (const int x = rio::buffer_at(word)) changes = note_control_write(x, value) || changes;
+  if (changes) ++program_changes_;
   return MAccess::Ok;
 }
 
@@ -494,10 +524,8 @@ void RioScanner::exchange(const Logical& l, Device& d, Adapter& a, VirtualTime t
     a.received[idx] = a.spec.backplane_scan > 0 ? a.in_buffer[idx] : adapter_input_word(a, w);
     // Primary and complementary images overlap in the scanner: the word is the OR of both.
     std::uint16_t word = 0;
-    for (const auto& other : adapters_) {
-      const int o = w - other.spec.first_word();
-      if (o >= 0 && o < other.spec.groups) word = static_cast<std::uint16_t>(word | other.received[static_cast<std::size_t>(o)]);
-    }
+    for (const ImageSource& src : image_sources_[static_cast<std::size_t>(w)])
+      word = static_cast<std::uint16_t>(word | adapters_[src.adapter].received[src.index]);
     in_image_[static_cast<std::size_t>(w)] = word;
   }
   a.last_comm = t;
@@ -549,33 +577,54 @@ void RioScanner::watchdog_expires(int ai, VirtualTime t) {
   if (a.spec.backplane_scan <= 0) apply_outputs(a, t);
 }
 
-void RioScanner::schedule_backplane(int ai, VirtualTime at) {
-  adapters_[static_cast<std::size_t>(ai)].backplane_scheduled = ++order_;
-  host()->schedule_at(at, [this, ai](VirtualTime te) { backplane(ai, te); });
+// One event for the backplane scans of a group of adapters with the same backplane_scan, in place
+// of one event per adapter (issue 20: they were two thirds of a busy scanner's events). The group's
+// adapters were scheduled together at attach, so their per-adapter events would all fall at the
+// same times, each scheduled right after the one before it: nothing else could run between them
+// but the output-delay events the scans themselves scheduled (apply_outputs), which write only
+// out_field and out_changed_at, which no backplane scan reads. Every other event at the same time
+// was scheduled before the first of them or after the last, as it is before or after the group's
+// event, so every event runs in the same order against each adapter's scan. Each adapter's
+// backplane_scheduled still counts in order_ where its own event would have been scheduled
+// against the watchdog arms (none can come between), which is all that order is used for.
+void RioScanner::schedule_backplanes(int g, VirtualTime at) {
+  for (int ai : backplane_groups_[static_cast<std::size_t>(g)].adapters)
+    adapters_[static_cast<std::size_t>(ai)].backplane_scheduled = ++order_;
+  host()->schedule_at(at, [this, g](VirtualTime te) { backplanes(g, te); });
+}
+
+void RioScanner::backplanes(int g, VirtualTime t) {
+  const BackplaneGroup& group = backplane_groups_[static_cast<std::size_t>(g)];
+  for (int ai : group.adapters) backplane(ai, t);
+  schedule_backplanes(g, t + group.period);
 }
 
 void RioScanner::backplane(int ai, VirtualTime t) {
   Adapter& a = adapters_[static_cast<std::size_t>(ai)];
   // A watchdog armed before this scan was scheduled and expiring now expired first (arm_watchdog).
   if (a.watchdog_due == t && a.watchdog_armed < a.backplane_scheduled) watchdog_expires(ai, t);
-  if (a.modules.empty()) {
-    std::copy(a.generic_in.begin(), a.generic_in.end(), a.in_buffer.begin());
-  } else {
-    // adapter_input_word for every word at once: each input module gives only its one or two
-    // words, so the others are zero.
-    std::fill(a.in_buffer.begin(), a.in_buffer.end(), std::uint16_t{0});
-    for (int mi : a.input_modules) {
-      const RemoteModule& m = a.modules[static_cast<std::size_t>(mi)];
-      for (int w = first_word_of(m.spec); w <= first_word_of(m.spec) + 1; ++w) {
-        const int k = w - a.spec.first_word();
-        if (k < 0 || k >= a.spec.groups) continue;
-        auto& word = a.in_buffer[static_cast<std::size_t>(k)];
-        word = static_cast<std::uint16_t>(word | word_from_module(m.spec, module_inputs(m), w));
+  // The input buffer is a function of the input modules' seen_in (generic_in without modules):
+  // when none changed since the last scan, it holds what the scan would copy.
+  if (a.inputs_changed) {
+    a.inputs_changed = false;
+    if (a.modules.empty()) {
+      std::copy(a.generic_in.begin(), a.generic_in.end(), a.in_buffer.begin());
+    } else {
+      // adapter_input_word for every word at once: each input module gives only its one or two
+      // words, so the others are zero.
+      std::fill(a.in_buffer.begin(), a.in_buffer.end(), std::uint16_t{0});
+      for (int mi : a.input_modules) {
+        const RemoteModule& m = a.modules[static_cast<std::size_t>(mi)];
+        for (int w = first_word_of(m.spec); w <= first_word_of(m.spec) + 1; ++w) {
+          const int k = w - a.spec.first_word();
+          if (k < 0 || k >= a.spec.groups) continue;
+          auto& word = a.in_buffer[static_cast<std::size_t>(k)];
+          word = static_cast<std::uint16_t>(word | word_from_module(m.spec, module_inputs(m), w));
+        }
       }
     }
   }
   apply_outputs(a, t);
-  schedule_backplane(ai, t + a.spec.backplane_scan);
 }
 
 void RioScanner::apply_outputs(Adapter& a, VirtualTime t) {
@@ -614,10 +663,13 @@ void RioScanner::set_module_input(int ai, int mi, std::uint32_t value, std::uint
   const std::uint32_t now_value = m.field_in;
   if (m.spec.input_delay <= 0 || !host()) {
     m.seen_in = now_value;
+    adapters_[static_cast<std::size_t>(ai)].inputs_changed = true;
     return;
   }
   host()->schedule_at(host()->now() + m.spec.input_delay, [this, ai, mi, now_value](VirtualTime) {
-    adapters_[static_cast<std::size_t>(ai)].modules[static_cast<std::size_t>(mi)].seen_in = now_value;
+    Adapter& a = adapters_[static_cast<std::size_t>(ai)];
+    a.modules[static_cast<std::size_t>(mi)].seen_in = now_value;
+    a.inputs_changed = true;
   });
 }
 
@@ -658,15 +710,16 @@ void RioScanner::update_status() {
 
 // ---- Block transfers ---------------------------------------------------------------------------------
 
-void RioScanner::note_control_write(int x, std::uint16_t value) {
+bool RioScanner::note_control_write(int x, std::uint16_t value) {
   Buffer& b = bt_[static_cast<std::size_t>(x)];
   const bool en = value & rio::kEN, to = value & rio::kTO;
-  if (en == b.en_written && to == b.to_written) return;
+  if (en == b.en_written && to == b.to_written) return false;
   b.en_written = en;
   b.to_written = to;
-  if (!link_running_) return;
+  if (!link_running_) return true;
   notes_.push_back({x, en, to});
   request_tick();
+  return true;
 }
 
 void RioScanner::request_tick() {
@@ -990,6 +1043,7 @@ bool RioScanner::set_field_input(int word, std::uint16_t value, std::uint16_t ma
     if (a.modules.empty()) {
       auto& g = a.generic_in[static_cast<std::size_t>(idx)];
       g = static_cast<std::uint16_t>((g & ~mask) | (value & mask));
+      a.inputs_changed = true;
       handled = true;
       continue;
     }

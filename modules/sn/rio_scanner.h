@@ -85,6 +85,7 @@ class RioScanner final : public Module {
   void output_scan(std::span<const std::uint16_t> image) override;
   int m_file_words(MFile f) const override;
   MAccess read_m(MFile f, int word, std::uint16_t& value) override;
+  MAccess read_m_block(MFile f, int word, std::span<std::uint16_t> out, std::size_t& done) override;
   MAccess write_m(MFile f, int word, std::uint16_t value) override;
   void on_mode_change(Mode from, Mode to) override;
   bool passive() const override;
@@ -154,8 +155,9 @@ class RioScanner final : public Module {
     VirtualTime watchdog_due = -1;
     std::uint64_t watchdog_armed = 0;
     VirtualTime watchdog_event_at = -1;
-    std::uint64_t backplane_scheduled = 0;  // the order of its pending backplane event
+    std::uint64_t backplane_scheduled = 0;  // the order of its pending backplane scan (schedule_backplanes)
     bool outputs_stale = true;  // out_buffer changed since apply_outputs last ran
+    bool inputs_changed = true;  // a module's seen_in or generic_in changed since backplane last ran
     std::vector<RemoteModule> modules;
     std::vector<int> input_modules;  // indices of its discrete input modules
   };
@@ -226,13 +228,14 @@ class RioScanner final : public Module {
   void arm_watchdog(int adapter, VirtualTime t);
   void watchdog_event(int adapter, VirtualTime t);
   void watchdog_expires(int adapter, VirtualTime t);
-  void schedule_backplane(int adapter, VirtualTime at);
+  void schedule_backplanes(int group, VirtualTime at);
+  void backplanes(int group, VirtualTime t);
   std::uint32_t module_inputs(const RemoteModule& m) const;
   std::uint16_t adapter_input_word(const Adapter& a, int w) const;
   void set_module_input(int adapter, int module, std::uint32_t value, std::uint32_t mask);
 
   // Block transfers.
-  void note_control_write(int buffer, std::uint16_t value);
+  bool note_control_write(int buffer, std::uint16_t value);  // true: EN or TO differ from those noted
   void request_tick();
   void tick(VirtualTime t);
   bool apply_note(const Note& n);
@@ -266,6 +269,19 @@ class RioScanner final : public Module {
   std::vector<Device> devices_;
   std::vector<Logical> logical_;
   std::vector<Adapter> adapters_;
+  // For each scanner image word, the adapters whose image holds it and where (a primary and a
+  // complementary chassis may share a word): exchange() ORs their received words.
+  struct ImageSource {
+    std::size_t adapter = 0, index = 0;
+  };
+  std::array<std::vector<ImageSource>, 32> image_sources_;
+  // Adapters whose chassis scan with the same backplane_scan, in adapter order: their scans fall at
+  // the same times and run in one event (schedule_backplanes says why that is the same).
+  struct BackplaneGroup {
+    Nanoseconds period = 0;
+    std::vector<int> adapters;
+  };
+  std::vector<BackplaneGroup> backplane_groups_;
 
   // Link state.
   bool link_running_ = false;

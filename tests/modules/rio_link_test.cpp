@@ -467,6 +467,52 @@ TEST(RunEntryFaults, MissingInvalidAndDuplicate) {
   }
 }
 
+// The adapters' chassis scans, with two adapters sharing a backplane_scan (the scanner runs their
+// scans in one event, rio_scanner.cpp schedule_backplanes) and one with its own. Three 1/4-rack
+// adapters at 230.4K: 2.5 ms visits (appendix A), T_RIO 7.5 ms from Run entry at 0, so A's visits
+// end at 2.5 + 7.5n ms, B's at 5 + 7.5n, C's at 7.5 + 7.5n. A and B scan their chassis every 4 ms,
+// C every 3 ms, from power-up at 0. An input set at time s is in the adapter's input buffer from its
+// first backplane scan after s, and the scanner receives it at the adapter's first visit ending at
+// or after that scan; where a scan and a visit end at the same time, the scan runs first (it was
+// scheduled one backplane_scan before, the visit one visit before). Each case sets the input just
+// after `set_after` and expects it received at `expected`; the ties are A at 40 ms, B at 20 ms and
+// C at 15 ms. Grouping C with A and B (scanning it every 4 ms) fails the C cases, and so would a
+// merged event that ran after the visit ending at its time.
+TEST(RioLink, EachChassisScansAtItsOwnBackplaneScanAndBeforeAVisitEndingThen) {
+  struct Case {
+    const char* module;
+    const char* adapter;
+    int set_after_us;
+    int expected_us;
+    int next_scan_us;  // the adapter's first backplane scan after set_after
+  };
+  for (const Case c : {Case{"INA", "A", 36100, 40000, 40000}, Case{"INA", "A", 40100, 47500, 44000},
+                       Case{"INB", "B", 16100, 20000, 20000}, Case{"INB", "B", 20100, 27500, 24000},
+                       Case{"INC", "C", 12100, 15000, 15000}, Case{"INC", "C", 15100, 22500, 18000},
+                       Case{"INC", "C", 18100, 22500, 21000}}) {
+    const std::string what = std::string(c.module) + " set after " + std::to_string(c.set_after_us) + " us";
+    Bench b("START 1747-L532\nSLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 G_FILE 3\n 0 7 7 OPTION baud=230.4K\nLADDER 2\n"
+            "SOR XIC B3:0/0 OTE B3:0/1 EOR\n",
+            "scanner RIO slot=1 {\n"
+            "  adapter A rack=0 group=0 size=1/4 backplane_scan=4ms {\n    module INA catalog=1746-IB16 group=0\n  }\n"
+            "  adapter B rack=0 group=2 size=1/4 backplane_scan=4ms {\n    module INB catalog=1746-IB16 group=2\n  }\n"
+            "  adapter C rack=0 group=4 size=1/4 backplane_scan=3ms {\n    module INC catalog=1746-IB16 group=4\n  }\n"
+            "}\n");
+    b.run();
+    b->run_for(microseconds(c.set_after_us));
+    ASSERT_LT(b->now(), microseconds(c.next_scan_us)) << what << ": the scans are too long for the case";
+    b.inject(c.module, "input", {"1"});
+    VirtualTime before = b->now();
+    while ((*b->observe(c.adapter, "inputs"))[0] == 0 && b->now() < milliseconds(100)) {
+      before = b->now();
+      b->scan(1);
+    }
+    EXPECT_LT(before, microseconds(c.expected_us)) << what;
+    EXPECT_GE(b->now(), microseconds(c.expected_us)) << what;
+    EXPECT_EQ(b.sn().last_rio_scan(), microseconds(7500)) << what;
+  }
+}
+
 TEST(RioLink, Deterministic) {
   auto run = [] {
     Bench b(kExampleProgram, kExampleBench);

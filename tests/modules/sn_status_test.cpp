@@ -89,5 +89,41 @@ TEST(SnStatus, M1IsReadOnlyToTheProgram) {
   EXPECT_EQ(b.fault_code(), 0x0155);
 }
 
+// The scanner answers a block read of M0 or M1 (a BTR's status and data words) at once: the same
+// words and the same refusal as its read_m word by word, where the block starts inside the file,
+// runs past its end or starts outside it (the module's default, vm/module.cpp, reads word by word).
+TEST(SnStatus, MBlockReadsAreReadMWordByWord) {
+  Bench b("START 1747-L532\nSLOT 1 1747-SN SCAN_IN 32 SCAN_OUT 32 M0_SIZE 120 M1_SIZE 110 G_FILE 3\n 0 8729 59129 "
+          "OPTION baud=115.2K\nLADDER 2\nSOR XIC B3:0/0 OTE B3:0/1 EOR\n",
+          kStatusBench);
+  b.run();
+  b->run_for(milliseconds(200));
+  RioScanner& sn = b.sn();
+  for (int w = 100; w < 120; ++w) ASSERT_EQ(sn.write_m(MFile::M0, w, static_cast<std::uint16_t>(7 * w + 1)), MAccess::Ok);
+  for (const MFile f : {MFile::M0, MFile::M1})
+    for (const auto [word, n] : {std::pair{0, 16}, std::pair{8, 4}, std::pair{100, 4}, std::pair{106, 8}, std::pair{116, 8},
+                                 std::pair{109, 1}, std::pair{110, 2}, std::pair{-1, 3}, std::pair{200, 0}, std::pair{5, 0}}) {
+      std::vector<std::uint16_t> block(static_cast<std::size_t>(n), 0xEEEE), words(static_cast<std::size_t>(n), 0xEEEE);
+      std::size_t done = 99;
+      const MAccess got = sn.read_m_block(f, word, block, done);
+      std::size_t read = 0;
+      MAccess want = MAccess::Ok;
+      for (; read < words.size(); ++read)
+        if ((want = sn.read_m(f, word + static_cast<int>(read), words[read])) != MAccess::Ok) break;
+      const std::string what = std::string(f == MFile::M0 ? "M0" : "M1") + " " + std::to_string(word) + "+" + std::to_string(n);
+      EXPECT_EQ(got, want) << what;
+      EXPECT_EQ(done, read) << what;
+      EXPECT_EQ(block, words) << what;
+    }
+  // Reads that run past the end stop there: M1 has 110 words, M0 120.
+  std::vector<std::uint16_t> block(8);
+  std::size_t done = 0;
+  EXPECT_EQ(sn.read_m_block(MFile::M1, 106, block, done), MAccess::NoSuchWord);
+  EXPECT_EQ(done, 4u);
+  EXPECT_EQ(sn.read_m_block(MFile::M0, 112, block, done), MAccess::Ok);
+  EXPECT_EQ(done, 8u);
+  EXPECT_EQ(block[3], 7 * 115 + 1);
+}
+
 }  // namespace
 }  // namespace softslc::test

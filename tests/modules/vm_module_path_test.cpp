@@ -189,6 +189,40 @@ TEST(VmModulePath, MBlockReadIsReadMWordByWord) {
   EXPECT_NE(block.rt->fault()->message.find("M1:1.102"), std::string::npos) << block.rt->fault()->message;
 }
 
+// COP from an M file into the data table reads the module's words as blocks (vm/interpreter.cpp
+// copy_file): the words copied, and where a word is refused the words before it copied,
+// the refused word zero and the rest untouched, fault xx55h naming the refused word, and S:24 =
+// length - 1 as after any COP (RM E-11).
+TEST(VmModulePath, CopFromAnMFileCopiesTheWordsUpToARefusedOne) {
+  const auto fill = [](Recorder& r, int forbidden) {
+    for (int k = 0; k < 120; ++k) r.write_m(MFile::M1, 50 + k, static_cast<std::uint16_t>(1000 + 3 * k));
+    if (forbidden >= 0) r.forbid(MFile::M1, forbidden);
+  };
+  const std::string rungs = "SOR COP #M1:1.50 #N11:0 120 EOR\nSOR OTE B3:0/1 EOR\nSOR XIC N11:119/0 OTE B3:0/2 EOR\n";
+  for (const int forbidden : {-1, 52, 50, 129, 169}) {
+    Fixture f(rungs, [&](Recorder& r) { fill(r, forbidden); });
+    for (int k = 0; k < 120; ++k) ASSERT_TRUE(f.rt->set("N11:" + std::to_string(k), Value::of_int(77)));
+    ASSERT_TRUE(f.rt->set_mode(Mode::Run));
+    f.rt->scan(1);
+    const std::string what = "word " + std::to_string(forbidden) + " refused";
+    const int bad = forbidden < 0 ? 120 : forbidden - 50;
+    for (int k = 0; k < 120; ++k) {
+      const std::int64_t want = k < bad ? 1000 + 3 * k : k == bad ? 0 : 77;
+      ASSERT_EQ(f.rt->value("N11:" + std::to_string(k)).as_int(), want) << what << ", N11:" << k;
+    }
+    EXPECT_EQ(f.rt->value("S:24").as_int(), 119) << what;
+    if (forbidden < 0) {
+      EXPECT_FALSE(f.rt->fault().has_value());
+      EXPECT_TRUE(f.rt->value("B3:0/1").as_bool());
+      continue;
+    }
+    ASSERT_TRUE(f.rt->fault().has_value()) << what;
+    EXPECT_EQ(f.rt->fault()->code, 0x0155) << what;
+    EXPECT_NE(f.rt->fault()->message.find("M1:1." + std::to_string(forbidden)), std::string::npos) << f.rt->fault()->message;
+    EXPECT_FALSE(f.rt->value("B3:0/1").as_bool()) << what;
+  }
+}
+
 TEST(VmModulePath, DataTableAccessIsCheckedAndFaultsStopTheScan) {
   Fixture f("SOR BTR N10:0 M1:1.100 #N11:0 0 0 0 4 EOR\nSOR OTE B3:0/1 EOR\n",
             [](Recorder& r) { r.action = "read-past-end"; });

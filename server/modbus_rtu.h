@@ -31,8 +31,6 @@ namespace softslc::modbus {
 
 inline constexpr std::size_t kRtuMaxFrame = 256;  // address + 253-byte PDU + CRC
 inline constexpr std::uint8_t kBroadcastAddress = 0;
-inline constexpr int kMinSlaveAddress = 1;
-inline constexpr int kMaxSlaveAddress = 247;  // §2.2: 248-255 are reserved
 
 // The Modbus CRC-16 of `bytes` (§6.2.2). On the wire the low byte goes first.
 std::uint16_t crc16(std::span<const std::uint8_t> bytes);

@@ -48,6 +48,7 @@
 #include <vector>
 
 #include "parser/address.h"
+#include "vm/pccc_target.h"
 
 namespace softslc::pccc {
 
@@ -108,37 +109,8 @@ struct Request {
 // An unknown CMD/FNC decodes as Kind::Unsupported (answered STS 10h).
 std::optional<Request> decode(std::span<const std::uint8_t> bytes, std::string* error = nullptr);
 
-// What execute() needs from the processor.
-class Target {
- public:
-  struct File {
-    FileType type = FileType::Integer;
-    std::uint32_t elements = 0;
-    int words_per_element = 1;
-  };
-  virtual ~Target() = default;
-  virtual std::optional<File> file(int number) const = 0;
-  // Reads words of a file (offset and count already checked against the file).
-  virtual void read(int number, std::uint32_t offset, std::span<std::uint16_t> out) const = 0;
-  // Writes words with masks; returns an empty string on success, else why it was refused.
-  virtual std::string write(int number, std::uint32_t offset, std::span<const std::uint16_t> values,
-                            std::span<const std::uint16_t> masks) = 0;
-  // The diagnostic status block (CMD 06 FNC 03 reply data).
-  virtual std::vector<std::uint8_t> diagnostic_status() const = 0;
-  // The M0 (m1 false) or M1 file of the module in `slot`: its size in words, or nullopt when the
-  // slot has no module with such a file. The default: no module has M files.
-  virtual std::optional<std::uint32_t> module_file_words(int /*slot*/, bool /*m1*/) const { return std::nullopt; }
-  // Reads or writes M-file words through the module, one word at a time in order; an empty string
-  // on success, else the module's refusal (a read stops at the refused word; a write has
-  // performed the words before it).
-  virtual std::string read_module(int /*slot*/, bool /*m1*/, std::uint32_t /*word*/, std::span<std::uint16_t> /*out*/) {
-    return "no module M files";
-  }
-  virtual std::string write_module(int /*slot*/, bool /*m1*/, std::uint32_t /*word*/,
-                                   std::span<const std::uint16_t> /*values*/, std::span<const std::uint16_t> /*masks*/) {
-    return "no module M files";
-  }
-};
+// What execute() needs from the processor: pccc::Target (vm/pccc_target.h).
+
 
 // Runs a request and returns the whole reply (CMD|40h, STS, TNS, data or EXT STS). `refusal`, when
 // given, receives the reason a write or read was refused (for the log).

@@ -65,7 +65,7 @@ struct ServerOptions {
 };
 
 // The baud rates a MicroLogix channel offers (AG-UM008C p. 3-49: 300-38.4K).
-inline constexpr int kModbusRtuBauds[] = {300, 600, 1200, 2400, 4800, 9600, 19200, 38400};
+inline constexpr const auto& kModbusRtuBauds = modbus::kSlaveBauds;
 // The silence that ends a Modbus RTU frame: 3.5 characters of 11 bits at `baud` (Modbus over
 // Serial Line v1.02 §2.5.1.1; 1.75 ms above 19200 baud), but never under 5 ms, so the scheduling
 // of the event loop and of a USB serial adapter does not cut frames.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "vm/modbus_master.h"
 #include "vm/runtime.h"
 
 namespace softslc {
@@ -19,6 +20,37 @@ constexpr std::uint16_t kTypeCodes[][2] = {
 };
 
 std::int16_t as_signed(std::uint16_t w) { return static_cast<std::int16_t>(w); }
+
+// A station's data table as a Modbus request reaches it (vm/modbus_slave.h): the files of its layout, words
+// read and written in place, as a DH-485 request's are (answer below). A MicroLogix has no forced bits in the
+// B and N files and S2 the map names, so no write is refused.
+class DataTableTarget final : public pccc::Target {
+ public:
+  explicit DataTableTarget(DataTable& data) : data_(data) {}
+  std::optional<File> file(int number) const override {
+    if (number < 0 || number >= static_cast<int>(data_.layout().files.size())) return std::nullopt;
+    const FileLayout& f = data_.layout().files[static_cast<std::size_t>(number)];
+    if (!f.present) return std::nullopt;
+    return File{f.type, f.elements, f.words_per_element};
+  }
+  void read(int number, std::uint32_t offset, std::span<std::uint16_t> out) const override {
+    const std::uint32_t base = data_.layout().files[static_cast<std::size_t>(number)].base + offset;
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = data_.word(base + static_cast<std::uint32_t>(i));
+  }
+  std::string write(int number, std::uint32_t offset, std::span<const std::uint16_t> values,
+                    std::span<const std::uint16_t> masks) override {
+    const std::uint32_t base = data_.layout().files[static_cast<std::size_t>(number)].base + offset;
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      const std::uint32_t w = base + static_cast<std::uint32_t>(i);
+      data_.set_word(w, static_cast<std::uint16_t>((data_.word(w) & ~masks[i]) | (values[i] & masks[i])));
+    }
+    return {};
+  }
+  std::vector<std::uint8_t> diagnostic_status() const override { return {}; }
+
+ private:
+  DataTable& data_;
+};
 
 }  // namespace
 
@@ -121,6 +153,8 @@ int MessageNetwork::network_channel(std::size_t station) const {
 
 MessageLink MessageNetwork::channel_link(std::size_t station, int channel) const {
   if (channel == 0 && stations_[station].df1) return MessageLink::Df1;
+  // A channel 0 that is a Modbus RTU slave sends no MSG: 12h, as a PCCC MSG on a Modbus master's (decision).
+  if (channel == 0 && stations_[station].modbus_slave) return MessageLink::None;
   // The SLC 5/03-5/05's channel 0 sends MSG only as a DF1 port (docs/semantics.md "DF1 full-duplex on channel 0").
   const ProcessorFamily family = stations_[station].rt->compiled().processor.family;
   if (channel == 0 && (family == ProcessorFamily::Slc503 || family == ProcessorFamily::Slc504 ||
@@ -402,6 +436,52 @@ void MessageNetwork::join_df1(std::size_t a, std::size_t b) {
   stations_[b].df1_partner = a;
 }
 
+std::string MessageNetwork::attach_modbus_slave(std::size_t station, const modbus::SlaveOptions& options,
+                                                ModbusMaster& master) {
+  DataTableTarget target(stations_[station].rt->data());
+  if (std::string why = modbus::check_map(options.map, target); !why.empty()) return why;
+  stations_[station].modbus_slave = options;
+  modbus_master_ = &master;
+  master.set_peer_line(this);
+  return {};
+}
+
+std::optional<std::size_t> MessageNetwork::modbus_slave_at(int address) const {
+  for (std::size_t i = 0; i < stations_.size(); ++i)
+    if (stations_[i].modbus_slave && stations_[i].modbus_slave->address == address) return i;
+  return std::nullopt;
+}
+
+// The frame reaches every slave's receiver; one configured for another baud rate hears no frame (its UART
+// sees framing errors), so it neither executes nor answers. A broadcast reaches every slave.
+void MessageNetwork::deliver(int address, std::uint64_t serial, std::vector<std::uint8_t> pdu, std::int64_t baud,
+                             VirtualTime at) {
+  for (Station& st : stations_) {
+    if (!st.modbus_slave || st.modbus_slave->baud != baud || (address != 0 && st.modbus_slave->address != address))
+      continue;
+    st.modbus_requests.push_back({at, serial, address == 0, pdu});
+  }
+}
+
+// "Under normal operation the controller processes communications once every time it scans the control
+// program" (1763-RM001B p. 344, 1766-RM001A p. 396): an incoming command is executed at the end of a scan or at
+// an SVC (1766-RM001A p. 410-411: "One incoming channel 0 or channel 1 command" at each servicing, all remaining
+// ones when the Communications Servicing Selection bit is clear; the line brings one at a time). The reply
+// starts on the line then.
+void MessageNetwork::serve_modbus(std::size_t station, VirtualTime at) {
+  Station& st = stations_[station];
+  const modbus::SlaveOptions& o = *st.modbus_slave;
+  modbus::CommParameters comm = modbus::comm_parameters(o.map);
+  comm[6] = static_cast<std::uint16_t>(o.address);  // 30507, the slave address
+  while (!st.modbus_requests.empty() && st.modbus_requests.front().arrival <= at) {
+    const Station::ModbusRequest request = std::move(st.modbus_requests.front());
+    st.modbus_requests.erase(st.modbus_requests.begin());
+    DataTableTarget target(st.rt->data());
+    const std::vector<std::uint8_t> reply = modbus::handle_pdu(request.pdu, o.map, target, nullptr, &comm);
+    if (!request.broadcast && modbus_master_) modbus_master_->peer_replied(request.serial, reply, at);
+  }
+}
+
 void MessageNetwork::leave_network(std::size_t station) {
   stations_[station].port_node[static_cast<std::size_t>(network_channel(station) & 1)] = -1;
 }
@@ -678,6 +758,7 @@ void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t 
     it = st.inbox.erase(it);
     receive(station, at, f);
   }
+  if ((channel_mask & 1u) && !st.modbus_requests.empty()) serve_modbus(station, at);
   for (int channel = 0; channel < 2; ++channel)
     if ((channel_mask & (1u << channel)) && !(st.channels[static_cast<std::size_t>(channel)].buffers.empty() &&
                                               st.channels[static_cast<std::size_t>(channel)].queue.empty()))
@@ -791,6 +872,18 @@ void MessageNetwork::run_lockstep(VirtualTime until) {
       if (!next || at < next_at) {
         next = i;
         next_at = at;
+      }
+    }
+    // With controllers on the leader's Modbus line, the leader's events before `until` (its channel's
+    // requests and replies, vm/modbus_master.h) run in time order with the stations' scans and servicings,
+    // first at a tie: a request then reaches a slave before the servicing that executes it, and the reply
+    // that servicing starts is an event no earlier than the leader's clock. (Without them the leader's
+    // events run after the lockstep, Runtime::scan_once.)
+    if (modbus_master_) {
+      EventQueue& events = stations_[0].rt->events();
+      if (const auto q = events.next_time(); q && *q < until && (!next || *q <= next_at)) {
+        events.run_until(*q);
+        continue;
       }
     }
     if (!next) return;

@@ -53,12 +53,28 @@
 #include "instructions/message_link.h"
 #include "parser/address.h"
 #include "vm/df1_link.h"
+#include "vm/modbus_slave.h"
 #include "vm/virtual_time.h"
 
 namespace softslc {
 
 class Runtime;
+class ModbusMaster;
 struct MessageInstruction;
+
+// The controllers on a Modbus RTU master's line whose channel 0 is a Modbus RTU slave (implemented by
+// MessageNetwork, used by vm/modbus_master.h).
+class ModbusPeerLine {
+ public:
+  virtual ~ModbusPeerLine() = default;
+  // Whether a controller on the line answers at `address` (1-247).
+  virtual bool has_slave(int address) const = 0;
+  // A request frame to `address` (0: a broadcast, which no slave answers) sent at `baud`, its PDU, complete
+  // (its end-of-frame silence passed) at `at`. The slave answers through ModbusMaster::peer_replied with
+  // `serial`.
+  virtual void deliver(int address, std::uint64_t serial, std::vector<std::uint8_t> pdu, std::int64_t baud,
+                       VirtualTime at) = 0;
+};
 
 // The control block word 0 bits (RM 12-31, table 12.11) and word 7's WQ (RM 12-29).
 namespace msg {
@@ -190,12 +206,12 @@ struct MessageInstruction {
   VirtualTime at = 0;        // virtual time of the instruction
 };
 
-class MessageNetwork {
+class MessageNetwork final : public ModbusPeerLine {
  public:
   explicit MessageNetwork(MessageLink link) : link_(link) {}
   MessageNetwork(const MessageNetwork&) = delete;
   MessageNetwork& operator=(const MessageNetwork&) = delete;
-  ~MessageNetwork();
+  ~MessageNetwork() override;
 
   // Adds a station. The first one added is the leader. `owned`, when given, is kept alive by the
   // network (the peers a leader's RuntimeOptions named). Returns the station's index.
@@ -222,6 +238,19 @@ class MessageNetwork {
   std::string df1_inject(std::size_t station, std::string_view change, const std::vector<std::string>& args);
   // The port's diagnostic counter `what` (df1_count_named) at `now`.
   std::optional<std::int64_t> df1_observe(std::size_t station, std::string_view what, VirtualTime now) const;
+
+  // Channel 0 of `station` as a Modbus RTU slave (docs/semantics.md "A MicroLogix as a Modbus RTU slave") on the
+  // line of `master`, the leader's channel 0: its address, baud rate and map. Such a channel is on no DH-485
+  // network and sends no MSG (12h); the requests that reach it are executed at its communications servicing
+  // (end of scan, SVC with channel 0 selected) against its data table, through modbus::handle_pdu.
+  // Returns "" or why the map does not fit the station's program (modbus::check_map).
+  std::string attach_modbus_slave(std::size_t station, const modbus::SlaveOptions& options, ModbusMaster& master);
+  // The station whose channel 0 is a Modbus RTU slave at `address`, if any.
+  std::optional<std::size_t> modbus_slave_at(int address) const;
+  // ModbusPeerLine.
+  bool has_slave(int address) const override { return modbus_slave_at(address).has_value(); }
+  void deliver(int address, std::uint64_t serial, std::vector<std::uint8_t> pdu, std::int64_t baud,
+               VirtualTime at) override;
 
   MessageLink link() const { return link_; }
   std::size_t size() const { return stations_.size(); }
@@ -310,6 +339,16 @@ class MessageNetwork {
     std::optional<Df1Port> df1;
     std::optional<std::size_t> df1_partner;
     bool df1_cable = true;
+    // Channel 0 as a Modbus RTU slave: its configuration and the requests that reached it, in arrival order
+    // (the master sends one at a time: a broadcast and the request behind it at most).
+    struct ModbusRequest {
+      VirtualTime arrival = 0;
+      std::uint64_t serial = 0;
+      bool broadcast = false;
+      std::vector<std::uint8_t> pdu;
+    };
+    std::optional<modbus::SlaveOptions> modbus_slave;
+    std::vector<ModbusRequest> modbus_requests;
   };
 
   // How many messages the channel's buffers take: four, or one while the 5/02's message is at the
@@ -317,6 +356,8 @@ class MessageNetwork {
   static std::size_t buffer_limit(const Channel& ch);
   void service(std::size_t station, VirtualTime at, std::uint16_t channel_mask);
   void service_channel(std::size_t station, VirtualTime at, int channel);
+  // Executes the Modbus requests that reached `station`'s channel 0 by `at` and starts their replies.
+  void serve_modbus(std::size_t station, VirtualTime at);
   void run_lockstep(VirtualTime until);
   void receive(std::size_t station, VirtualTime at, Frame& f);
   void answer(std::size_t station, VirtualTime at, const Frame& request);
@@ -358,6 +399,9 @@ class MessageNetwork {
   std::uint64_t next_serial_ = 1;
   std::uint64_t next_frame_ = 1;
   bool driving_ = false;
+  // The leader's channel 0 as a Modbus RTU master when some station's channel 0 is a slave on its line: the
+  // lockstep then runs the leader's events in time order with the other stations' scans (run_lockstep).
+  ModbusMaster* modbus_master_ = nullptr;
 };
 
 }  // namespace softslc

@@ -4,13 +4,19 @@
 
 #include "parser/address.h"
 #include "vm/data_table.h"
+#include "vm/modbus_slave.h"
 
 namespace softslc {
 
 namespace {
-// The Modbus application protocol's exception codes the slaves answer (as server/modbus.h names them).
-constexpr std::uint8_t kIllegalFunction = 0x01;
-constexpr std::uint8_t kIllegalDataAddress = 0x02;
+// The Modbus application protocol's exception codes the simulated slaves answer.
+constexpr std::uint8_t kIllegalFunction = modbus::kIllegalFunction;
+constexpr std::uint8_t kIllegalDataAddress = modbus::kIllegalDataAddress;
+
+void put16(std::vector<std::uint8_t>& out, std::uint32_t v) {
+  out.push_back(static_cast<std::uint8_t>((v >> 8) & 0xFF));
+  out.push_back(static_cast<std::uint8_t>(v & 0xFF));
+}
 
 std::optional<std::int64_t> whole_number(const std::string& text) {
   if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
@@ -188,6 +194,7 @@ void ModbusMaster::request_sent(std::uint64_t serial, VirtualTime at) {
   const Nanoseconds silence = character_time(7) / 2;  // 3.5 characters end an RTU frame
   if (m->slave == 0) {
     for (Slave& s : slaves_) serve(s, *m, true);
+    if (peer_line_) peer_line_->deliver(0, serial, request_pdu(*m), config_.baud, at + silence);
     line_busy_ = false;
     line_free_at_ = at + silence;
     finish(serial, 0, 0, at);
@@ -196,12 +203,72 @@ void ModbusMaster::request_sent(std::uint64_t serial, VirtualTime at) {
   Slave* target = nullptr;
   for (Slave& s : slaves_)
     if (s.c.address == m->slave && !s.offline) target = &s;
-  // No slave answers: the line waits for the reply until the message times out or TO aborts it.
-  if (!target) return;
+  if (!target) {
+    // A controller on the line takes it at its next communications servicing and answers through peer_replied.
+    if (peer_line_ && peer_line_->has_slave(m->slave))
+      peer_line_->deliver(m->slave, serial, request_pdu(*m), config_.baud, at + silence);
+    // Until a reply comes the line waits for it, until the message times out or TO aborts it.
+    return;
+  }
   Reply r = serve(*target, *m, false);
   const int bytes = r.exception ? modbus::kExceptionReplyBytes : modbus::reply_bytes(m->in.modbus_function, m->in.elements);
   const VirtualTime arrival = at + silence + target->c.reply_delay + character_time(static_cast<std::uint64_t>(bytes));
   m->line_event = host_->schedule_at(arrival, [this, serial, r = std::move(r)](VirtualTime t) { reply_arrived(serial, r, t); });
+}
+
+std::vector<std::uint8_t> ModbusMaster::request_pdu(const Message& m) const {
+  const int f = m.in.modbus_function, n = m.in.elements;
+  std::vector<std::uint8_t> pdu{static_cast<std::uint8_t>(f)};
+  put16(pdu, static_cast<std::uint32_t>(m.address));
+  switch (f) {
+    case 5: put16(pdu, m.data.at(0) ? 0xFF00u : 0u); break;
+    case 6: put16(pdu, m.data.at(0)); break;
+    case 15: {
+      put16(pdu, static_cast<std::uint32_t>(n));
+      pdu.push_back(static_cast<std::uint8_t>((n + 7) / 8));
+      const std::size_t at = pdu.size();
+      pdu.resize(at + static_cast<std::size_t>((n + 7) / 8), 0);
+      for (int i = 0; i < n; ++i)
+        if (m.data.at(static_cast<std::size_t>(i))) pdu[at + static_cast<std::size_t>(i / 8)] |= static_cast<std::uint8_t>(1u << (i % 8));
+      break;
+    }
+    case 16:
+      put16(pdu, static_cast<std::uint32_t>(n));
+      pdu.push_back(static_cast<std::uint8_t>(2 * n));
+      for (int i = 0; i < n; ++i) put16(pdu, m.data.at(static_cast<std::size_t>(i)));
+      break;
+    default: put16(pdu, static_cast<std::uint32_t>(n)); break;  // the reads: the quantity
+  }
+  return pdu;
+}
+
+// The reply's frame is the slave's address, the PDU and the CRC; its last byte arrives its character times
+// after it starts. An exception reply is function | 80h and the code; a read's reply its byte count and data
+// (bits from bit 0 of its first byte, registers high byte first); a write's reply echoes the request.
+void ModbusMaster::peer_replied(std::uint64_t serial, std::span<const std::uint8_t> pdu, VirtualTime at) {
+  Message* m = find(serial);
+  if (!m || !m->on_line || m->line_event || pdu.empty()) return;
+  const int f = m->in.modbus_function, n = m->in.elements;
+  Reply r;
+  if (pdu[0] & 0x80) {
+    if (pdu.size() != 2) return;
+    r.exception = pdu[1];
+  } else if (f == 1 || f == 2) {
+    if (pdu.size() != 2 + static_cast<std::size_t>((n + 7) / 8)) return;
+    for (int i = 0; i < n; ++i) r.data.push_back((pdu[2 + static_cast<std::size_t>(i / 8)] >> (i % 8)) & 1u);
+  } else if (f == 3 || f == 4) {
+    if (pdu.size() != 2 + 2 * static_cast<std::size_t>(n)) return;
+    for (int i = 0; i < n; ++i)
+      r.data.push_back(static_cast<std::uint16_t>(pdu[2 + 2 * static_cast<std::size_t>(i)] << 8 | pdu[3 + 2 * static_cast<std::size_t>(i)]));
+  }
+  const auto bytes = static_cast<std::uint64_t>(1 + pdu.size() + 2);
+  m->line_event = host_->schedule_at(at + character_time(bytes), [this, serial, r = std::move(r)](VirtualTime t) { reply_arrived(serial, r, t); });
+}
+
+bool ModbusMaster::has_simulated_slave(int address) const {
+  for (const Slave& s : slaves_)
+    if (s.c.address == address) return true;
+  return false;
 }
 
 void ModbusMaster::reply_arrived(std::uint64_t serial, const Reply& r, VirtualTime at) {

@@ -19,12 +19,19 @@
 // commands a MicroLogix sends (01-06, 15, 16; 1763-RM001B p. 366) from its tables, with exception 02 (illegal
 // data address) past a table's end and 01 (illegal function) for a command it is configured not to take.
 //
+// Controllers on the line (docs/semantics.md "A MicroLogix as a Modbus RTU slave"): a peer MicroLogix whose
+// channel 0 is a Modbus RTU slave is reached through a ModbusPeerLine (the MSG network the peers are on). The
+// request goes to it as its PDU when the request's end-of-frame silence has passed; the peer executes it at
+// its next communications servicing, against its own data table, with the map of vm/modbus_slave.h, and
+// hands the reply PDU back (peer_replied) when its reply starts on the line.
+//
 // Bounds: a message moves at most 103 elements (the instruction's size field), so frames are at most
 // 9 + 2 x 103 bytes; the queue holds at most one message per MG element (a new start replaces it).
 #pragma once
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -61,6 +68,14 @@ class ModbusMaster {
   bool abort(std::uint32_t block);
   // Ends a message at once with EN, ER and `code` (a MSG that cannot use channel 0 as it is configured).
   static void refuse(FieldProcessHost& host, const MessageInstruction& m, std::uint8_t code);
+
+  // The controllers on the line as Modbus RTU slaves (nullptr: none).
+  void set_peer_line(ModbusPeerLine* line) { peer_line_ = line; }
+  // A peer slave's reply PDU to the request of `serial` starts on the line at `at`: its last byte reaches
+  // this channel the reply's character times later. Ignored when the message has ended meanwhile.
+  void peer_replied(std::uint64_t serial, std::span<const std::uint8_t> pdu, VirtualTime at);
+  // A simulated slave (a bench `modbus` node) at `address`.
+  bool has_simulated_slave(int address) const;
 
   DeviceStatus inject(const DeviceFault& f);
   std::optional<std::vector<std::int64_t>> observe(std::string_view device, std::string_view what) const;
@@ -100,6 +115,8 @@ class ModbusMaster {
   void finish(std::uint64_t serial, std::uint8_t error, std::uint16_t extra_bits, VirtualTime at);
   void count_seconds(std::uint64_t serial, VirtualTime started, std::int64_t seconds);
   Reply serve(Slave& s, const Message& m, bool broadcast);
+  // The request's PDU (function, address, quantity or value, a write's byte count and data).
+  std::vector<std::uint8_t> request_pdu(const Message& m) const;
   std::uint16_t status(const MessageInstruction& in) const;
   void set_status(const MessageInstruction& in, std::uint16_t w0);
   std::uint16_t local_element(const Message& m, int i) const;
@@ -110,6 +127,7 @@ class ModbusMaster {
   ModbusChannelConfig config_;
   std::vector<Slave> slaves_;
   FieldProcessHost* host_ = nullptr;
+  ModbusPeerLine* peer_line_ = nullptr;
   std::vector<Message> messages_;  // in the order they started: the first four are the buffers
   std::uint64_t next_serial_ = 1;
   bool line_busy_ = false;

@@ -737,11 +737,14 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers, int ch
   // A channel 0 that the bench makes a Modbus RTU master (docs/semantics.md "The MicroLogix MSG over
   // Modbus RTU") is not a DH-485 station: a 1100/1400 so configured meets other controllers only on its
   // channel 1, Ethernet.
-  if (!ethernet && modbus_channel_)
+  // The peers on its Modbus line (`modbus`) are reached through channel 0 itself.
+  const bool network_peers = std::any_of(peers.begin(), peers.end(), [](const PeerController& p) { return !p.modbus; });
+  if (!ethernet && modbus_channel_ && network_peers)
     return "this controller's channel 0 is a Modbus RTU master (the bench's modbus nodes), so it is on no "
            "DH-485 network; give it an IP address (ip A.B.C.D) to meet its peers on Ethernet, channel 1";
   auto net = std::make_unique<MessageNetwork>(link);
   net->attach(*this, node_, "", nullptr, ip_);
+  if (!ethernet && modbus_channel_) net->leave_network(0);
   if (channel0_df1) net->attach_df1(0, df1);
   bool df1_peer_joined = false;
   auto taken = [&](int segment, int node) -> std::string {
@@ -763,6 +766,10 @@ std::string Runtime::join_peers(const std::vector<PeerController>& peers, int ch
   }
   for (const PeerController& p : peers) {
     if (!p.program) return "peer " + p.name + ": no program";
+    if (p.modbus) {
+      if (std::string why = join_modbus_peer(*net, p); !why.empty()) return why;
+      continue;
+    }
     if (p.df1) {
       if (std::string why = join_df1_peer(*net, p, channel0_df1.has_value(), df1_peer_joined); !why.empty()) return why;
       df1_peer_joined = true;
@@ -850,6 +857,44 @@ std::string Runtime::join_df1_peer(MessageNetwork& net, const PeerController& p,
   net.leave_network(station);
   net.attach_df1(station, config);
   net.join_df1(0, station);
+  peer.network_ = &net;
+  peer.station_ = station;
+  return {};
+}
+
+// A peer whose channel 0 is a Modbus RTU slave on this controller's Modbus line (docs/semantics.md "A MicroLogix
+// as a Modbus RTU slave"): on no other network; its address unique among the line's slaves, the bench's
+// simulated ones included; its map's files in its program, as serve checks them.
+std::string Runtime::join_modbus_peer(MessageNetwork& net, const PeerController& p) {
+  const modbus::SlaveOptions& o = *p.modbus;
+  if (!modbus_channel_)
+    return "peer " + p.name + ": a Modbus RTU slave answers a Modbus RTU master on its line, but this controller's "
+           "channel 0 is not one (give the bench a modbus node, docs/bench-format.md \"Modbus RTU slaves\")";
+  if (o.address < modbus::kMinSlaveAddress || o.address > modbus::kMaxSlaveAddress)
+    return "peer " + p.name + ": Modbus address " + std::to_string(o.address) +
+           " is out of range 1-247 (0 is the broadcast address, 248-255 are reserved)";
+  for (const ModbusSlaveConfig& s : modbus_channel_->config().slaves)
+    if (s.address == o.address)
+      return "peer " + p.name + ": Modbus address " + std::to_string(o.address) + " is already the bench's modbus node " +
+             s.name + "'s";
+  if (const auto i = net.modbus_slave_at(o.address))
+    return "peer " + p.name + ": Modbus address " + std::to_string(o.address) + " is already peer " + net.name(*i) + "'s";
+  RuntimeOptions po = *p.options;
+  po.peers.clear();
+  if (po.channel0_df1 || po.modbus_channel || po.ascii_channel)
+    return "peer " + p.name + ": its channel 0 is the Modbus RTU slave, so it cannot also be DF1, a Modbus master or "
+           "in User mode";
+  RuntimeResult pr = Runtime::create(*p.program, std::move(po));
+  if (!pr.ok()) return "peer " + p.name + ": " + pr.render_errors();
+  const ProcessorModel& pproc = pr.runtime->program_->processor;
+  if (pproc.micrologix != MicroLogixModel::ML1100 && pproc.micrologix != MicroLogixModel::ML1400)
+    return "peer " + p.name + ": a Modbus RTU slave channel 0 with the Modbus memory map is the MicroLogix 1100's and "
+           "1400's (1763-RM001C p. 530, 1766-RM001A p. 617); its processor is " + pproc.display_name;
+  Runtime& peer = *pr.runtime;
+  const std::size_t station = net.attach(peer, 0, p.name, std::move(pr.runtime), 0, 0);
+  net.leave_network(station);
+  if (std::string why = net.attach_modbus_slave(station, o, *modbus_channel_); !why.empty())
+    return "peer " + p.name + ": map: " + why;
   peer.network_ = &net;
   peer.station_ = station;
   return {};

@@ -112,6 +112,11 @@ struct PeerController {
   // the network: the peer's own channel 0 is DF1 full-duplex, configured by its options' channel0_df1 (unset:
   // its processor's defaults). The leader needs channel0_df1; one such peer at most.
   bool df1 = false;
+  // On the leader's Modbus RTU line instead (docs/semantics.md "A MicroLogix as a Modbus RTU slave"): the peer's
+  // channel 0 is a Modbus RTU slave at this address, baud rate and map, answering the leader's Modbus MSGs from
+  // its own data table. The leader's channel 0 must be a Modbus RTU master (modbus_channel); the peer a
+  // MicroLogix 1100 or 1400; its address unique on the line (the bench's modbus nodes included).
+  std::optional<modbus::SlaveOptions> modbus;
   std::shared_ptr<const Program> program;
   std::shared_ptr<const RuntimeOptions> options;
 };
@@ -365,6 +370,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::string join_peers(const std::vector<PeerController>& peers, int channel1_node,
                          const std::string& channel1_network, const std::optional<Df1Options>& channel0_df1);
   std::string join_df1_peer(MessageNetwork& net, const PeerController& p, bool leader_df1, bool joined);
+  std::string join_modbus_peer(MessageNetwork& net, const PeerController& p);
 
   std::unique_ptr<CompiledProgram> program_;
   std::shared_ptr<const ScanTimeModel> model_;

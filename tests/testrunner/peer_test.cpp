@@ -195,7 +195,7 @@ TEST(PeerTests, EthernetLoadErrorsNameTheLine) {
   EXPECT_THAT(run_ethernet("program e.slc\nip 192.168.1.10\nip 192.168.1.11\n", "test \"t\"\n  scan 1\n"),
               HasSubstr("a second 'ip' line (the first is at line 2)"));
   EXPECT_THAT(run_ethernet("program e.slc\npeer F f.slc ip\n", "test \"t\"\n  scan 1\n"),
-              HasSubstr("t.test:2:16: error: expected 'node N' (DH-485, DH+), 'ip A.B.C.D' (Ethernet) or 'df1' (the DF1 cable"));
+              HasSubstr("t.test:2:16: error: expected 'node N' (DH-485, DH+), 'ip A.B.C.D' (Ethernet), 'df1' (the DF1 cable"));
 }
 
 TEST(PeerTests, APowerCycleWithPeersIsRefused) {

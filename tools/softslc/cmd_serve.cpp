@@ -84,25 +84,8 @@ std::optional<int> parse_http(const std::string& text) {
   return n;
 }
 
-// "B3,B3,N7,N7" (or "3,3,7,7"): the four file numbers of a Modbus map.
-std::optional<modbus::Map> parse_modbus_map(const std::string& text) {
-  std::vector<int> files;
-  std::istringstream in(text);
-  std::string part;
-  while (std::getline(in, part, ',')) {
-    std::size_t at = 0;
-    while (at < part.size() && std::isalpha(static_cast<unsigned char>(part[at]))) ++at;
-    if (at == part.size() || part.size() - at > 3) return std::nullopt;
-    int n = 0;
-    for (std::size_t i = at; i < part.size(); ++i) {
-      if (!std::isdigit(static_cast<unsigned char>(part[i]))) return std::nullopt;
-      n = n * 10 + (part[i] - '0');
-    }
-    files.push_back(n);
-  }
-  if (files.size() != 4) return std::nullopt;
-  return modbus::Map{files[0], files[1], files[2], files[3]};
-}
+// "B3,B3,N7,N7" (or "3,3,7,7"): the four file numbers of a Modbus map (vm/modbus_slave.h).
+std::optional<modbus::Map> parse_modbus_map(const std::string& text) { return modbus::parse_map(text); }
 
 // Reads console commands from standard input on the io_context.
 class Console : public std::enable_shared_from_this<Console> {

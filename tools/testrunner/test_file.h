@@ -24,6 +24,7 @@
 #include "parser/program.h"
 #include "tools/testrunner/values.h"
 #include "vm/df1_link.h"
+#include "vm/modbus_slave.h"
 #include "vm/module.h"
 #include "vm/runtime.h"
 #include "vm/virtual_time.h"
@@ -172,6 +173,10 @@ struct PeerSpec {
   bool df1 = false;
   Df1Options df1_options;
   std::string df1_text;  // the settings as written (the program cache's key)
+  // `peer NAME PATH modbus [SETTING...]`: on the program's Modbus RTU line, its channel 0 a Modbus RTU slave
+  // (docs/testing.md "Modbus RTU slaves").
+  std::optional<modbus::SlaveOptions> modbus;
+  std::string modbus_text;
   Location loc;      // of the name
   Location path_loc;
 };

@@ -54,6 +54,7 @@ struct kw_ip : TAO_PEGTL_KEYWORD("ip") {};
 struct kw_channel : TAO_PEGTL_KEYWORD("channel") {};
 struct kw_network : TAO_PEGTL_KEYWORD("network") {};
 struct kw_df1 : TAO_PEGTL_KEYWORD("df1") {};
+struct kw_modbus : TAO_PEGTL_KEYWORD("modbus") {};
 struct kw_test : TAO_PEGTL_KEYWORD("test") {};
 struct kw_with : TAO_PEGTL_KEYWORD("with") {};
 struct kw_row : TAO_PEGTL_KEYWORD("row") {};
@@ -239,7 +240,11 @@ struct channel_line : seq<kw_channel, ws, must<channel_number>, ws, must<channel
 struct peer_node_part : seq<kw_node, ws, must<node_number>, opt<network_part>> {};
 struct peer_ip_part : seq<kw_ip, ws, must<ip_address>> {};
 struct peer_df1_part : df1_part {};
-struct peer_node : sor<peer_node_part, peer_df1_part, peer_ip_part> {};
+// A peer on the program's Modbus RTU line (docs/testing.md "Modbus RTU slaves"): `peer NAME PATH modbus
+// [SETTING...]`, its channel 0 a Modbus RTU slave (address=N, baud=N, map=C,D,I,H), each checked by its action.
+struct modbus_setting : seq<plus<not_one<' ', '\t', '#'>>> {};
+struct peer_modbus_part : seq<kw_modbus, star<ws, modbus_setting>> {};
+struct peer_node : sor<peer_node_part, peer_df1_part, peer_modbus_part, peer_ip_part> {};
 struct peer_line : seq<kw_peer, ws, must<peer_name>, ws, must<peer_path>, ws, must<peer_node>> {};
 struct bench_line : seq<kw_bench, ws, must<bench_path>> {};
 

@@ -54,8 +54,8 @@ template <> inline constexpr auto error_message<peer_name> =
     "expected the peer's name after 'peer' (peer B line_b.slc node 2)";
 template <> inline constexpr auto error_message<peer_path> = "expected the path of the peer's program after its name";
 template <> inline constexpr auto error_message<peer_node> =
-    "expected 'node N' (DH-485, DH+), 'ip A.B.C.D' (Ethernet) or 'df1' (the DF1 cable on channel 0) after the peer's "
-    "program";
+    "expected 'node N' (DH-485, DH+), 'ip A.B.C.D' (Ethernet), 'df1' (the DF1 cable on channel 0) or 'modbus "
+    "address=N' (a Modbus RTU slave on the program's channel 0 line) after the peer's program";
 template <> inline constexpr auto error_message<network_name> =
     "expected the network's name after 'network' (network PANEL)";
 template <> inline constexpr auto error_message<channel_number> =

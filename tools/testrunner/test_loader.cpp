@@ -79,7 +79,8 @@ class Checker {
     std::vector<ProgramCache::Peer> peers;
     for (const auto& p : tc.peers) {
       const auto [peer_actual, peer_display] = locate(p.path);
-      peers.push_back({p.name, peer_actual, peer_display, p.node, p.ip, p.network, p.df1, p.df1_options, p.df1_text});
+      peers.push_back({p.name, peer_actual, peer_display, p.node, p.ip, p.network, p.df1, p.df1_options, p.df1_text,
+                       p.modbus, p.modbus_text});
     }
     auto& entry = cache_.load(actual, display, bench, bench_display, processor ? &*processor : nullptr, peers, tc.node,
                               tc.ip, {tc.channel1_node, tc.channel1_network, tc.channel0_df1, tc.channel0_text});
@@ -461,7 +462,8 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
     if (channel1.channel0_df1) key += "\nchannel 0 df1" + channel1.channel0_text;
     for (const auto& p : peers)
       key += "\npeer " + p.name + " " + std::to_string(p.node) + " " + std::to_string(p.ip) + " " + p.network + " " +
-             (p.df1 ? "df1" + p.df1_text + " " : std::string()) + cache_key(p.path);
+             (p.df1 ? "df1" + p.df1_text + " " : std::string()) +
+             (p.modbus ? "modbus" + p.modbus_text + " " : std::string()) + cache_key(p.path);
   }
   if (auto it = entries_.find(key); it != entries_.end()) return it->second;
   Entry& e = entries_[key];
@@ -536,6 +538,7 @@ ProgramCache::Entry& ProgramCache::load(const std::filesystem::path& path, const
     peer.ip = p.ip;
     peer.network = p.network;
     peer.df1 = p.df1;
+    peer.modbus = p.modbus;
     if (p.df1) peer_setup.options.channel0_df1 = p.df1_options;
     peer.program = std::make_shared<const Program>(std::move(*plr.program));
     peer.options = std::make_shared<const RuntimeOptions>(std::move(peer_setup.options));

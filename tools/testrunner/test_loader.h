@@ -61,6 +61,8 @@ class ProgramCache {
     bool df1 = false;     // joined by the DF1 cable to the program's channel 0
     Df1Options df1_options;
     std::string df1_text;
+    std::optional<modbus::SlaveOptions> modbus;  // on the program's Modbus RTU line, its channel 0 a slave
+    std::string modbus_text;
   };
 
   // Loads the program at `path` (shown as `display`) with the bench at `bench` (shown as

@@ -50,6 +50,9 @@ struct ParsedLine {
   bool df1 = false;       // channel 0 df1 ..., peer ... df1 ...
   Df1Options df1_options;
   std::string df1_text;
+  bool modbus = false;    // peer ... modbus ...
+  modbus::SlaveOptions modbus_options;
+  std::string modbus_text;
   std::string test_name;
   Location name_loc;  // the opening quote of the test name
   std::vector<std::pair<std::string, Location>> columns;
@@ -486,6 +489,20 @@ template <> struct action<df1_setting> {
   static void apply(const Input& in, LineState& s) {
     if (std::string why = df1_parse_option(in.string_view(), s.out.df1_options); !why.empty()) fail_at(in, 0, "df1: " + why);
     s.out.df1_text += " " + in.string();
+  }
+};
+template <> struct action<kw_modbus> {
+  template <typename Input>
+  static void apply(const Input&, LineState& s) {
+    s.out.modbus = true;
+  }
+};
+template <> struct action<modbus_setting> {
+  template <typename Input>
+  static void apply(const Input& in, LineState& s) {
+    if (std::string why = modbus::parse_slave_option(in.string_view(), s.out.modbus_options); !why.empty())
+      fail_at(in, 0, "modbus: " + why);
+    s.out.modbus_text += " " + in.string();
   }
 };
 template <> struct action<kw_df1> {
@@ -1125,6 +1142,10 @@ class Driver {
         peer.node = static_cast<int>(pl.node);
         peer.ip = pl.ip;
         peer.network = pl.network;
+        if (pl.modbus) {
+          peer.modbus = pl.modbus_options;
+          peer.modbus_text = pl.modbus_text;
+        }
         if (pl.df1) {
           peer.df1 = true;
           peer.df1_options = pl.df1_options;

@@ -101,8 +101,8 @@ TEST(SnStatus, MBlockReadsAreReadMWordByWord) {
   RioScanner& sn = b.sn();
   for (int w = 100; w < 120; ++w) ASSERT_EQ(sn.write_m(MFile::M0, w, static_cast<std::uint16_t>(7 * w + 1)), MAccess::Ok);
   for (const MFile f : {MFile::M0, MFile::M1})
-    for (const auto [word, n] : {std::pair{0, 16}, std::pair{8, 4}, std::pair{100, 4}, std::pair{106, 8}, std::pair{116, 8},
-                                 std::pair{109, 1}, std::pair{110, 2}, std::pair{-1, 3}, std::pair{200, 0}, std::pair{5, 0}}) {
+    for (const auto& [word, n] : {std::pair{0, 16}, std::pair{8, 4}, std::pair{100, 4}, std::pair{106, 8}, std::pair{116, 8},
+                                  std::pair{109, 1}, std::pair{110, 2}, std::pair{-1, 3}, std::pair{200, 0}, std::pair{5, 0}}) {
       std::vector<std::uint16_t> block(static_cast<std::size_t>(n), 0xEEEE), words(static_cast<std::size_t>(n), 0xEEEE);
       std::size_t done = 99;
       const MAccess got = sn.read_m_block(f, word, block, done);

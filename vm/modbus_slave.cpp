@@ -10,15 +10,6 @@ namespace softslc::modbus {
 
 namespace {
 
-std::uint16_t be16(std::span<const std::uint8_t> b, std::size_t at) {
-  return static_cast<std::uint16_t>(b[at] << 8 | b[at + 1]);
-}
-
-void put16(std::vector<std::uint8_t>& out, std::uint16_t v) {
-  out.push_back(static_cast<std::uint8_t>(v >> 8));
-  out.push_back(static_cast<std::uint8_t>(v & 0xFF));
-}
-
 // Where a range of protocol addresses lands: a data file and its first word (registers) or bit.
 struct Place {
   int file = 0;

@@ -119,6 +119,17 @@ std::optional<Map> parse_map(const std::string& text);
 // Checks a map against the program's files: empty when usable, else what is wrong.
 std::string check_map(const Map& map, const pccc::Target& target);
 
+// Modbus puts 16-bit fields high byte first (Modbus Application Protocol V1.1b3, 4.2); the TCP
+// framing (server/modbus.cpp) and the PDUs share these.
+inline std::uint16_t be16(std::span<const std::uint8_t> b, std::size_t at) {
+  return static_cast<std::uint16_t>(b[at] << 8 | b[at + 1]);
+}
+
+inline void put16(std::vector<std::uint8_t>& out, std::uint16_t v) {
+  out.push_back(static_cast<std::uint8_t>(v >> 8));
+  out.push_back(static_cast<std::uint8_t>(v & 0xFF));
+}
+
 // Executes one request PDU (function code and data) and returns the reply PDU: the function and
 // its data, or function | 80h and one exception code. Modbus TCP (handle below) and Modbus RTU
 // (server/modbus_rtu.h) both answer through it, and so does a simulated slave controller (vm/message_network.h), so the map, the exception codes and the writes

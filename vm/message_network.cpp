@@ -767,7 +767,6 @@ void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t 
 
 void MessageNetwork::service_channel(std::size_t station, VirtualTime at, int channel) {
   Channel& ch = stations_[station].channels[static_cast<std::size_t>(channel)];
-  const bool ethernet = channel_link(station, channel) == MessageLink::Ethernet;
   // 2. Message timers (SLC 5/03-5/05): ER, TO and 37h once the timeout has passed since the rung went
   // true; the accumulator (word 10) shows the whole seconds so far (docs/semantics.md "MSG").
   std::vector<std::uint64_t> expired, late;
@@ -779,7 +778,8 @@ void MessageNetwork::service_channel(std::size_t station, VirtualTime at, int ch
       set_word(station, m.in.block + (m.in.micrologix ? mg::kElapsed : 10),
                static_cast<std::uint16_t>(std::min<Nanoseconds>(elapsed / kNsPerS, 32767)));
       if (m.timeout > 0 && elapsed >= m.timeout) expired.push_back(m.serial);
-      else if (ethernet && m.acked && at - *m.acked >= msg::kReplyTimeoutNs)
+      else if (m.acked && at - *m.acked >= msg::kReplyTimeoutNs &&
+               channel_link(station, channel) == MessageLink::Ethernet)
         late.push_back(m.serial);
     }
   for (std::uint64_t serial : expired)
@@ -852,7 +852,13 @@ void MessageNetwork::scanned(std::size_t station, VirtualTime end) {
   stations_[station].service_due = end;
   if (station != 0 || driving_) return;
   driving_ = true;
-  run_lockstep(end);
+  // Alone, with no Modbus line: the lockstep would run the leader's servicing and nothing else.
+  if (stations_.size() == 1 && !modbus_master_) {
+    stations_[0].service_due.reset();
+    service(0, end, 0x3);
+  } else {
+    run_lockstep(end);
+  }
   driving_ = false;
 }
 

@@ -933,14 +933,22 @@ void Runtime::message_start(const MessageInstruction& m) {
   if (m.modbus_function != 0 || (m.micrologix && m.channel == 0 && modbus_channel_))
     return ModbusMaster::refuse(*process_host_, m, modbus::kChannelProtocol);
   MessageNetwork& net = network();
-  // An SLC 5/03-5/05 channel 0 that nothing configured is at its factory configuration, DF1 full-duplex
-  // at the processor's defaults (docs/semantics.md "Channel 0"): a MSG on it goes out on the cable and,
-  // with nobody at the other end, ends with 07h once the ACK timeouts and ENQ retries are spent. A channel
-  // 0 the bench makes a User-mode (ASCII) port is no DF1 port: the MSG ends with 12h there.
-  if (m.channel == 0 && !m.micrologix && !ascii_channel_ && !net.df1_port(station_) &&
-      has_df1_channel0(program_->processor) && !program_->processor.is_micrologix())
-    net.attach_df1(station_, df1_defaults(program_->processor));
+  if (m.channel == 0 && !m.micrologix) attach_default_df1_port();
   net.start(station_, m);
+}
+
+// An SLC 5/03-5/05 channel 0 that nothing configured is at its factory configuration, DF1 full-duplex
+// at the processor's defaults (docs/semantics.md "Channel 0"): a MSG on it goes out on the cable and,
+// with nobody at the other end, ends with 07h once the ACK timeouts and ENQ retries are spent. A channel
+// 0 the bench makes a User-mode (ASCII) port is no DF1 port: the MSG ends with 12h there. The port is
+// attached when something first uses it: a MSG on channel 0, or the test's `device DF1` line.
+bool Runtime::default_df1_port() const {
+  return !ascii_channel_ && has_df1_channel0(program_->processor) && !program_->processor.is_micrologix();
+}
+void Runtime::attach_default_df1_port() {
+  if (!default_df1_port()) return;
+  MessageNetwork& net = network();
+  if (!net.df1_port(station_)) net.attach_df1(station_, df1_defaults(program_->processor));
 }
 void Runtime::message_abort(std::uint32_t block) {
   if (modbus_channel_ && modbus_channel_->abort(block)) return;
@@ -2292,7 +2300,9 @@ RuntimeStatus Runtime::inject(std::string_view device, std::string_view fault, s
     if (st.kind == DeviceStatus::Kind::Refused)
       return RuntimeStatus::failure("device " + f.device + ": " + st.message);
   }
-  // The DF1 link on channel 0: its cable and the noise on it (docs/testing.md "DF1 full-duplex").
+  // The DF1 link on channel 0: its cable and the noise on it (docs/testing.md "DF1 full-duplex"), also on a
+  // channel 0 at its factory configuration before any MSG used it.
+  if (f.device == kDf1DeviceName) attach_default_df1_port();
   if (f.device == kDf1DeviceName && network_ && network_->df1_port(station_)) {
     if (std::string why = network_->df1_inject(station_, f.fault, f.args); !why.empty())
       return RuntimeStatus::failure("device " + f.device + ": " + why);
@@ -2336,6 +2346,10 @@ std::optional<std::vector<std::int64_t>> Runtime::observe(std::string_view devic
     if (auto v = modbus_channel_->observe(device, what)) return v;
   if (device == kDf1DeviceName && network_ && network_->df1_port(station_))
     if (auto v = network_->df1_observe(station_, what, clock_.now())) return std::vector<std::int64_t>{*v};
+  // A factory-configured channel 0 that nothing has used yet: its port has counted nothing.
+  if (device == kDf1DeviceName && default_df1_port() && !(network_ && network_->df1_port(station_)) &&
+      df1_count_named(what))
+    return std::vector<std::int64_t>{0};
   if (ascii_channel_ && ascii_channel_->device().name() == device) {
     // The channel's own counts, then what the device offers.
     if (what == "buffered") return std::vector<std::int64_t>{static_cast<std::int64_t>(ascii_channel_->buffered())};

@@ -365,6 +365,10 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   void module_instruction(int slot, ModuleInstructionContext& ctx) override;
   void message_start(const MessageInstruction& m) override;
   void message_abort(std::uint32_t block) override;
+  // Channel 0 of an SLC 5/03-5/05 that nothing configured is a DF1 full-duplex port at its defaults
+  // (default_df1_port), attached when first used (a MSG on it, a `device DF1` line).
+  bool default_df1_port() const;
+  void attach_default_df1_port();
   void service_communications(std::uint16_t channels, VirtualTime at) override;
   MessageNetwork& network();
   std::string join_peers(const std::vector<PeerController>& peers, int channel1_node,

@@ -408,6 +408,29 @@ TEST(Df1Msg, AnUnconfiguredChannel0IsDf1FullDuplexAtItsDefaults) {
   EXPECT_LE(a->now() - sent, expected + a->stats().max);
 }
 
+// The test's `device DF1` line reaches a factory-configured channel 0 before any MSG has used it: the port is the one
+// the MSG then uses (its counters count the MSG's ENQs), not an unknown device.
+TEST(Df1Msg, TheDf1DeviceOfAnUnconfiguredChannel0IsThereBeforeAnyMsg) {
+  std::string errors;
+  auto a = try_build(slc(kRead), errors);
+  ASSERT_TRUE(a) << errors;
+  const auto enqs = [&] { return a->observe("DF1", "enqs sent"); };
+  ASSERT_TRUE(enqs());
+  EXPECT_EQ(*enqs(), std::vector<std::int64_t>{0});
+  EXPECT_TRUE(a->inject("DF1", "cable removed"));
+  const RuntimeStatus bad = a->inject("DF1", "unplugged");
+  EXPECT_FALSE(bad);
+  EXPECT_NE(bad.message.find("the DF1 link takes"), std::string::npos) << bad.message;
+  ASSERT_TRUE(a->set_mode(Mode::Run));
+  ASSERT_TRUE(a->set("B3:0/0", Value::bit(true)));
+  const VirtualTime start = a->now();
+  while (!a->value("N9:0/12").as_bool() && a->now() < start + 6 * kNsPerS) a->scan(1);
+  ASSERT_TRUE(a->value("N9:0/12").as_bool());
+  EXPECT_EQ(a->value("N9:0").as_int() & 0xFF, 0x07);
+  // Three ENQ retries, the defaults (1766-RM001A p. 592, taken for the SLC [U]).
+  EXPECT_EQ(*enqs(), std::vector<std::int64_t>{3});
+}
+
 TEST(Df1Msg, TheMicroLogix1000OnDf1UsesItsOwnDefaults) {
   // The 1000 defaults to 9600 baud (table 6.2), the SLC to 19,200: no answer until the SLC is set to 9600.
   const std::string ml1000 = ml("Bul.1761", "SOR XIC B3:0/0 MSG READ 500CPU N7:50 7 N7:0 5 2 N10:0 EOR");

@@ -526,9 +526,10 @@ std::vector<std::uint8_t> files_run_once(const Program& program) {
     std::size_t f = n;
     bool ok = facts[f].present;
     for (int depth = 0; ok && depth < 257; ++depth) {
-      if (facts[f].first_label <= facts[f].last_jump) ok = false;
-      else if (f == 2) break;
-      else if (facts[f].callers.size() != 1 || facts[f].callers[0] == static_cast<int>(f)) ok = false;
+      // A jump back over a label, or a file that is not called from exactly one other file, runs more than once.
+      const bool backward_jump = facts[f].first_label <= facts[f].last_jump;
+      if (!backward_jump && f == 2) break;
+      if (backward_jump || facts[f].callers.size() != 1 || facts[f].callers[0] == static_cast<int>(f)) ok = false;
       else f = static_cast<std::size_t>(facts[f].callers[0]);
       if (depth == 256) ok = false;
     }
@@ -2226,8 +2227,9 @@ MAccess Runtime::read_m_block(int slot, MFile f, int word, std::span<std::uint16
   if (!m) return MAccess::NoSuchWord;
   if (probing_) [[unlikely]] reach(slot);
   const MAccess a = m->read_m_block(f, word, out, done);
-  if (probing_) [[unlikely]]
+  if (probing_) [[unlikely]] {
     for (std::size_t i = 0; i < done; ++i) m_reads_.push_back({slot, f, word + static_cast<int>(i), out[i]});
+  }
   return a;
 }
 

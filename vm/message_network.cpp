@@ -116,6 +116,7 @@ void MessageNetwork::attach_port(std::size_t station, int channel, int node, int
   Station& s = stations_[station];
   s.port_node[static_cast<std::size_t>(channel & 1)] = node;
   s.port_segment[static_cast<std::size_t>(channel & 1)] = segment;
+  refresh_links(station);
 }
 
 std::optional<std::size_t> MessageNetwork::station_on(int segment, int node) const {
@@ -151,7 +152,11 @@ int MessageNetwork::network_channel(std::size_t station) const {
   return family == ProcessorFamily::Slc502 ? 0 : 1;
 }
 
-MessageLink MessageNetwork::channel_link(std::size_t station, int channel) const {
+void MessageNetwork::refresh_links(std::size_t station) {
+  for (int c = 0; c < 2; ++c) stations_[station].links[static_cast<std::size_t>(c)] = find_channel_link(station, c);
+}
+
+MessageLink MessageNetwork::find_channel_link(std::size_t station, int channel) const {
   if (channel == 0 && stations_[station].df1) return MessageLink::Df1;
   // A channel 0 that is a Modbus RTU slave sends no MSG: 12h, as a PCCC MSG on a Modbus master's (decision).
   if (channel == 0 && stations_[station].modbus_slave) return MessageLink::None;
@@ -198,9 +203,17 @@ MessageNetwork::Message* MessageNetwork::find(std::size_t station, std::uint64_t
 }
 
 void MessageNetwork::remove(std::size_t station, std::uint64_t serial) {
+  // A serial is never reused: the first message found is the only one.
+  const auto erase = [&](std::vector<Message>& list) {
+    for (auto it = list.begin(); it != list.end(); ++it)
+      if (it->serial == serial) {
+        list.erase(it);
+        return true;
+      }
+    return false;
+  };
   for (Channel& ch : stations_[station].channels)
-    for (auto* list : {&ch.buffers, &ch.queue})
-      std::erase_if(*list, [&](const Message& m) { return m.serial == serial; });
+    if (erase(ch.buffers) || erase(ch.queue)) return;
 }
 
 // ---- The instruction ---------------------------------------------------------------------------------------
@@ -221,9 +234,10 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& instru
   const DataTableLayout& layout = *rt.compiled().layout;
   // A message of this control block still in a buffer or the queue is replaced: the program cleared
   // EN before DN or ER, which the manual forbids (RM 12-30); the new one wins.
-  for (Channel& ch : stations_[station].channels)
-    for (auto* list : {&ch.buffers, &ch.queue})
-      std::erase_if(*list, [&](const Message& m) { return m.in.block == in.block; });
+  for (Channel& ch : stations_[station].channels) {
+    if (!ch.buffers.empty()) std::erase_if(ch.buffers, [&](const Message& m) { return m.in.block == in.block; });
+    if (!ch.queue.empty()) std::erase_if(ch.queue, [&](const Message& m) { return m.in.block == in.block; });
+  }
 
   // The false-to-true transition resets DN, ER, ST, NR, TO and the error code (RM 12-28, 12-29).
   std::uint16_t w0 = status(station, in);
@@ -429,6 +443,7 @@ void MessageNetwork::attach_df1(std::size_t station, const Df1Config& config) {
   s.df1->config = config;
   // A channel 0 that is a DF1 port is on no DH-485 network (a MicroLogix's, a 5/02 has none).
   s.port_node[0] = -1;
+  refresh_links(station);
 }
 
 void MessageNetwork::join_df1(std::size_t a, std::size_t b) {
@@ -441,6 +456,7 @@ std::string MessageNetwork::attach_modbus_slave(std::size_t station, const modbu
   DataTableTarget target(stations_[station].rt->data());
   if (std::string why = modbus::check_map(options.map, target); !why.empty()) return why;
   stations_[station].modbus_slave = options;
+  refresh_links(station);
   modbus_master_ = &master;
   master.set_peer_line(this);
   return {};
@@ -484,6 +500,7 @@ void MessageNetwork::serve_modbus(std::size_t station, VirtualTime at) {
 
 void MessageNetwork::leave_network(std::size_t station) {
   stations_[station].port_node[static_cast<std::size_t>(network_channel(station) & 1)] = -1;
+  refresh_links(station);
 }
 
 const Df1Port* MessageNetwork::df1_port(std::size_t station) const {
@@ -617,7 +634,11 @@ std::optional<std::int64_t> MessageNetwork::df1_observe(std::size_t station, std
 // ---- Servicing ---------------------------------------------------------------------------------------------
 
 void MessageNetwork::post(std::size_t to, VirtualTime arrival, Frame f) {
-  stations_[to].inbox.emplace(std::pair{arrival, next_frame_++}, std::move(f));
+  // After every frame arriving no later: the new one has the largest sequence yet.
+  std::vector<Station::Arrival>& inbox = stations_[to].inbox;
+  const auto at = std::upper_bound(inbox.begin(), inbox.end(), arrival,
+                                   [](VirtualTime t, const Station::Arrival& a) { return t < a.at; });
+  inbox.insert(at, Station::Arrival{arrival, next_frame_++, std::move(f)});
 }
 
 MessageNetwork::Frame MessageNetwork::request_frame(std::size_t station, const Message& m, int channel) {
@@ -749,13 +770,14 @@ void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t 
   // 1. What reached this station's serviced channels by now, in arrival order (each frame belongs to the
   // channel it arrived on: a request to the port at the node it names, an acknowledgement or a reply to
   // the channel the message went out on). A frame a request posts here arrives after `at`.
-  for (auto it = st.inbox.begin(); it != st.inbox.end() && it->first.first <= at;) {
-    if (!(channel_mask & (1u << (it->second.channel & 1)))) {
-      ++it;
+  // (A frame receive posts here arrives after every frame before index i: it goes in at i or later.)
+  for (std::size_t i = 0; i < st.inbox.size() && st.inbox[i].at <= at;) {
+    if (!(channel_mask & (1u << (st.inbox[i].frame.channel & 1)))) {
+      ++i;
       continue;
     }
-    Frame f = std::move(it->second);
-    it = st.inbox.erase(it);
+    Frame f = std::move(st.inbox[i].frame);
+    st.inbox.erase(st.inbox.begin() + static_cast<std::ptrdiff_t>(i));
     receive(station, at, f);
   }
   if ((channel_mask & 1u) && !st.modbus_requests.empty()) serve_modbus(station, at);
@@ -769,23 +791,25 @@ void MessageNetwork::service_channel(std::size_t station, VirtualTime at, int ch
   Channel& ch = stations_[station].channels[static_cast<std::size_t>(channel)];
   // 2. Message timers (SLC 5/03-5/05): ER, TO and 37h once the timeout has passed since the rung went
   // true; the accumulator (word 10) shows the whole seconds so far (docs/semantics.md "MSG").
-  std::vector<std::uint64_t> expired, late;
-  for (auto* list : {&ch.buffers, &ch.queue})
-    for (Message& m : *list) {
-      if (m.in.slc502) continue;
-      const Nanoseconds elapsed = at - m.started;
-      // The MicroLogix keeps the seconds in MG word 19, "time since message started" (1762-RM001C p. 21-4).
-      set_word(station, m.in.block + (m.in.micrologix ? mg::kElapsed : 10),
-               static_cast<std::uint16_t>(std::min<Nanoseconds>(elapsed / kNsPerS, 32767)));
-      if (m.timeout > 0 && elapsed >= m.timeout) expired.push_back(m.serial);
-      else if (m.acked && at - *m.acked >= msg::kReplyTimeoutNs &&
-               channel_link(station, channel) == MessageLink::Ethernet)
-        late.push_back(m.serial);
-    }
-  for (std::uint64_t serial : expired)
+  // Ended after the walk (finish removes the message): those whose timer expired, then Ethernet's
+  // acknowledged ones with no reply within the channel's MSG Reply Timeout (1747-UM011G p. 242).
+  expired_.clear();
+  late_.clear();
+  const bool ethernet = channel_link(station, channel) == MessageLink::Ethernet;
+  DataTable& d = stations_[station].rt->data();
+  for (std::size_t i = 0, n = ch.buffers.size() + ch.queue.size(); i < n; ++i) {
+    const Message& m = i < ch.buffers.size() ? ch.buffers[i] : ch.queue[i - ch.buffers.size()];
+    if (m.in.slc502) continue;
+    const Nanoseconds elapsed = at - m.started;
+    // The MicroLogix keeps the seconds in MG word 19, "time since message started" (1762-RM001C p. 21-4).
+    const std::uint32_t word = m.in.block + (m.in.micrologix ? mg::kElapsed : 10);
+    if (word < d.size()) d.set_word(word, static_cast<std::uint16_t>(std::min<std::int64_t>(m.seconds_at(at), 32767)));
+    if (m.timeout > 0 && elapsed >= m.timeout) expired_.push_back(m.serial);
+    else if (ethernet && m.acked && at - *m.acked >= msg::kReplyTimeoutNs) late_.push_back(m.serial);
+  }
+  for (std::uint64_t serial : expired_)
     if (Message* m = find(station, serial)) finish(station, *m, msg::kTimedOut, msg::kTO);
-  // Ethernet: acknowledged, but no reply within the channel's MSG Reply Timeout (1747-UM011G p. 242).
-  for (std::uint64_t serial : late)
+  for (std::uint64_t serial : late_)
     if (Message* m = find(station, serial)) finish(station, *m, msg::kReplyTimeout);
   // 3. The queue into free buffers, first in first out (RM 12-41: "at end of scan or SVC").
   while (!ch.queue.empty() && ch.buffers.size() < buffer_limit(ch)) {
@@ -806,7 +830,7 @@ std::optional<VirtualTime> MessageNetwork::quiet_until(std::size_t station, Virt
   if (stations_.size() != 1) return std::nullopt;
   const Station& st = stations_[station];
   VirtualTime until = std::numeric_limits<VirtualTime>::max();
-  if (!st.inbox.empty()) until = st.inbox.begin()->first.first;
+  if (!st.inbox.empty()) until = st.inbox.front().at;
   for (const Channel& ch : st.channels) {
     if (!ch.queue.empty() && ch.buffers.size() < buffer_limit(ch)) return std::nullopt;
     for (const Message& m : ch.buffers)
@@ -816,7 +840,8 @@ std::optional<VirtualTime> MessageNetwork::quiet_until(std::size_t station, Virt
       for (const Message& m : *list) {
         // service_channel's step 2: the seconds word, the message timer, Ethernet's reply timeout.
         if (m.in.slc502) continue;
-        until = std::min(until, m.started + ((at - m.started) / kNsPerS + 1) * kNsPerS);
+        m.seconds_at(at);
+        until = std::min(until, m.started + m.second_end);
         if (m.timeout > 0) until = std::min(until, m.started + m.timeout);
         if (ethernet && m.acked) until = std::min(until, *m.acked + msg::kReplyTimeoutNs);
       }
@@ -825,22 +850,27 @@ std::optional<VirtualTime> MessageNetwork::quiet_until(std::size_t station, Virt
 }
 
 void MessageNetwork::holdings(std::size_t station, std::vector<std::uint64_t>& out) const {
-  out.clear();
   const Station& st = stations_[station];
-  for (const Channel& ch : st.channels) {
+  std::size_t n = 2 * st.inbox.size();
+  for (const Channel& ch : st.channels) n += 2 + 3 * (ch.buffers.size() + ch.queue.size());
+  out.resize(n);  // written in place: a probe asks at every scan it makes
+  std::uint64_t* o = out.data();
+  const auto put = [&](const std::vector<Message>& list) {
     // The count first, so that a message moved from the queue into a buffer reads differently.
-    for (const auto* list : {&ch.buffers, &ch.queue}) {
-      out.push_back(list->size());
-      for (const Message& m : *list) {
-        out.push_back(m.serial);
-        out.push_back(m.sent ? 1 : 0);
-        out.push_back(m.acked ? static_cast<std::uint64_t>(*m.acked) + 1 : 0);
-      }
+    *o++ = list.size();
+    for (const Message& m : list) {
+      *o++ = m.serial;
+      *o++ = m.sent ? 1 : 0;
+      *o++ = m.acked ? static_cast<std::uint64_t>(*m.acked) + 1 : 0;
     }
+  };
+  for (const Channel& ch : st.channels) {
+    put(ch.buffers);
+    put(ch.queue);
   }
-  for (const auto& [key, frame] : st.inbox) {
-    out.push_back(static_cast<std::uint64_t>(key.first));
-    out.push_back(key.second);
+  for (const Station::Arrival& a : st.inbox) {
+    *o++ = static_cast<std::uint64_t>(a.at);
+    *o++ = a.sequence;
   }
 }
 

@@ -43,7 +43,6 @@
 
 #include <array>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -292,6 +291,19 @@ class MessageNetwork final : public ModbusPeerLine {
     std::uint16_t type_code = 0;
     int target_element = 0;
     VirtualTime started = 0;  // the timer starts with the rung (1762-RM001C p. 21-12)
+    // The whole seconds since `started` at the last call of seconds_at, and when the next second begins
+    // (after `started`): every servicing and quiet_until ask, most of them within the same second, and
+    // virtual time only moves forward, so the division is made once a second.
+    mutable std::int64_t seconds = 0;
+    mutable Nanoseconds second_end = kNsPerS;
+    std::int64_t seconds_at(VirtualTime at) const {
+      const Nanoseconds elapsed = at - started;
+      if (elapsed >= second_end) {
+        seconds = elapsed / kNsPerS;
+        second_end = (seconds + 1) * kNsPerS;
+      }
+      return seconds;
+    }
     Nanoseconds timeout = 0;  // 0: no timer
     bool sent = false;
     std::optional<VirtualTime> acked;  // Ethernet: when the target acknowledged (the reply timeout runs from there)
@@ -332,7 +344,17 @@ class MessageNetwork final : public ModbusPeerLine {
     // not on it (a MicroLogix 1100/1400's other channel, a 1764-LRP's channel 1 given no network).
     std::array<int, 2> port_node{-1, -1};
     std::array<int, 2> port_segment{0, 0};
-    std::map<std::pair<VirtualTime, std::uint64_t>, Frame> inbox;  // by (arrival, sequence)
+    // The frames on their way to this station, by (arrival, sequence): a few at most, so a sorted vector
+    // (a post allocates nothing once it has grown).
+    struct Arrival {
+      VirtualTime at = 0;
+      std::uint64_t sequence = 0;
+      Frame frame;
+    };
+    std::vector<Arrival> inbox;
+    // channel_link of each channel, kept by refresh_links whenever what decides it changes (attach, a
+    // port, DF1, a Modbus slave): asked at every servicing.
+    std::array<MessageLink, 2> links{};
     std::optional<VirtualTime> service_due;
     // Channel 0 as a DF1 full-duplex port, the station at the cable's other end, and whether the cable is
     // connected (kept the same at both ends).
@@ -392,13 +414,16 @@ class MessageNetwork final : public ModbusPeerLine {
   // the other channel of a MicroLogix 1100/1400 (Ethernet when it is on DH-485, DH-485 when it is on
   // Ethernet) a link no other station is on (docs/semantics.md "The MicroLogix MSG on Ethernet"); on a
   // 1764-LRP's channel 1 given no network, DH-485 with no other station.
-  MessageLink channel_link(std::size_t station, int channel) const;
+  MessageLink channel_link(std::size_t station, int channel) const { return stations_[station].links[channel & 1]; }
+  MessageLink find_channel_link(std::size_t station, int channel) const;
+  void refresh_links(std::size_t station);
 
   MessageLink link_;
   std::vector<Station> stations_;
   std::uint64_t next_serial_ = 1;
   std::uint64_t next_frame_ = 1;
   bool driving_ = false;
+  std::vector<std::uint64_t> expired_, late_;  // service_channel's, kept so that a servicing allocates nothing
   // The leader's channel 0 as a Modbus RTU master when some station's channel 0 is a slave on its line: the
   // lockstep then runs the leader's events in time order with the other stations' scans (run_lockstep).
   ModbusMaster* modbus_master_ = nullptr;

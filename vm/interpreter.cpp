@@ -115,7 +115,10 @@ Interpreter::Interpreter(const CompiledProgram& program, DataTable& table, Chass
       if (it == slot.options.end() || slot.slot < 1 || slot.slot > 30) continue;
       int file = 0;
       for (char c : it->second) file = (c >= '0' && c <= '9' && file < 1000) ? file * 10 + (c - '0') : 1000;
-      if (file >= 3 && file <= 255 && program.file(file)) isr_file_[static_cast<std::size_t>(slot.slot)] = file;
+      if (file >= 3 && file <= 255 && program.file(file)) {
+        isr_file_[static_cast<std::size_t>(slot.slot)] = file;
+        any_isr_ = true;
+      }
     }
   }
   if (dii_supported_) s46_ = L.status_word(status::kDiiFile);

@@ -546,6 +546,7 @@ class Interpreter {
   std::uint32_t dii_card_ = 0;
   bool io_supported_ = false;      // the processor has the I/O event interrupt (SLC 5/02-5/05)
   bool indirect_bit_runs_on_ = false;  // MicroLogix: N7:0/[N10:0] past bit 15 counts on into N7:1 ...
+  bool any_isr_ = false;               // some slot has an ISR file (isr_file_, fixed at construction)
   std::uint32_t s25_ = 0, s27_ = 0, s32_ = 0, s46_ = 0;
   std::array<int, 31> isr_file_{};        // per slot, OPTION ISR (0 = none)
   std::array<bool, 31> io_requested_{};   // a module's request not yet serviced

@@ -723,9 +723,8 @@ bool Interpreter::nothing_pending_between_scans() const {
   // counts its writes as between-scan writes, which stop the repeats), and its end-of-scan
   // configuration from S:46-S:50, table words the probe compares, changes nothing when they are the
   // ones it applied. A pending one runs at the next interrupt point.
-  const bool no_isr = std::all_of(isr_file_.begin(), isr_file_.end(), [](int f) { return f == 0; });
   const bool no_dii_pending = dii_.file == 0 || (table_.words()[s2_] & status::kDiiPending) == 0;
-  return sti_queued_ == 0 && no_dii_pending && no_isr && events_queued_ == 0 && !hsc_.pulses_arriving() &&
+  return sti_queued_ == 0 && no_dii_pending && !any_isr_ && events_queued_ == 0 && !hsc_.pulses_arriving() &&
          pulse_trains_.idle() && coverage_ == nullptr;
 }
 
@@ -804,6 +803,7 @@ void Interpreter::event_input(int slot, int word, std::uint16_t before, std::uin
 }
 
 void Interpreter::collect_counter_events() {
+  if (!hsc_.has_events()) return;
   for (int i = 0; i < event_count_; ++i) {
     EventInterrupt& e = events_[static_cast<std::size_t>(i)];
     if (!e.counter) continue;

@@ -50,8 +50,9 @@ void MicroLogixHsc::enter_run(std::uint16_t* w, std::int64_t now) {
 
 void MicroLogixHsc::advance(std::uint16_t* w, std::int64_t now) {
   for (int c = 0; c < count_; ++c) {
-    catch_up(w, c, now);
     Counter& k = counters_[static_cast<std::size_t>(c)];
+    // No source and nothing delivered since the last update: catch_up would count nothing.
+    if (k.source.rate != 0 || k.seen != k.source.before) catch_up(w, c, now);
     const bool sp = bit_of(w[base(c) + hsc::kBits], hsc::kSetParametersBit);
     if (sp && !k.set_parameters) load_from_file(w, c);
     k.set_parameters = sp;

@@ -68,6 +68,14 @@ class MicroLogixHsc {
     std::int64_t high = 0, overflow = 0;
   };
   Events take_events(int counter);
+  // Some counter has events not yet taken (asked at every scan before taking them one by one).
+  bool has_events() const {
+    for (int c = 0; c < count_; ++c) {
+      const Events& e = counters_[static_cast<std::size_t>(c)].events;
+      if (e.high != 0 || e.overflow != 0) return true;
+    }
+    return false;
+  }
 
  private:
   struct Config {

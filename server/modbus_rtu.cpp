@@ -33,15 +33,6 @@ bool crc_ok(std::span<const std::uint8_t> frame) {
   return frame[frame.size() - 2] == (crc & 0xFF) && frame[frame.size() - 1] == (crc >> 8);
 }
 
-// The counter of a function code in RtuCounters::function, or -1.
-int function_counter(std::uint8_t fc) {
-  static constexpr std::uint8_t kCounted[] = {kReadCoils, kReadDiscreteInputs, kReadHoldingRegisters,
-                                              kReadInputRegisters, kWriteSingleCoil, kWriteSingleRegister,
-                                              kDiagnostics, kWriteMultipleCoils, kWriteMultipleRegisters};
-  const auto* at = std::find(std::begin(kCounted), std::end(kCounted), fc);
-  return at == std::end(kCounted) ? -1 : static_cast<int>(at - std::begin(kCounted));
-}
-
 }  // namespace
 
 std::uint16_t crc16(std::span<const std::uint8_t> bytes) {
@@ -63,11 +54,7 @@ std::vector<std::uint8_t> with_crc(std::vector<std::uint8_t> bytes) {
 CommParameters RtuSlave::comm_parameters() const {
   CommParameters p = modbus::comm_parameters(map_);
   p[6] = address_;
-  for (std::size_t i = 0; i < std::size(counters_.function); ++i) p[17 + i] = counters_.function[i];
-  p[27] = counters_.responded;
-  p[28] = counters_.to_slave;
-  p[29] = counters_.seen;
-  p[30] = counters_.link_errors;
+  counters_.write(p);
   return p;
 }
 
@@ -135,9 +122,8 @@ void RtuSlave::frame(std::span<const std::uint8_t> f, pccc::Target& target, RtuE
     events.log.push_back("Modbus RTU: a frame for slave " + std::to_string(to) + " ignored");
     return;
   }
-  ++counters_.to_slave;
   const auto pdu = f.subspan(1, f.size() - 3);
-  if (const int c = function_counter(pdu[0]); c >= 0) ++counters_.function[c];
+  counters_.count_request(pdu[0]);
   std::string refusal;
   const CommParameters comm = comm_parameters();
   auto reply = handle_pdu(pdu, map_, target, &refusal, &comm);

@@ -43,17 +43,6 @@ struct RtuEvents {
   std::vector<std::string> log;                    // frames dropped or ignored, and refusals (debug log)
 };
 
-// Counts the slave keeps, as the MicroLogix keeps them in its communication parameters
-// (1766-RM001A p. 618 "Modbus Slave to MicroLogix Memory Map - Detail", 30518-30531).
-struct RtuCounters {
-  std::uint16_t seen = 0;       // frames with a good CRC, whatever their address ("Total Messages Seen")
-  std::uint16_t to_slave = 0;   // of them, to this slave or broadcast ("Total messages to this Slave")
-  std::uint16_t responded = 0;  // replies sent ("Total messages responded to by this slave")
-  std::uint16_t link_errors = 0;  // frames dropped: bad CRC, too long, cut short ("Link Layer Error Count")
-  // Requests to this slave per function code 1, 2, 3, 4, 5, 6, 8, 15, 16 (30518-30526).
-  std::uint16_t function[9] = {};
-};
-
 class RtuSlave {
  public:
   RtuSlave(std::uint8_t address, Map map) : address_(address), map_(map) {}
@@ -66,7 +55,7 @@ class RtuSlave {
   // Whether silence() has anything to do (bytes buffered, or dropping until the line is quiet).
   bool waiting_for_silence() const { return dropping_ || !buffer_.empty(); }
   std::size_t buffered() const { return buffer_.size(); }
-  const RtuCounters& counters() const { return counters_; }
+  const SlaveCounters& counters() const { return counters_; }
   // Input registers 30501-30532 as this slave answers them (server/modbus.h, CommParameters).
   CommParameters comm_parameters() const;
   std::uint8_t address() const { return address_; }
@@ -81,7 +70,7 @@ class RtuSlave {
   Map map_;
   std::vector<std::uint8_t> buffer_;
   bool dropping_ = false;
-  RtuCounters counters_;
+  SlaveCounters counters_;
 };
 
 }  // namespace softslc::modbus

@@ -469,13 +469,14 @@ std::optional<std::size_t> MessageNetwork::modbus_slave_at(int address) const {
 }
 
 // The frame reaches every slave's receiver; one configured for another baud rate hears no frame (its UART
-// sees framing errors), so it neither executes nor answers. A broadcast reaches every slave.
+// sees framing errors), so it neither executes nor answers nor counts it. A broadcast reaches every slave; a
+// frame to another address is only counted as seen, at the slave's servicing as the others are.
 void MessageNetwork::deliver(int address, std::uint64_t serial, std::vector<std::uint8_t> pdu, std::int64_t baud,
                              VirtualTime at) {
   for (Station& st : stations_) {
-    if (!st.modbus_slave || st.modbus_slave->baud != baud || (address != 0 && st.modbus_slave->address != address))
-      continue;
-    st.modbus_requests.push_back({at, serial, address == 0, pdu});
+    if (!st.modbus_slave || st.modbus_slave->baud != baud) continue;
+    const bool to_this = address == 0 || st.modbus_slave->address == address;
+    st.modbus_requests.push_back({at, serial, address == 0, to_this, to_this ? pdu : std::vector<std::uint8_t>{}});
   }
 }
 
@@ -487,14 +488,22 @@ void MessageNetwork::deliver(int address, std::uint64_t serial, std::vector<std:
 void MessageNetwork::serve_modbus(std::size_t station, VirtualTime at) {
   Station& st = stations_[station];
   const modbus::SlaveOptions& o = *st.modbus_slave;
-  modbus::CommParameters comm = modbus::comm_parameters(o.map);
-  comm[6] = static_cast<std::uint16_t>(o.address);  // 30507, the slave address
   while (!st.modbus_requests.empty() && st.modbus_requests.front().arrival <= at) {
     const Station::ModbusRequest request = std::move(st.modbus_requests.front());
     st.modbus_requests.erase(st.modbus_requests.begin());
+    // The counters as serve's slave keeps them (server/modbus_rtu.cpp): the request counted before it is
+    // executed (a read of 30518-30531 includes itself), the reply after.
+    ++st.modbus_counters.seen;
+    if (!request.to_this) continue;
+    st.modbus_counters.count_request(request.pdu.at(0));
+    modbus::CommParameters comm = modbus::comm_parameters(o.map);
+    comm[6] = static_cast<std::uint16_t>(o.address);  // 30507, the slave address
+    st.modbus_counters.write(comm);
     DataTableTarget target(st.rt->data());
     const std::vector<std::uint8_t> reply = modbus::handle_pdu(request.pdu, o.map, target, nullptr, &comm);
-    if (!request.broadcast && modbus_master_) modbus_master_->peer_replied(request.serial, reply, at);
+    if (request.broadcast || !modbus_master_) continue;
+    modbus_master_->peer_replied(request.serial, reply, at);
+    ++st.modbus_counters.responded;
   }
 }
 

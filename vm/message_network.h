@@ -66,10 +66,9 @@ struct MessageInstruction;
 class ModbusPeerLine {
  public:
   virtual ~ModbusPeerLine() = default;
-  // Whether a controller on the line answers at `address` (1-247).
-  virtual bool has_slave(int address) const = 0;
   // A request frame to `address` (0: a broadcast, which no slave answers) sent at `baud`, its PDU, complete
-  // (its end-of-frame silence passed) at `at`. The slave answers through ModbusMaster::peer_replied with
+  // (its end-of-frame silence passed) at `at`: every controller on the line at that baud rate hears it (and
+  // counts it, modbus::SlaveCounters); the one at `address` answers through ModbusMaster::peer_replied with
   // `serial`.
   virtual void deliver(int address, std::uint64_t serial, std::vector<std::uint8_t> pdu, std::int64_t baud,
                        VirtualTime at) = 0;
@@ -247,7 +246,6 @@ class MessageNetwork final : public ModbusPeerLine {
   // The station whose channel 0 is a Modbus RTU slave at `address`, if any.
   std::optional<std::size_t> modbus_slave_at(int address) const;
   // ModbusPeerLine.
-  bool has_slave(int address) const override { return modbus_slave_at(address).has_value(); }
   void deliver(int address, std::uint64_t serial, std::vector<std::uint8_t> pdu, std::int64_t baud,
                VirtualTime at) override;
 
@@ -367,9 +365,11 @@ class MessageNetwork final : public ModbusPeerLine {
       VirtualTime arrival = 0;
       std::uint64_t serial = 0;
       bool broadcast = false;
+      bool to_this = true;  // false: a frame to another address, only counted as seen
       std::vector<std::uint8_t> pdu;
     };
     std::optional<modbus::SlaveOptions> modbus_slave;
+    modbus::SlaveCounters modbus_counters;
     std::vector<ModbusRequest> modbus_requests;
   };
 

@@ -203,13 +203,11 @@ void ModbusMaster::request_sent(std::uint64_t serial, VirtualTime at) {
   Slave* target = nullptr;
   for (Slave& s : slaves_)
     if (s.c.address == m->slave && !s.offline) target = &s;
-  if (!target) {
-    // A controller on the line takes it at its next communications servicing and answers through peer_replied.
-    if (peer_line_ && peer_line_->has_slave(m->slave))
-      peer_line_->deliver(m->slave, serial, request_pdu(*m), config_.baud, at + silence);
-    // Until a reply comes the line waits for it, until the message times out or TO aborts it.
-    return;
-  }
+  // Every controller on the line hears the frame (and counts it); the one at its address takes it at its next
+  // communications servicing and answers through peer_replied.
+  if (peer_line_) peer_line_->deliver(m->slave, serial, request_pdu(*m), config_.baud, at + silence);
+  // Until a reply comes the line waits for it, until the message times out or TO aborts it.
+  if (!target) return;
   Reply r = serve(*target, *m, false);
   const int bytes = r.exception ? modbus::kExceptionReplyBytes : modbus::reply_bytes(m->in.modbus_function, m->in.elements);
   const VirtualTime arrival = at + silence + target->c.reply_delay + character_time(static_cast<std::uint64_t>(bytes));

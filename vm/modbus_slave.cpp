@@ -178,6 +178,23 @@ CommParameters comm_parameters(const Map& map) {
   return p;
 }
 
+void SlaveCounters::count_request(std::uint8_t fc) {
+  static constexpr std::uint8_t kCounted[] = {kReadCoils, kReadDiscreteInputs, kReadHoldingRegisters,
+                                              kReadInputRegisters, kWriteSingleCoil, kWriteSingleRegister,
+                                              kDiagnostics, kWriteMultipleCoils, kWriteMultipleRegisters};
+  ++to_slave;
+  const auto* at = std::find(std::begin(kCounted), std::end(kCounted), fc);
+  if (at != std::end(kCounted)) ++function[at - std::begin(kCounted)];
+}
+
+void SlaveCounters::write(CommParameters& p) const {
+  for (std::size_t i = 0; i < std::size(function); ++i) p[17 + i] = function[i];
+  p[27] = responded;
+  p[28] = to_slave;
+  p[29] = seen;
+  p[30] = link_errors;
+}
+
 std::vector<std::uint8_t> handle_pdu(std::span<const std::uint8_t> pdu, const Map& map, pccc::Target& target,
                                      std::string* refusal, const CommParameters* comm) {
   if (pdu.empty()) return {};

@@ -88,13 +88,30 @@ inline constexpr std::uint32_t kRegisterSpace = 256;
 // inter-character timeout (30506, 30508-30510: not simulated; 0 is the channel's default, p. 3-49,
 // 0 = 3.5 character times), and the words whose coding the page does not give: parity (30511),
 // the error codes and error request (30512-30517), modem status (30527), link layer error (30532).
-// The address and counters are the Modbus RTU slave's (server/modbus_rtu.h); without one they
-// read 0, and Modbus TCP requests are not counted.
+// The address and counters are the Modbus RTU slave's (server/modbus_rtu.h; a peer controller's on a master's
+// line, vm/message_network.h; SlaveCounters below); without one they read 0, and Modbus TCP requests are not
+// counted.
 inline constexpr std::uint16_t kCommParameterBase = 500;
 inline constexpr std::uint32_t kCommParameterCount = 32;
 using CommParameters = std::array<std::uint16_t, kCommParameterCount>;
 // The parameters of a map without a serial link: the four file numbers, the rest 0.
 CommParameters comm_parameters(const Map& map);
+
+// The message counters a slave keeps in its communication parameters (1766-RM001A p. 618 "Modbus Slave to
+// MicroLogix Memory Map - Detail", 30518-30531): serve's Modbus RTU slave (server/modbus_rtu.h) and a peer whose
+// channel 0 is a slave on another controller's line (vm/message_network.h) count alike. 16-bit registers.
+struct SlaveCounters {
+  std::uint16_t seen = 0;         // frames on the line, whatever their address ("Total Messages Seen")
+  std::uint16_t to_slave = 0;     // of them, to this slave or broadcast ("Total messages to this Slave")
+  std::uint16_t responded = 0;    // replies sent ("Total messages responded to by this slave")
+  std::uint16_t link_errors = 0;  // frames dropped: bad CRC, too long, cut short ("Link Layer Error Count")
+  // Requests to this slave per function code 1, 2, 3, 4, 5, 6, 8, 15, 16 (30518-30526).
+  std::uint16_t function[9] = {};
+  // A request to this slave (or broadcast) with function code `fc`: to_slave and its function's counter.
+  void count_request(std::uint8_t fc);
+  // Writes the counters into their registers of `p` (indices 17-25 and 27-30).
+  void write(CommParameters& p) const;
+};
 
 // The baud rates of a MicroLogix channel configured for Modbus RTU (AG-UM008C p. 3-49): serve's --modbus-baud,
 // a test's `peer ... modbus baud=`.

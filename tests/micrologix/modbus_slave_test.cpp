@@ -209,6 +209,35 @@ TEST(ModbusSlave, EveryCommandGoesThroughTheMap) {
   EXPECT_EQ(l.s("B3:2") & 0x3FF, 0b10'1100'0101);  // 15: coils 33-42, bits 0-9 of the slave's B3:2
 }
 
+// The slave's message counters, input registers 30518-30531 of its communication parameters (1766-RM001A p. 618
+// "Modbus Slave to MicroLogix Memory Map - Detail": messages to this slave per function code 1, 2, 3, 4, 5, 6, 8,
+// 15, 16 at 30518-30526, 30528 total messages responded to by this slave, 30529 total messages to this slave,
+// 30530 total messages seen, 30531 link layer error count), counted as serve's slave counts them: every frame on
+// the line seen, the request counted before it is executed and its reply after. Here the line carries a read of
+// 40001 from slave 2, a read of slave 3 (nobody: seen, not to this slave, no reply) and then slave 2's own
+// counters read by function 04: three seen, two to it, one 03 and one 04, one responded (the 04's own reply
+// comes after it is read).
+TEST(ModbusSlave, TheSlaveCountsTheMessagesItSeesAndAnswers) {
+  Line l("SOR XIC B3:0/0 MSG MG11:0 03 MODBUS LOCAL 0 N7:0 1 2 1 2 EOR\n"
+         "SOR XIC B3:0/1 MSG MG11:1 03 MODBUS LOCAL 0 N7:1 1 3 1 2 EOR\n"
+         "SOR XIC B3:0/2 MSG MG11:2 04 MODBUS LOCAL 0 N7:2 14 2 518 2 EOR",
+         "", "42");
+  l.set("B3:0/0", 1);
+  ASSERT_TRUE(l.until(0, kDN | kER, 1'000'000'000));
+  EXPECT_EQ(l.i("N7:0"), 42);
+  l.set("B3:0/1", 1);
+  ASSERT_TRUE(l.until(1, kDN | kER, 3'000'000'000));
+  EXPECT_EQ(l.i("MG11:1.ERR"), 0x37);  // slave 3 is nobody
+  l.set("B3:0/2", 1);
+  ASSERT_TRUE(l.until(2, kDN | kER, 1'000'000'000));
+  ASSERT_EQ(l.i("MG11:2.17") & (kDN | kER), kDN);
+  const std::int64_t expected[14] = {0, 0, 1, 1, 0, 0, 0, 0, 0,  // 30518-30526: one 03, one 04
+                                     0,                          // 30527 modem status
+                                     1, 2, 3,                    // 30528 responded, 30529 to this slave, 30530 seen
+                                     0};                         // 30531 link layer errors
+  for (int i = 0; i < 14; ++i) EXPECT_EQ(l.i("N7:" + std::to_string(2 + i)), expected[i]) << "register " << 30518 + i;
+}
+
 // ---- Exceptions and no reply --------------------------------------------------------------------------------------
 
 TEST(ModbusSlave, AnAddressOutsideTheMapOrItsFileIsException02Error82h) {

@@ -51,12 +51,7 @@ std::vector<std::uint8_t> with_crc(std::vector<std::uint8_t> bytes) {
   return bytes;
 }
 
-CommParameters RtuSlave::comm_parameters() const {
-  CommParameters p = modbus::comm_parameters(map_);
-  p[6] = address_;
-  counters_.write(p);
-  return p;
-}
+CommParameters RtuSlave::comm_parameters() const { return modbus::comm_parameters(map_, address_, counters_); }
 
 RtuEvents RtuSlave::receive(std::span<const std::uint8_t> bytes, pccc::Target& target) {
   RtuEvents events;

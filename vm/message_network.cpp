@@ -203,17 +203,13 @@ MessageNetwork::Message* MessageNetwork::find(std::size_t station, std::uint64_t
 }
 
 void MessageNetwork::remove(std::size_t station, std::uint64_t serial) {
-  // A serial is never reused: the first message found is the only one.
-  const auto erase = [&](std::vector<Message>& list) {
-    for (auto it = list.begin(); it != list.end(); ++it)
-      if (it->serial == serial) {
-        list.erase(it);
-        return true;
-      }
-    return false;
-  };
-  for (Channel& ch : stations_[station].channels)
-    if (erase(ch.buffers) || erase(ch.queue)) return;
+  int channel = 0;
+  bool queued = false;
+  const Message* m = find(station, serial, &channel, &queued);
+  if (!m) return;
+  Channel& ch = stations_[station].channels[static_cast<std::size_t>(channel)];
+  std::vector<Message>& list = queued ? ch.queue : ch.buffers;
+  list.erase(list.begin() + (m - list.data()));
 }
 
 // ---- The instruction ---------------------------------------------------------------------------------------
@@ -235,8 +231,8 @@ void MessageNetwork::start(std::size_t station, const MessageInstruction& instru
   // A message of this control block still in a buffer or the queue is replaced: the program cleared
   // EN before DN or ER, which the manual forbids (RM 12-30); the new one wins.
   for (Channel& ch : stations_[station].channels) {
-    if (!ch.buffers.empty()) std::erase_if(ch.buffers, [&](const Message& m) { return m.in.block == in.block; });
-    if (!ch.queue.empty()) std::erase_if(ch.queue, [&](const Message& m) { return m.in.block == in.block; });
+    std::erase_if(ch.buffers, [&](const Message& m) { return m.in.block == in.block; });
+    std::erase_if(ch.queue, [&](const Message& m) { return m.in.block == in.block; });
   }
 
   // The false-to-true transition resets DN, ER, ST, NR, TO and the error code (RM 12-28, 12-29).
@@ -496,9 +492,7 @@ void MessageNetwork::serve_modbus(std::size_t station, VirtualTime at) {
     ++st.modbus_counters.seen;
     if (!request.to_this) continue;
     st.modbus_counters.count_request(request.pdu.at(0));
-    modbus::CommParameters comm = modbus::comm_parameters(o.map);
-    comm[6] = static_cast<std::uint16_t>(o.address);  // 30507, the slave address
-    st.modbus_counters.write(comm);
+    const modbus::CommParameters comm = modbus::comm_parameters(o.map, o.address, st.modbus_counters);
     DataTableTarget target(st.rt->data());
     const std::vector<std::uint8_t> reply = modbus::handle_pdu(request.pdu, o.map, target, nullptr, &comm);
     if (request.broadcast || !modbus_master_) continue;
@@ -805,14 +799,13 @@ void MessageNetwork::service_channel(std::size_t station, VirtualTime at, int ch
   expired_.clear();
   late_.clear();
   const bool ethernet = channel_link(station, channel) == MessageLink::Ethernet;
-  DataTable& d = stations_[station].rt->data();
   for (std::size_t i = 0, n = ch.buffers.size() + ch.queue.size(); i < n; ++i) {
     const Message& m = i < ch.buffers.size() ? ch.buffers[i] : ch.queue[i - ch.buffers.size()];
     if (m.in.slc502) continue;
     const Nanoseconds elapsed = at - m.started;
     // The MicroLogix keeps the seconds in MG word 19, "time since message started" (1762-RM001C p. 21-4).
     const std::uint32_t word = m.in.block + (m.in.micrologix ? mg::kElapsed : 10);
-    if (word < d.size()) d.set_word(word, static_cast<std::uint16_t>(std::min<std::int64_t>(m.seconds_at(at), 32767)));
+    set_word(station, word, static_cast<std::uint16_t>(std::min<std::int64_t>(m.seconds_at(at), 32767)));
     if (m.timeout > 0 && elapsed >= m.timeout) expired_.push_back(m.serial);
     else if (ethernet && m.acked && at - *m.acked >= msg::kReplyTimeoutNs) late_.push_back(m.serial);
   }

@@ -195,6 +195,13 @@ void SlaveCounters::write(CommParameters& p) const {
   p[30] = link_errors;
 }
 
+CommParameters comm_parameters(const Map& map, int address, const SlaveCounters& counters) {
+  CommParameters p = comm_parameters(map);
+  p[6] = static_cast<std::uint16_t>(address);
+  counters.write(p);
+  return p;
+}
+
 std::vector<std::uint8_t> handle_pdu(std::span<const std::uint8_t> pdu, const Map& map, pccc::Target& target,
                                      std::string* refusal, const CommParameters* comm) {
   if (pdu.empty()) return {};

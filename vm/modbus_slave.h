@@ -112,6 +112,8 @@ struct SlaveCounters {
   // Writes the counters into their registers of `p` (indices 17-25 and 27-30).
   void write(CommParameters& p) const;
 };
+// The parameters a Modbus RTU slave answers: the map's file numbers, its address (30507) and its counters.
+CommParameters comm_parameters(const Map& map, int address, const SlaveCounters& counters);
 
 // The baud rates of a MicroLogix channel configured for Modbus RTU (AG-UM008C p. 3-49): serve's --modbus-baud,
 // a test's `peer ... modbus baud=`.

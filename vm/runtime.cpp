@@ -1265,8 +1265,7 @@ void Runtime::advance_rtc(VirtualTime now) {
   return cost;
 }
 
-[[gnu::hot]] Nanoseconds Runtime::housekeeping(Nanoseconds scan_time, bool executed) {
-  if (!executed) return model_->housekeeping_cost();
+[[gnu::hot]] void Runtime::housekeeping(Nanoseconds scan_time) {
   // RM B-19, B-42: S:3 low byte = this scan in 10 ms ticks; S:22 max, S:23 running average
   // (avg*7 + scan)/8, both in 10 ms units unless S:33/13 selects 1 ms; S:35 = last scan.
   std::uint16_t* const s = data_.words() + program_->layout->status_word(0);
@@ -1284,7 +1283,6 @@ void Runtime::advance_rtc(VirtualTime now) {
   stats_.last = scan_time;
   stats_.max = std::max(stats_.max, scan_time);
   stats_.total += scan_time;
-  return model_->housekeeping_cost();
 }
 
 [[gnu::hot]] void Runtime::scan_once(bool single_scan_step) {
@@ -1331,12 +1329,12 @@ void Runtime::advance_rtc(VirtualTime now) {
           "scan time reached the watchdog (S:3 high byte, " + std::to_string(watchdog_span / kTick) + " x 10 ms)";
       enter_fault(f);
     }
-    housekeeping(used, true);
+    housekeeping(used);
     first_pass_ = false;
     data_.set_status(status::kMode, static_cast<std::uint16_t>(data_.status(status::kMode) & ~status::kFirstPass));
   } else {
     used += output_scan();
-    used += housekeeping(used, false);
+    used += model_->housekeeping_cost();
   }
   // Every scan takes some time, so run_for and run_until always make progress.
   used = std::max<Nanoseconds>(used, kNsPerUs);
@@ -1569,7 +1567,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     if (k % 2 == 1) data_.set_status(status::kCommBits, static_cast<std::uint16_t>(s33 ^ s33_toggle));
     for (std::int64_t i = 0; i < k; ++i) {
       const std::uint16_t avg = data_.status(status::kAvgScan);
-      housekeeping(scan_time, true);
+      housekeeping(scan_time);
       if (data_.status(status::kAvgScan) == avg) {  // the rest leave every status word as it is
         const auto rest = static_cast<std::uint64_t>(k - i - 1);
         stats_.scans += rest;
@@ -1793,8 +1791,8 @@ std::int64_t Runtime::probe_cycle(VirtualTime end, const ProbeStart& probe) {
   for (std::int64_t i = 0; i < k; ++i) {
     std::array<std::uint16_t, 4> found{};
     for (std::size_t j = 0; j < found.size(); ++j) found[j] = data_.status(kHousekeeping[j]);
-    housekeeping(scan_time_a, true);
-    housekeeping(scan_time_b, true);
+    housekeeping(scan_time_a);
+    housekeeping(scan_time_b);
     bool same = true;
     for (std::size_t j = 0; j < found.size(); ++j) same = same && found[j] == data_.status(kHousekeeping[j]);
     if (same) {  // every later pair leaves them as they are

@@ -306,7 +306,9 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // Brings S:4, the free-running clock, up to the processor's clock ticks at virtual time `at`
   // (the start of a program scan, executed or repeated).
   void advance_free_running_clock(VirtualTime at);
-  Nanoseconds housekeeping(Nanoseconds scan_time, bool executed);
+  // The housekeeping of an executed scan of `scan_time`: its status words and statistics (its cost,
+  // model_->housekeeping_cost(), is counted by the caller).
+  void housekeeping(Nanoseconds scan_time);
   // Repeated scans (docs/semantics.md "Repeated scans"): whether the next scan may be a probe, and
   // the probe: one scan executed with the data table saved before it; when it changed no word but
   // the runtime's own, the scans that would repeat it before `end` (and before anything else is

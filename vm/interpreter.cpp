@@ -2419,7 +2419,7 @@ constexpr std::array<bool, 256> kNoFastPathOp{};
         break;
       case Op::REF:
         if (rung) {
-          elapsed += chassis_.io_refresh();
+          elapsed += chassis_.io_refresh(scan_start_ + elapsed);
           scan_toggle(prog_, w_, false);
           // PT1 20-2 (facts §3): the overflow trap still set at END, TND or REF is fault 0020h.
           if (w_[s5_] & status::kOverflowTrap) {

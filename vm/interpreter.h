@@ -89,9 +89,10 @@ class ChassisAccess {
   virtual void immediate_input(int slot, int first, int count, std::uint16_t mask) = 0;
   // IOM: send `count` O-file words of `slot` from word `first` to the module under `mask`.
   virtual void immediate_output(int slot, int first, int count, std::uint16_t mask) = 0;
-  // REF: an output scan then an input scan in the middle of the program scan. Returns the virtual
-  // time the two scans took. The default does nothing and takes no time (no chassis).
-  virtual Nanoseconds io_refresh() { return 0; }
+  // REF at virtual time `at`: an output scan, the communications servicing of every channel, then an
+  // input scan, in the middle of the program scan. Returns the virtual time the two scans took. The
+  // default does nothing and takes no time (no chassis).
+  virtual Nanoseconds io_refresh(VirtualTime /*at*/) { return 0; }
   // A specialty-module instruction (BTR, BTW, DEM) addressed to the module in `slot`. The default
   // faults: there is no module to execute it.
   virtual void module_instruction(int slot, ModuleInstructionContext& ctx);

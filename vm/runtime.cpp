@@ -1168,9 +1168,16 @@ void Runtime::interrupt_serviced(int slot) {
   if (Module* m = modules_[static_cast<std::size_t>(slot)]) m->interrupt_serviced();
 }
 
-Nanoseconds Runtime::io_refresh() {
-  // REF (RM ch. 6): the output scan, then the input scan, in the middle of the program scan.
-  return output_scan() + input_scan();
+Nanoseconds Runtime::io_refresh(VirtualTime at) {
+  // REF (RM ch. 6): the output scan, then the input scan, in the middle of the program scan, and between
+  // them the communications servicing of every channel, as an SVC without a channel select: on the
+  // MicroLogix an incoming command is processed "at the next execution of a Service Communications (SVC)
+  // instruction, I/O Refresh (REF) instruction, or when it performs Communications Servicing" (1766-RM001A
+  // p. 410-411); the same on every processor (decision, docs/semantics.md "REF"). A controller on no
+  // network has nothing to service.
+  const Nanoseconds out = output_scan();
+  if (network_) network_->service_now(station_, at + out, 0x3);
+  return out + input_scan();
 }
 
 // ---- The scan cycle ----------------------------------------------------------------------------------------

@@ -358,7 +358,7 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   std::string m_refusal(int slot, MFile f, int word, bool write) const override;
   void immediate_input(int slot, int first, int count, std::uint16_t mask) override;
   void immediate_output(int slot, int first, int count, std::uint16_t mask) override;
-  Nanoseconds io_refresh() override;
+  Nanoseconds io_refresh(VirtualTime at) override;
   // the DII's and the I/O event interrupt's sources.
   void field_input_changed(int slot, int word, std::uint16_t before, std::uint16_t after) override;
   void request_io_interrupt(int slot) override;

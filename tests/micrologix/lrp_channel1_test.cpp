@@ -205,13 +205,14 @@ TEST(LrpChannel1, TheNetworkRefusesWhatItCannotBuild) {
 // the LRP's N7:0 through its channel 1 node; the LRP copies N7:0 to N7:1, runs SVC, copies N7:0 to N7:2,
 // each MOV 4.5 ms long (the pattern of tests/vm/message_test.cpp SvcServicesTheChannelAtItsPlaceInTheScan:
 // the write arrives in the LRP's second scan before its SVC). SVC 2 and SVC 3 take it there: that scan's
-// N7:2 has the value and its N7:1 not; SVC 1 (channel 0 only) leaves it to the end of the scan.
+// N7:2 has the value and its N7:1 not; SVC 1 (channel 0 only) leaves it to the end of the scan. A REF in the
+// SVC's place services every channel, channel 1 too (1766-RM001A p. 410-411; docs/semantics.md "REF").
 TEST(LrpChannel1, SvcServicesChannel1WhenItsBitIsSet) {
-  auto copies = [](const char* select) {
+  auto copies = [](const std::string& middle) {
     RuntimeOptions a_opts;
     ProcessorModel p = *resolve_processor("1764-LRP");
     a_opts.time_model = std::make_shared<SlowModel>(make_scan_time_model(p), 500'000, 4'500'000);
-    TwoNetworks net(std::string("SOR MOV N7:0 N7:1 EOR\nSOR SVC ") + select + " EOR\nSOR MOV N7:0 N7:2 EOR\n" +
+    TwoNetworks net("SOR MOV N7:0 N7:1 EOR\nSOR " + middle + " EOR\nSOR MOV N7:0 N7:2 EOR\n" +
                         "SOR XIC B3:0/15 CLR N7:9 EOR",
                     "SOR XIC B3:0/0 MSG WRITE 500CPU LOCAL N9:0 14 1 N11:0 1 5 N7:0 5 EOR\nSOR XIC B3:0/15 CLR N11:9 EOR",
                     a_opts);
@@ -225,9 +226,10 @@ TEST(LrpChannel1, SvcServicesChannel1WhenItsBitIsSet) {
     return seen;
   };
   using Seen = std::vector<std::pair<std::int64_t, std::int64_t>>;
-  EXPECT_EQ(copies("2"), (Seen{{0, 0}, {0, 77}, {77, 77}}));
-  EXPECT_EQ(copies("3"), (Seen{{0, 0}, {0, 77}, {77, 77}}));
-  EXPECT_EQ(copies("1"), (Seen{{0, 0}, {0, 0}, {77, 77}}));
+  EXPECT_EQ(copies("SVC 2"), (Seen{{0, 0}, {0, 77}, {77, 77}}));
+  EXPECT_EQ(copies("SVC 3"), (Seen{{0, 0}, {0, 77}, {77, 77}}));
+  EXPECT_EQ(copies("SVC 1"), (Seen{{0, 0}, {0, 0}, {77, 77}}));
+  EXPECT_EQ(copies("REF"), (Seen{{0, 0}, {0, 77}, {77, 77}}));
 }
 
 }  // namespace

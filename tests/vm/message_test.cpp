@@ -8,6 +8,8 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "vm/message_network.h"
 #include "vm/profile_scan_time_model.h"
@@ -329,33 +331,42 @@ TEST(Message, TheTargetAnswersAtItsEndOfScan) {
   EXPECT_GE(line.a->now(), 3 * kNsPerS);
 }
 
+// B writes 77 into A's N7:0 once; A copies N7:0 to N7:1, runs `middle` (a rung, or nothing), copies N7:0 to
+// N7:2, each MOV 4.5 ms long. B sends at its first end of scan (about 0.95 ms after the test sets its trigger)
+// and the frame takes 10.31 ms (18 bytes at 19,200 baud, 11 bits each): it arrives in A's second scan (9.5-19
+// ms) before that scan's middle rung (14 ms). What A's N7:1 and N7:2 hold after each of its first three scans.
+using Copies = std::vector<std::pair<std::int64_t, std::int64_t>>;
+Copies copies_around(const std::string& middle) {
+  const std::string b_body = "SOR XIC B3:0/0 MSG WRITE 500CPU LOCAL N9:0 14 1 N10:0 1 1 N7:0 5 EOR\n";
+  const std::string a_body = "SOR MOV N7:0 N7:1 EOR\n" + middle + "SOR MOV N7:0 N7:2 EOR\nSOR XIC B3:0/15 CLR N7:9 EOR\n";
+  RuntimeOptions a_opts;
+  a_opts.time_model = std::make_shared<SlowModel>(slc503_model(), 500'000, 4'500'000);
+  Line line(a_body, b_body, a_opts);
+  line.run();
+  EXPECT_TRUE(line.b->set("N10:0", Value::of_int(77)));
+  EXPECT_TRUE(line.b->set("B3:0/0", Value::bit(true)));
+  Copies seen;
+  for (int i = 0; i < 3; ++i) {
+    line.a->scan(1);
+    seen.emplace_back(line.ai("N7:1"), line.ai("N7:2"));
+  }
+  return seen;
+}
+
 TEST(Message, SvcServicesTheChannelAtItsPlaceInTheScan) {
-  // RM 12-41: messages are serviced "at end of scan or SVC". B writes 77 into A's N7:0 once; A copies
-  // N7:0 to N7:1, services its channel (SVC), copies N7:0 to N7:2, each MOV 4.5 ms long. B sends at
-  // its first end of scan (about 0.95 ms after the test sets its trigger) and the frame takes 10.31 ms
-  // (18 bytes at 19,200 baud, 11 bits each): it arrives in A's second scan (9.5-19 ms) before that
-  // scan's SVC (14 ms). With the SVC, that scan's N7:2 has the value and its N7:1 not; without, A
-  // takes it at the scan's end and both copies see it in the next scan.
-  auto copies = [](bool svc) {
-    const std::string b_body = "SOR XIC B3:0/0 MSG WRITE 500CPU LOCAL N9:0 14 1 N10:0 1 1 N7:0 5 EOR\n";
-    const std::string a_body = std::string("SOR MOV N7:0 N7:1 EOR\n") + (svc ? "SOR SVC EOR\n" : "") +
-                               "SOR MOV N7:0 N7:2 EOR\nSOR XIC B3:0/15 CLR N7:9 EOR\n";
-    RuntimeOptions a_opts;
-    a_opts.time_model = std::make_shared<SlowModel>(slc503_model(), 500'000, 4'500'000);
-    Line line(a_body, b_body, a_opts);
-    line.run();
-    EXPECT_TRUE(line.b->set("N10:0", Value::of_int(77)));
-    EXPECT_TRUE(line.b->set("B3:0/0", Value::bit(true)));
-    std::vector<std::pair<std::int64_t, std::int64_t>> seen;
-    for (int i = 0; i < 3; ++i) {
-      line.a->scan(1);
-      seen.emplace_back(line.ai("N7:1"), line.ai("N7:2"));
-    }
-    return seen;
-  };
-  using Seen = std::vector<std::pair<std::int64_t, std::int64_t>>;
-  EXPECT_EQ(copies(true), (Seen{{0, 0}, {0, 77}, {77, 77}}));
-  EXPECT_EQ(copies(false), (Seen{{0, 0}, {0, 0}, {77, 77}}));
+  // RM 12-41: messages are serviced "at end of scan or SVC". With the SVC, the second scan's N7:2 has the
+  // value and its N7:1 not; without, A takes it at the scan's end and both copies see it in the next scan.
+  EXPECT_EQ(copies_around("SOR SVC EOR\n"), (Copies{{0, 0}, {0, 77}, {77, 77}}));
+  EXPECT_EQ(copies_around(""), (Copies{{0, 0}, {0, 0}, {77, 77}}));
+}
+
+TEST(Message, RefServicesEveryChannelLikeSvc) {
+  // A REF services communications between its output and input scans, as an SVC does: "at the next execution
+  // of a Service Communications (SVC) instruction, I/O Refresh (REF) instruction, or when it performs
+  // Communications Servicing" (1766-RM001A p. 410-411; on the SLC a decision, docs/semantics.md "REF"). A
+  // false REF does nothing.
+  EXPECT_EQ(copies_around("SOR REF EOR\n"), (Copies{{0, 0}, {0, 77}, {77, 77}}));
+  EXPECT_EQ(copies_around("SOR XIC B3:0/1 REF EOR\n"), (Copies{{0, 0}, {0, 0}, {77, 77}}));
 }
 
 TEST(Message, Cif485WritesIntoTheTargetsN9AtTheOffset) {

@@ -221,6 +221,8 @@ std::string_view function_file_name(int id) {
 
 int function_file_id(std::string_view name) {
   if (name == "DLS0") name = "DLS";  // the manuals' spelling of the one DLS file
+  // CS0, CS1, CS2: the communications status file of channel 0, 1 or 2 (not simulated, so one id serves).
+  if (name == "CS0" || name == "CS1" || name == "CS2") name = "CS";
   for (std::size_t i = 0; i < kFunctionFileNames.size(); ++i)
     if (kFunctionFileNames[i] == name) return static_cast<int>(i);
   return -1;

@@ -78,7 +78,9 @@ struct file_type_st : string<'S', 'T'> {};
 struct file_type_m : seq<one<'M'>, one<'0', '1'>> {};
 struct file_type_letter : one<'O', 'I', 'S', 'B', 'T', 'C', 'R', 'N', 'F', 'L', 'A'> {};
 // MicroLogix function files (RTC:0.YR, HSC:0/FE): a name and no file number, so the name must
-// be followed by ':' (that keeps STI from swallowing ST9:0 and CS from C5:0). Every name starts
+// be followed by ':' (that keeps STI from swallowing ST9:0 and CS from C5:0). The communications
+// status file is written with its channel, CS0:4/MCP (1762-RM001C p. 21-27; CS1 the 1764-LRP's
+// channel 1, CS2 the 1400's channel 2): parsed so that the checker names it. Every name starts
 // with two capitals, and the lookahead for them turns away B3:0, N7:0 or T4:0 at their second
 // character instead of trying each name (a memcmp per name, 3% of a large program's load).
 struct file_type_function
@@ -86,8 +88,8 @@ struct file_type_function
           sor<TAO_PEGTL_STRING("RTC"), TAO_PEGTL_STRING("HSC"), TAO_PEGTL_STRING("PTOX"), TAO_PEGTL_STRING("PTO"),
               TAO_PEGTL_STRING("PWMX"),
               TAO_PEGTL_STRING("STI"), TAO_PEGTL_STRING("EII"), TAO_PEGTL_STRING("BHI"), TAO_PEGTL_STRING("MMI"),
-              TAO_PEGTL_STRING("DAT"), TAO_PEGTL_STRING("TPI"), TAO_PEGTL_STRING("CS"), TAO_PEGTL_STRING("IOS"),
-              TAO_PEGTL_STRING("LCD")>,
+              TAO_PEGTL_STRING("DAT"), TAO_PEGTL_STRING("TPI"), seq<TAO_PEGTL_STRING("CS"), opt<range<'0', '2'>>>,
+              TAO_PEGTL_STRING("IOS"), TAO_PEGTL_STRING("LCD")>,
           at<one<':'>>> {};
 // The Data Log Status file is written with its file number, DLS0:0/DN (1763-RM001C p. 440); DLS:0
 // is accepted too. The name is the whole match, so the '0' is no file number (action<file_type>).

@@ -10,6 +10,17 @@ namespace softslc::modbus {
 
 namespace {
 
+// The function codes the slave executes, in the order of their counters in the communication parameters
+// (30518-30526, 1766-RM001A p. 618); any other is exception 01.
+constexpr std::uint8_t kSlaveFunctions[] = {kReadCoils,          kReadDiscreteInputs, kReadHoldingRegisters,
+                                            kReadInputRegisters, kWriteSingleCoil,    kWriteSingleRegister,
+                                            kDiagnostics,        kWriteMultipleCoils, kWriteMultipleRegisters};
+// The index of `fc` in kSlaveFunctions, or -1.
+int slave_function_index(std::uint8_t fc) {
+  const auto* at = std::find(std::begin(kSlaveFunctions), std::end(kSlaveFunctions), fc);
+  return at == std::end(kSlaveFunctions) ? -1 : static_cast<int>(at - std::begin(kSlaveFunctions));
+}
+
 // Where a range of protocol addresses lands: a data file and its first word (registers) or bit.
 struct Place {
   int file = 0;
@@ -179,12 +190,9 @@ CommParameters comm_parameters(const Map& map) {
 }
 
 void SlaveCounters::count_request(std::uint8_t fc) {
-  static constexpr std::uint8_t kCounted[] = {kReadCoils, kReadDiscreteInputs, kReadHoldingRegisters,
-                                              kReadInputRegisters, kWriteSingleCoil, kWriteSingleRegister,
-                                              kDiagnostics, kWriteMultipleCoils, kWriteMultipleRegisters};
+  static_assert(std::size(kSlaveFunctions) == std::size(SlaveCounters{}.function));
   ++to_slave;
-  const auto* at = std::find(std::begin(kCounted), std::end(kCounted), fc);
-  if (at != std::end(kCounted)) ++function[at - std::begin(kCounted)];
+  if (const int i = slave_function_index(fc); i >= 0) ++function[i];
 }
 
 void SlaveCounters::write(CommParameters& p) const {
@@ -212,10 +220,7 @@ std::vector<std::uint8_t> handle_pdu(std::span<const std::uint8_t> pdu, const Ma
     return reply.exception(code);
   };
   // Every function below has a 2-byte address and a 2-byte quantity or value first.
-  const bool known = fc == kReadCoils || fc == kReadDiscreteInputs || fc == kReadHoldingRegisters ||
-                     fc == kReadInputRegisters || fc == kWriteSingleCoil || fc == kWriteSingleRegister ||
-                     fc == kWriteMultipleCoils || fc == kWriteMultipleRegisters || fc == kDiagnostics;
-  if (!known) return refuse(kIllegalFunction, "function code not supported");
+  if (slave_function_index(fc) < 0) return refuse(kIllegalFunction, "function code not supported");
   if (fc == kDiagnostics) {
     if (pdu.size() < 3 || be16(pdu, 1) != 0) return refuse(kIllegalFunction, "only diagnostics subfunction 0 (echo)");
     auto& out = reply.bytes();

@@ -39,7 +39,7 @@ constexpr std::array kNamedWords{
 };
 
 constexpr std::array<std::string_view, kFunctionFileCount> kFunctionFileNames{
-    "RTC", "HSC", "PTOX", "PWMX", "STI", "EII", "BHI", "MMI", "DAT", "TPI", "CS", "IOS", "LCD", "PTO", "DLS"};
+    "RTC", "HSC", "PTOX", "PWMX", "STI", "EII", "BHI", "MMI", "DAT", "TPI", "IOS", "LCD", "PTO", "DLS", "CS0", "CS1", "CS2"};
 
 // The RTC element's named words and bits (1762-RM001C p. 3-3 Table 3.2; see rtc:: in address.h).
 constexpr std::array<std::string_view, rtc::kDayOfWeek + 1> kRtcWords{"YR", "MON", "DAY", "HR", "MIN", "SEC", "DOW"};
@@ -202,15 +202,27 @@ constexpr std::array kDlsSubElements{
 
 bool is_dls(int id) { return id == static_cast<int>(FunctionFile::DLS); }
 
+// The communications status bits of CS0:4 (1762-RM001C p. 21-27 Table 21.5): all read only. Their word
+// is the element's only one; only element 4 has them (to_string and the checker see to that).
+constexpr std::array kCsSubElements{
+    FunctionSubElement{"ICP", 0, cs::kIncomingCommandBit, false}, FunctionSubElement{"MRP", 0, cs::kReplyPendingBit, false},
+    FunctionSubElement{"MCP", 0, cs::kCommandPendingBit, false}, FunctionSubElement{"CAB", 0, cs::kActiveBit, false},
+};
+
+bool is_cs(int id) {
+  return id >= static_cast<int>(FunctionFile::CS0) && id <= static_cast<int>(FunctionFile::CS2);
+}
+
 // The table of named sub-elements of the STI, the EII or the HSC; empty for the others.
 std::span<const FunctionSubElement> sub_elements(int id) {
   if (is_sti(id)) return kStiSubElements;
   if (is_eii(id)) return kEiiSubElements;
   if (is_hsc(id)) return kHscSubElements;
   if (is_dls(id)) return kDlsSubElements;
+  if (is_cs(id)) return kCsSubElements;
   return {};
 }
-bool has_sub_elements(int id) { return is_sti(id) || is_eii(id) || is_hsc(id) || is_dls(id); }
+bool has_sub_elements(int id) { return is_sti(id) || is_eii(id) || is_hsc(id) || is_dls(id) || is_cs(id); }
 
 }  // namespace
 
@@ -221,8 +233,7 @@ std::string_view function_file_name(int id) {
 
 int function_file_id(std::string_view name) {
   if (name == "DLS0") name = "DLS";  // the manuals' spelling of the one DLS file
-  // CS0, CS1, CS2: the communications status file of channel 0, 1 or 2 (not simulated, so one id serves).
-  if (name == "CS0" || name == "CS1" || name == "CS2") name = "CS";
+  if (name == "CS") name = "CS0";  // CS:4/MCP, a shorthand for channel 0's
   for (std::size_t i = 0; i < kFunctionFileNames.size(); ++i)
     if (kFunctionFileNames[i] == name) return static_cast<int>(i);
   return -1;
@@ -231,16 +242,18 @@ int function_file_id(std::string_view name) {
 bool function_file_simulated(int id) { return is_rtc(id) || has_sub_elements(id) || is_pulse_train(id); }
 int function_file_elements(int id) {
   if (is_pulse_train(id)) return id == static_cast<int>(FunctionFile::PTOX) ? pto::kPtoxElements : pto::kPtoElements;
-  return is_rtc(id) || is_sti(id) ? 1 : is_hsc(id) ? 6 : is_eii(id) ? eii::kMaxElements : is_dls(id) ? dls::kMaxQueues : 0;
+  return is_rtc(id) || is_sti(id) ? 1 : is_hsc(id) ? 6 : is_eii(id) ? eii::kMaxElements : is_dls(id) ? dls::kMaxQueues
+         : is_cs(id) ? cs::kElements : 0;
 }
 int function_file_words_per_element(int id) {
   if (is_pulse_train(id)) return pulse_train_layout(id).words;
   return is_rtc(id) ? rtc::kWords : is_sti(id) ? sti::kWords : is_eii(id) ? eii::kWords : is_hsc(id) ? hsc::kWords
-         : is_dls(id) ? dls::kWords : 0;
+         : is_dls(id) ? dls::kWords : is_cs(id) ? 1 : 0;
 }
 
 bool is_pulse_train_file(int id) { return is_pulse_train(id); }
 bool is_data_log_status_file(int id) { return is_dls(id); }
+int communications_status_channel(int id) { return is_cs(id) ? id - static_cast<int>(FunctionFile::CS0) : -1; }
 
 bool function_word_is_long(int id, int word) {
   if (is_hsc(id)) return hsc::is_long_word(word);
@@ -497,7 +510,11 @@ std::string to_string(const Address& a) {
     s += function_file_name(id);
     if (is_dls(id)) s += '0';
     s += ':' + std::to_string(a.element);
-    auto bit_name = a.bit >= 0 ? function_bit_name(id, a.word, a.bit) : std::string_view{};
+    // A CS file's elements are one word, so CS0:4/2 is CS0:4/MCP; its bit names are CS0:4's only.
+    const bool cs_file = is_cs(id);
+    auto bit_name = a.bit >= 0 && (!cs_file || a.element == cs::kStatusElement)
+                        ? function_bit_name(id, cs_file ? std::max(a.word, 0) : a.word, a.bit)
+                        : std::string_view{};
     if (!bit_name.empty()) return s + '/' + std::string(bit_name);
     if (a.word >= 0) {
       auto name = function_word_name(id, a.word);

@@ -94,8 +94,10 @@ inline bool is_multiword_data(FileType t) { return t == FileType::Message || t =
 // (1766-RM001A p. 146); both are simulated (docs/semantics.md "The PTO function file").
 // DLS is the Data Log Status file (1763-RM001C p. 440, AG-UM008C p. 3-64): one element per configured
 // data log queue, written DLS0:q as the manuals write it (docs/semantics.md "Data logging").
-enum class FunctionFile : std::uint8_t { RTC, HSC, PTOX, PWMX, STI, EII, BHI, MMI, DAT, TPI, CS, IOS, LCD, PTO, DLS };
-inline constexpr int kFunctionFileCount = 15;
+// CS0, CS1 and CS2 are the communications status files of channels 0, 1 (the 1764-LRP's second serial
+// port) and 2 (the 1400's): last, so that a program naming one puts it after every other file.
+enum class FunctionFile : std::uint8_t { RTC, HSC, PTOX, PWMX, STI, EII, BHI, MMI, DAT, TPI, IOS, LCD, PTO, DLS, CS0, CS1, CS2 };
+inline constexpr int kFunctionFileCount = 17;
 // "RTC", "HSC", ... for a FunctionFile number; "?" when out of range.
 std::string_view function_file_name(int id);
 // The FunctionFile number of a name ("RTC" -> 0), or -1.
@@ -174,6 +176,19 @@ inline constexpr int kEnableBit = 15, kDoneBit = 13, kOverflowBit = 12;
 }  // namespace dls
 // Whether `id` is the DLS file.
 bool is_data_log_status_file(int id);
+
+// The communications status files CS0, CS1, CS2 (1762-RM001C p. 3-13, 1763-RM001C p. 57, 1766-RM001A
+// p. 63): read only, one per channel, 71 one-word elements. softslc simulates one bit of them, MCP
+// "Outgoing Message Command Pending" (CS0:4/2, 1762-RM001C p. 21-27 Table 21.5), the bit of the
+// manual's conditional SVC; the checker refuses the rest by name (docs/semantics.md "The CS file").
+namespace cs {
+inline constexpr int kElements = 71;
+inline constexpr int kStatusElement = 4;  // CS0:4: ICP bit 0, MRP bit 1, MCP bit 2, CAB bit 4
+inline constexpr int kIncomingCommandBit = 0, kReplyPendingBit = 1, kCommandPendingBit = 2, kActiveBit = 4;
+inline constexpr std::uint16_t kCommandPending = 1u << kCommandPendingBit;
+}  // namespace cs
+// The channel whose communications status file `id` is (0, 1, 2), or -1 when it is none.
+int communications_status_channel(int id);
 
 namespace eii {
 inline constexpr int kProgramFile = 0, kErrorCode = 1, kBits = 2, kInputSelect = 3;

@@ -316,10 +316,12 @@ class Checker {
       return;
     }
     if (!function_file_simulated(a.file)) {
-      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC, STI, EII, HSC and PTO/PTOX are");
+      error(pos, "function file " + name + " (" + to_string(a) + ") is not simulated by softslc yet; only RTC, STI, EII, HSC, PTO/PTOX, DLS and CS0:4/MCP are");
       return;
     }
     if (is_pulse_train_file(a.file) && !check_pulse_train_name(a.file, pos)) return;
+    if (const int channel = communications_status_channel(a.file); channel >= 0)
+      return check_communications_status_address(a, channel, pos);
     if (is_data_log_status_file(a.file)) {
       // "The DLS file does not exist until a data log queue has been configured" (1763-RM001C p. 440).
       if (!proc.has_data_logging())
@@ -352,6 +354,30 @@ class Checker {
     if (a.word >= function_file_words_per_element(a.file))
       error(pos, to_string(a) + ": " + name + " elements have words 0-" +
                      std::to_string(function_file_words_per_element(a.file) - 1));
+  }
+
+  // The communications status files (docs/semantics.md "The CS file"): CS0 on every MicroLogix 1100-1500,
+  // CS1 on the 1764-LRP (its second serial port; the 1100/1400's channel 1 is Ethernet, whose status file
+  // is ES), CS2 on the 1400. softslc keeps one bit of them, CS0:4/MCP; the others are refused by name.
+  void check_communications_status_address(const Address& a, int channel, SourcePos pos) {
+    const auto& proc = program_.processor;
+    const std::string file = "CS" + std::to_string(channel);
+    if (channel == 1 && proc.micrologix != MicroLogixModel::ML1500LRP)
+      return error(pos, to_string(a) + ": the " + proc.display_name + " has no CS1 file (1762-RM001C p. 3-13: CS1 is "
+                                       "channel 1 of the 1764-LRP; 1763-RM001C p. 57, 1766-RM001A p. 63: the 1100/1400's "
+                                       "channel 1 is Ethernet, its status file ES)");
+    if (channel == 2)
+      return error(pos, to_string(a) + ": " +
+                            (proc.micrologix == MicroLogixModel::ML1400
+                                 ? std::string("the MicroLogix 1400's channel 2 is not simulated by softslc, nor its CS2 file")
+                                 : "the " + proc.display_name + " has no channel 2 (CS2 is the MicroLogix 1400's, 1766-RM001A p. 63)"));
+    if (a.element < 0 || a.element >= cs::kElements || a.word > 0)
+      return error(pos, to_string(a) + ": " + file + " has 71 one-word elements, " + file + ":0 to " + file +
+                            ":70 (1762-RM001C p. 3-13 Table 3.9)");
+    if (a.element != cs::kStatusElement || a.bit != cs::kCommandPendingBit)
+      error(pos, to_string(a) + " is not simulated by softslc: of the communications status file it keeps " + file +
+                     ":4/MCP, the outgoing message command pending bit (1762-RM001C p. 21-27 Table 21.5), only; "
+                     "docs/semantics.md \"The CS file\"");
   }
 
   // DATALOG statements: the queue configuration RSLogix keeps in the project (1763-RM001C pp.
@@ -440,6 +466,9 @@ class Checker {
     const bool hsc = a.file == static_cast<int>(FunctionFile::HSC);
     const bool eii = a.file == static_cast<int>(FunctionFile::EII);
     const bool dls = is_data_log_status_file(a.file);
+    if (communications_status_channel(a.file) >= 0)
+      return error(op.pos, where + ": " + to_string(a) + ": the communications status file is read only "
+                                                         "(1762-RM001C p. 3-13)");
     if (a.file != static_cast<int>(FunctionFile::STI) && !hsc && !eii && !dls) return;
     const std::string name(function_file_name(a.file));
     if (os.kind == OperandKind::File)

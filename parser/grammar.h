@@ -80,7 +80,7 @@ struct file_type_letter : one<'O', 'I', 'S', 'B', 'T', 'C', 'R', 'N', 'F', 'L', 
 // MicroLogix function files (RTC:0.YR, HSC:0/FE): a name and no file number, so the name must
 // be followed by ':' (that keeps STI from swallowing ST9:0 and CS from C5:0). The communications
 // status file is written with its channel, CS0:4/MCP (1762-RM001C p. 21-27; CS1 the 1764-LRP's
-// channel 1, CS2 the 1400's channel 2): parsed so that the checker names it. Every name starts
+// channel 1, CS2 the 1400's channel 2; CS alone is CS0). Every name starts
 // with two capitals, and the lookahead for them turns away B3:0, N7:0 or T4:0 at their second
 // character instead of trying each name (a memcmp per name, 3% of a large program's load).
 struct file_type_function

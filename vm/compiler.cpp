@@ -166,6 +166,7 @@ class Compiler {
     if (a.indirect_element()) note_ref(*a.indirect_element(), pos);
     if (a.indirect_word()) note_ref(*a.indirect_word(), pos);
     if (a.indirect_bit()) note_ref(*a.indirect_bit(), pos);
+    if (is_function_file(a.type) && a.file < kFunctionFileCount) named_function_files_[a.file] = true;
     if (is_io(a.type) || is_mfile(a.type) || a.type == FileType::Status || is_function_file(a.type)) return;
     if (a.indirect_file()) return;  // which file is only known at run time
     std::uint32_t elements = 1;
@@ -420,6 +421,19 @@ class Compiler {
       f.base = next;
       f.elements = static_cast<std::uint32_t>(highest + 1);
       f.words_per_element = static_cast<std::uint8_t>(dls::kWords);
+      next += f.words();
+    }
+    // A communications status file that the program names (the checker allows CS0:4/MCP of a channel the
+    // processor has): 71 one-word elements, zero but for the bit the MSG network and the Modbus master keep
+    // (docs/semantics.md "The CS file"). Only when named, so that no other program's table grows.
+    for (const FunctionFile kind : {FunctionFile::CS0, FunctionFile::CS1, FunctionFile::CS2}) {
+      if (!proc_.is_micrologix_1100_class() || !named_function_files_[static_cast<std::size_t>(kind)]) continue;
+      FileLayout& f = layout_.files[kFunctionFileIndex + static_cast<std::size_t>(kind)];
+      f.present = true;
+      f.type = FileType::Function;
+      f.base = next;
+      f.elements = static_cast<std::uint32_t>(cs::kElements);
+      f.words_per_element = 1;
       next += f.words();
     }
     layout_.total_words = next;
@@ -1376,6 +1390,7 @@ class Compiler {
   int cur_file_ = -1;
   int cur_rung_ = -1;
   bool reads_checksum_ = false;  // the program has an RPC, so out_.program_checksum is computed
+  std::array<bool, kFunctionFileCount> named_function_files_{};  // by FunctionFile: an address names it
   std::size_t code_words_ = 0;   // the code's expected size, counted by size_files
   std::vector<std::uint32_t> ops_scratch_;           // emit_instruction's operand words
   std::vector<const RungElement*> element_stack_;    // emit_file's walk of a rung for its LBLs

@@ -38,7 +38,9 @@ std::optional<Location> DataTableLayout::locate(const Address& a, std::string* e
     const std::size_t index = kFunctionFileIndex + a.file;
     if (a.file >= kFunctionFileCount || !files[index].present) {
       set_error(error, to_string(a) + ": function file " + std::string(function_file_name(a.file)) +
-                           " is not simulated on this processor");
+                           (communications_status_channel(a.file) >= 0
+                                ? " is in the data table only of a program that names it (docs/semantics.md \"The CS file\")"
+                                : " is not simulated on this processor"));
       return std::nullopt;
     }
     const FileLayout& f = files[index];

@@ -182,6 +182,13 @@ struct DataTableLayout {
   std::uint32_t status_word(int n) const { return files[2].base + static_cast<std::uint32_t>(n); }
   // The layout of a function file (present only when softslc simulates it on this processor).
   const FileLayout& function_file(FunctionFile f) const { return files[kFunctionFileIndex + static_cast<std::size_t>(f)]; }
+  // The word of CSn:4, channel n's communications status bits (MCP), when the program has that CS file.
+  std::optional<std::uint32_t> communications_status_word(int channel) const {
+    if (channel < 0 || channel > 2) return std::nullopt;
+    const FileLayout& f = function_file(static_cast<FunctionFile>(static_cast<int>(FunctionFile::CS0) + channel));
+    if (!f.present) return std::nullopt;
+    return f.base + static_cast<std::uint32_t>(cs::kStatusElement);
+  }
 
   // Resolves a direct address (no '#' index, no [indirection], not M0/M1) to its location.
   // `as_file_start` treats a leading '#' as the file marker of file instructions rather than as

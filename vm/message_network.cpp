@@ -106,6 +106,8 @@ std::size_t MessageNetwork::attach(Runtime& rt, int node, std::string name, std:
   s.node = node;
   s.ip = ip;
   s.name = std::move(name);
+  for (int channel = 0; channel < 2; ++channel)
+    s.status_word[static_cast<std::size_t>(channel)] = rt.compiled().layout->communications_status_word(channel);
   stations_.push_back(std::move(s));
   const std::size_t index = stations_.size() - 1;
   attach_port(index, network_channel(index), node, segment);
@@ -215,6 +217,26 @@ void MessageNetwork::remove(std::size_t station, std::uint64_t serial) {
 // ---- The instruction ---------------------------------------------------------------------------------------
 
 void MessageNetwork::start(std::size_t station, const MessageInstruction& instruction) {
+  start_message(station, instruction);
+  publish_command_pending(station);
+}
+
+void MessageNetwork::publish_command_pending(std::size_t station) {
+  Station& st = stations_[station];
+  for (std::size_t c = 0; c < st.channels.size(); ++c) {
+    if (!st.status_word[c]) continue;
+    const Channel& ch = st.channels[c];
+    const bool pending =
+        !ch.queue.empty() || std::any_of(ch.buffers.begin(), ch.buffers.end(), [](const Message& m) { return !m.sent; });
+    if (pending == st.command_pending[c]) continue;
+    st.command_pending[c] = pending;
+    const std::uint16_t w = word(station, *st.status_word[c]);
+    set_word(station, *st.status_word[c],
+             static_cast<std::uint16_t>(pending ? w | cs::kCommandPending : w & ~cs::kCommandPending));
+  }
+}
+
+void MessageNetwork::start_message(std::size_t station, const MessageInstruction& instruction) {
   const Runtime& rt = *stations_[station].rt;
   MessageInstruction in = instruction;
   // The 1764-LRP reads the channel from MG word 8 when the message starts: CHN is read/write there, "0
@@ -409,6 +431,7 @@ void MessageNetwork::abort(std::size_t station, std::uint32_t block) {
           // RM 12-30: "The next time the processor scans the MSG instruction with the TO bit set, it will
           // error the MSG (ER = 1)"; the code is the timeout's (decision, docs/semantics.md "MSG").
           finish(station, m, msg::kTimedOut, msg::kTO);
+          publish_command_pending(station);
           return;
         }
 }
@@ -788,6 +811,7 @@ void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t 
     if ((channel_mask & (1u << channel)) && !(st.channels[static_cast<std::size_t>(channel)].buffers.empty() &&
                                               st.channels[static_cast<std::size_t>(channel)].queue.empty()))
       service_channel(station, at, channel);
+  publish_command_pending(station);
 }
 
 void MessageNetwork::service_channel(std::size_t station, VirtualTime at, int channel) {

@@ -371,12 +371,21 @@ class MessageNetwork final : public ModbusPeerLine {
     std::optional<modbus::SlaveOptions> modbus_slave;
     modbus::SlaveCounters modbus_counters;
     std::vector<ModbusRequest> modbus_requests;
+    // Each channel's CSn:4 word, where the program has the CS file, and the MCP bit this network last
+    // wrote there (docs/semantics.md "The CS file"): written only when it changes, so that a channel 0
+    // Modbus master (vm/modbus_master.h), which keeps the bit for its own messages, is not overwritten.
+    std::array<std::optional<std::uint32_t>, 2> status_word;
+    std::array<bool, 2> command_pending{};
   };
 
   // How many messages the channel's buffers take: four, or one while the 5/02's message is at the
   // queue's front (RM 12-41).
   static std::size_t buffer_limit(const Channel& ch);
   void service(std::size_t station, VirtualTime at, std::uint16_t channel_mask);
+  // MCP, "Outgoing Message Command Pending" (1762-RM001C p. 21-27): set while a channel holds a message
+  // not yet sent (in the queue or a buffer), cleared by the servicing that sends the last one.
+  void publish_command_pending(std::size_t station);
+  void start_message(std::size_t station, const MessageInstruction& m);
   void service_channel(std::size_t station, VirtualTime at, int channel);
   // Executes the Modbus requests that reached `station`'s channel 0 by `at` and starts their replies.
   void serve_modbus(std::size_t station, VirtualTime at);

@@ -115,6 +115,7 @@ void ModbusMaster::start(const MessageInstruction& in) {
   }
   if (error) {
     set_status(in, static_cast<std::uint16_t>(w0 | msg::kEN | msg::kER | error));
+    publish_command_pending();  // a message of this element it replaced may have been the one pending
     return;
   }
   set_status(in, static_cast<std::uint16_t>(w0 | msg::kEN));
@@ -135,6 +136,17 @@ void ModbusMaster::start(const MessageInstruction& in) {
   count_seconds(serial, in.at, 0);
   enter_buffers();
   next_on_line(in.at);
+  publish_command_pending();
+}
+
+void ModbusMaster::publish_command_pending() {
+  const std::optional<std::uint32_t> at = host_->layout().communications_status_word(0);
+  if (!at) return;
+  const bool pending = std::any_of(messages_.begin(), messages_.end(), [](const Message& m) { return !m.sent; });
+  if (pending == command_pending_) return;
+  command_pending_ = pending;
+  const std::uint16_t w = host_->read_word(*at);
+  host_->write_word(*at, static_cast<std::uint16_t>(pending ? w | cs::kCommandPending : w & ~cs::kCommandPending));
 }
 
 // MG word 19, "time since message started" in seconds (1762-RM001C p. 21-4): 0 when the message starts,
@@ -190,6 +202,8 @@ void ModbusMaster::request_sent(std::uint64_t serial, VirtualTime at) {
   Message* m = find(serial);
   if (!m) return;
   m->line_event.reset();
+  m->sent = true;
+  publish_command_pending();
   set_status(m->in, static_cast<std::uint16_t>((status(m->in) | msg::kST) & ~msg::kEW));
   const Nanoseconds silence = character_time(7) / 2;  // 3.5 characters end an RTU frame
   if (m->slave == 0) {
@@ -299,6 +313,7 @@ void ModbusMaster::finish(std::uint64_t serial, std::uint8_t error, std::uint16_
   std::erase_if(messages_, [&](const Message& x) { return x.serial == serial; });
   enter_buffers();
   next_on_line(at);
+  publish_command_pending();
 }
 
 bool ModbusMaster::abort(std::uint32_t block) {

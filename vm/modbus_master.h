@@ -99,6 +99,7 @@ class ModbusMaster {
     int bit = 0;       // the local data's starting bit (MG word 12) for the bit commands
     bool buffered = false;
     bool on_line = false;
+    bool sent = false;  // the request's last byte has left (ST)
     std::vector<std::uint16_t> data;  // a write's data (one entry per element), taken when it enters a buffer
     std::optional<EventQueue::EventId> timer, line_event, second;
   };
@@ -121,6 +122,9 @@ class ModbusMaster {
   void set_status(const MessageInstruction& in, std::uint16_t w0);
   std::uint16_t local_element(const Message& m, int i) const;
   void set_local_element(const Message& m, int i, std::uint16_t v);
+  // CS0:4/MCP, "Outgoing Message Command Pending" (1762-RM001C p. 21-27): set while a message of the channel
+  // has not been sent, written when it changes (docs/semantics.md "The CS file").
+  void publish_command_pending();
   Slave* slave_named(std::string_view name);
   const Slave* slave_named(std::string_view name) const;
 
@@ -132,6 +136,7 @@ class ModbusMaster {
   std::uint64_t next_serial_ = 1;
   bool line_busy_ = false;
   VirtualTime line_free_at_ = 0;  // the end of the last frame plus 3.5 character times
+  bool command_pending_ = false;   // the MCP this channel last wrote
 };
 
 }  // namespace softslc

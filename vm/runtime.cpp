@@ -79,10 +79,11 @@ bool expression_reads_only_program_words(const std::string& text, std::uint16_t&
 // the '#' of a file operand marks where the file starts, as the compiler reads it, and is no index),
 // one that resolves the same (below). An M0/M1 word is allowed: the probe asks its module
 // (Runtime::reach). A read of S:4 is allowed (clock_read). So is a function-file word (RTC, STI,
-// EII, HSC, PTO/PTOX, DLS): they are data-table words, which the probe compares, and what changes
+// EII, HSC, PTO/PTOX, DLS, CS): they are data-table words, which the probe compares, and what changes
 // them between the program's writes is bounded or judged apart: the clock at its next second, the
 // STI at its expiry, an EII only on an input edge (an event or a tool), the HSC only with pulses
-// arriving, a PTO only while it runs.
+// arriving, a PTO only while it runs, CS0:4/MCP only at a MSG start, a servicing (the network's
+// quiet_until) or a Modbus master's event.
 bool reads_only_program_words(const Operand& op, const OperandSpec* spec, std::uint16_t& clock_bits) {
   if (op.kind == Operand::Kind::Expression) return expression_reads_only_program_words(op.spelling, clock_bits);
   if (!op.is_address()) return true;

@@ -692,16 +692,7 @@ TEST(MicroLogixFunctionFiles, CheckerAcceptsRtcOnlyWhereItExistsAndNamesUnmodell
   EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR XIC BHI:0/0 OTE O:0/0 EOR\n")
                 .find("function file BHI (BHI:0/0) is not simulated by softslc yet"),
             std::string::npos);
-  // The communications status file as the manuals write it, with its channel: CS0:4/MCP is the conditional SVC
-  // of 1762-RM001C p. 21-27. Named at the operand, not a syntax error (docs/micrologix-msg-sources.md section 8).
-  const std::string cs = load_errors("START Bul.1762\nLADDER 2\nSOR XIC CS0:4/MCP SVC 1 EOR\nSOR XIC CS0:4/2 SVC 1 EOR\n");
-  EXPECT_NE(cs.find("t.slc:3:15: error: unknown bit name 'MCP' of function file CS (softslc does not model this function file)"),
-            std::string::npos)
-      << cs;
-  EXPECT_NE(cs.find("t.slc:4:9: error: function file CS (CS:4/2) is not simulated by softslc yet"), std::string::npos) << cs;
-  EXPECT_EQ(parse_address("CS2:0")->type, FileType::Function);
-  EXPECT_FALSE(parse_address("CS3:0").has_value());
-  EXPECT_EQ(parse_address("C5:0")->type, FileType::Counter);
+  // The communications status files CS0-CS2: tests/micrologix/cs_file_test.cpp.
   EXPECT_NE(load_errors("START Bul.1763\nLADDER 2\nSOR MOV RTC:1.SEC N7:0 EOR\n").find("RTC has element 0 only"),
             std::string::npos);
   // A function file's DATA block still loads, kept as opaque data with a warning naming it.

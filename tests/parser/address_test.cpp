@@ -177,7 +177,7 @@ INSTANTIATE_TEST_SUITE_P(
                       BadAddress{"N7:1 junk", "not an address"},
                       BadAddress{"B3/4096", "bit offset must be 0-4095"},
                       // address_fuzz: an indirect function-file part printed as CS:0.
-                      BadAddress{"CS:[N102:1]", "function file CS is addressed directly"},
+                      BadAddress{"CS:[N102:1]", "function file CS0 is addressed directly"},
                       BadAddress{"RTC:0.[N7:0]", "function file RTC is addressed directly"},
                       BadAddress{"RTC:0/[N7:0]", "function file RTC is addressed directly"}));
 

@@ -866,8 +866,7 @@ std::optional<VirtualTime> MessageNetwork::quiet_until(std::size_t station, Virt
       for (const Message& m : *list) {
         // service_channel's step 2: the seconds word, the message timer, Ethernet's reply timeout.
         if (m.in.slc502) continue;
-        m.seconds_at(at);
-        until = std::min(until, m.started + m.second_end);
+        until = std::min(until, m.next_second_at(at));
         if (m.timeout > 0) until = std::min(until, m.started + m.timeout);
         if (ethernet && m.acked) until = std::min(until, *m.acked + msg::kReplyTimeoutNs);
       }

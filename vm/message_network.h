@@ -302,6 +302,11 @@ class MessageNetwork final : public ModbusPeerLine {
       }
       return seconds;
     }
+    // When the whole second after the one `at` is in begins (quiet_until's bound for the seconds word).
+    VirtualTime next_second_at(VirtualTime at) const {
+      seconds_at(at);
+      return started + second_end;
+    }
     Nanoseconds timeout = 0;  // 0: no timer
     bool sent = false;
     std::optional<VirtualTime> acked;  // Ethernet: when the target acknowledged (the reply timeout runs from there)

@@ -218,7 +218,7 @@ void MessageNetwork::remove(std::size_t station, std::uint64_t serial) {
 
 void MessageNetwork::start(std::size_t station, const MessageInstruction& instruction) {
   start_message(station, instruction);
-  publish_command_pending(station);
+  if (const Station& st = stations_[station]; st.status_word[0] || st.status_word[1]) publish_command_pending(station);
 }
 
 void MessageNetwork::publish_command_pending(std::size_t station) {
@@ -811,7 +811,7 @@ void MessageNetwork::service(std::size_t station, VirtualTime at, std::uint16_t 
     if ((channel_mask & (1u << channel)) && !(st.channels[static_cast<std::size_t>(channel)].buffers.empty() &&
                                               st.channels[static_cast<std::size_t>(channel)].queue.empty()))
       service_channel(station, at, channel);
-  publish_command_pending(station);
+  if (st.status_word[0] || st.status_word[1]) publish_command_pending(station);  // a program naming a CS file
 }
 
 void MessageNetwork::service_channel(std::size_t station, VirtualTime at, int channel) {

@@ -510,11 +510,13 @@ std::string to_string(const Address& a) {
     s += function_file_name(id);
     if (is_dls(id)) s += '0';
     s += ':' + std::to_string(a.element);
-    // A CS file's elements are one word, so CS0:4/2 is CS0:4/MCP; its bit names are CS0:4's only.
+    // A CS file's elements are one word, so CS0:4/2 is CS0:4/MCP (both parse to word -1); its bit names
+    // are CS0:4's only, and CS0:4.0/2 keeps its spelling.
     const bool cs_file = is_cs(id);
-    auto bit_name = a.bit >= 0 && (!cs_file || a.element == cs::kStatusElement)
-                        ? function_bit_name(id, cs_file ? std::max(a.word, 0) : a.word, a.bit)
-                        : std::string_view{};
+    auto bit_name = a.bit < 0    ? std::string_view{}
+                    : !cs_file   ? function_bit_name(id, a.word, a.bit)
+                    : a.word < 0 && a.element == cs::kStatusElement ? function_bit_name(id, 0, a.bit)
+                                                                   : std::string_view{};
     if (!bit_name.empty()) return s + '/' + std::string(bit_name);
     if (a.word >= 0) {
       auto name = function_word_name(id, a.word);

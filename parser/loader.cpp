@@ -454,7 +454,8 @@ template <> struct action<bit_name> {
                                      std::string(function_file_name(id)) +
                                      function_file_hint(id),
                                  in);
-      b.a.word = word;
+      // A CS file's elements are one word: CS0:4/MCP is CS0:4/2, its word left unwritten as there.
+      b.a.word = communications_status_channel(id) >= 0 ? -1 : word;
       b.a.bit = bit;
       return;
     }

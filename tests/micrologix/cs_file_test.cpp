@@ -41,6 +41,13 @@ TEST(CsFile, TheAddressesAreWrittenWithTheirChannel) {
   EXPECT_EQ(to_string(*parse_address("CS1:4/ICP")), "CS1:4/ICP");
   EXPECT_EQ(to_string(*parse_address("CS2:0")), "CS2:0");
   EXPECT_EQ(to_string(*parse_address("CS0:5/2")), "CS0:5/2");  // the names are CS0:4's bits only
+  EXPECT_EQ(to_string(*parse_address("CS0:4.0/2")), "CS0:4.0/2");
+  // Each spelling parses back to the address it was printed from (address_fuzz found CS:4/1 printed as
+  // CS0:4/MRP, which parsed with word 0 where CS:4/1 has none).
+  for (const char* text : {"CS:4/1", "CS0:4/MRP", "CS0:4.0/2", "CS1:5/2", "CS2:4/CAB"}) {
+    const Address a = *parse_address(text);
+    EXPECT_EQ(parse_address(to_string(a)), a) << text << " printed as " << to_string(a);
+  }
   EXPECT_FALSE(parse_address("CS3:0").has_value());
   EXPECT_EQ(parse_address("C5:0")->type, FileType::Counter);  // CS does not swallow the counter file
 }

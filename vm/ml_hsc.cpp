@@ -229,4 +229,14 @@ bool MicroLogixHsc::pulses_arriving() const {
   return false;
 }
 
+bool MicroLogixHsc::at_rest(const std::uint16_t* w) const {
+  for (int c = 0; c < count_; ++c) {
+    const Counter& k = counters_[static_cast<std::size_t>(c)];
+    if (k.source.rate != 0 || k.seen != k.source.before ||
+        bit_of(w[base(c) + hsc::kBits], hsc::kSetParametersBit) != k.set_parameters)
+      return false;
+  }
+  return true;
+}
+
 }  // namespace softslc

@@ -58,6 +58,9 @@ class MicroLogixHsc {
   std::string set_pulse_rate(int counter, std::int64_t rate, std::int64_t now);
   // Some counter's input has a pulse source running (its accumulator moves with time).
   bool pulses_arriving() const;
+  // The next advance would change nothing: no pulse to count on any counter, and every SP bit in `w` as
+  // the last advance found it (a rise loads the counter; the last executed scan may have set SP).
+  bool at_rest(const std::uint16_t* w) const;
   // Pulses the source has delivered to the counter's input by `now` (counted or not).
   std::int64_t pulses_delivered(int counter, std::int64_t now) const;
 

@@ -931,6 +931,7 @@ MessageNetwork& Runtime::network() {
 // channel configuration protocol error", as does a PCCC (DH-485) MSG on a channel 0 that is one
 // (1766-RM001A p. 466; docs/semantics.md "The MicroLogix MSG over Modbus RTU").
 void Runtime::message_start(const MessageInstruction& m) {
+  ++message_calls_;
   if (m.modbus_function != 0 && modbus_channel_) return modbus_channel_->start(m);
   if (m.modbus_function != 0 || (m.micrologix && m.channel == 0 && modbus_channel_))
     return ModbusMaster::refuse(*process_host_, m, modbus::kChannelProtocol);
@@ -953,6 +954,7 @@ void Runtime::attach_default_df1_port() {
   if (!net.df1_port(station_)) net.attach_df1(station_, df1_defaults(program_->processor));
 }
 void Runtime::message_abort(std::uint32_t block) {
+  ++message_calls_;
   if (modbus_channel_ && modbus_channel_->abort(block)) return;
   network().abort(station_, block);
 }
@@ -1026,6 +1028,9 @@ Runtime::~Runtime() = default;
 // ---- Modes ------------------------------------------------------------------------------------------------
 
 void Runtime::write_mode_bits() {
+  // A mode or a force changes what the next scan does outside the table (its output image, whether it
+  // executes): a remembered steady scan no longer stands for it.
+  steady_.valid = false;
   std::uint16_t s1 = data_.status(status::kMode);
   s1 = static_cast<std::uint16_t>((s1 & ~0x001Fu) | mode_code(mode_));
   bool in_installed = false, out_installed = false;
@@ -1466,7 +1471,9 @@ struct Runtime::ProbeStart {
 constexpr std::uint32_t kScansAfterAServicedChange = 2;
 
 std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
+  if (const std::int64_t taken = repeat_remembered(end); taken > 0) return taken;
   before_probe_.assign(data_.words(), data_.words() + data_.size());
+  const std::uint64_t message_calls = message_calls_;
   const ProbeStart probe{clock_.now(),
                          stats_.instructions,
                          process_writes_,
@@ -1558,12 +1565,56 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     probe_failed();
     return 1;
   }
-  const std::uint64_t per_scan = stats_.instructions - instructions;
+  const VirtualTime pid_until = interp_->pid_same_until();  // a timed PID's next update, or max
+  RepeatBasis basis{start,
+                    d,
+                    stats_.last,  // what the probe's housekeeping was given
+                    stats_.instructions - instructions,
+                    static_cast<std::uint16_t>((data_.status(status::kCommBits) ^ s33_before) & 0x0200u),
+                    timing,
+                    pid_until,
+                    count_limit,
+                    across_events,
+                    network_quiet,
+                    probe.routine_runs,
+                    process_writes,
+                    between_scan_writes};
+  // A probe that leaves nothing outside the table to follow (no timer read the clock, no counted word,
+  // no timed PID, no STI, no module reached, no event at its end) is remembered: a later scan that finds
+  // the same table repeats it without a probe (repeat_remembered).
+  steady_.valid = cycles_allowed_ && !timing && accumulating_.empty() && counting_.empty() &&
+                  pid_until == std::numeric_limits<VirtualTime>::max() && sti.file == 0 && reached_.empty() &&
+                  m_reads_.empty() && m_writes_.empty() && message_calls_ == message_calls &&
+                  events_at_last_scan_end_ == 0;
+  if (steady_.valid) {
+    steady_.table.assign(w, w + data_.size());
+    steady_.basis = basis;
+    steady_.input_scan_ns = input_scan_ns_;
+    for (std::size_t i = 0; i < kRuntimeStatusWords.size(); ++i)
+      steady_.runtime_words[i] = L.status_word(kRuntimeStatusWords[i]);
+    std::sort(steady_.runtime_words.begin(), steady_.runtime_words.end());
+  }
+  const std::int64_t taken = repeat_scans(end, basis, false);
+  return 1 + taken;
+}
+
+// The repeats of a steady scan (docs/semantics.md "Repeated scans"), from the clock's time: the probe's,
+// or (remembered) a scan taken from steady_ with no probe, which takes nothing rather than count a failure.
+std::int64_t Runtime::repeat_scans(VirtualTime end, const RepeatBasis& b, bool remembered) {
+  VirtualTime t = clock_.now();
+  const Nanoseconds d = b.d;
+  const DataTableLayout& L = *program_->layout;
+  const std::uint16_t* w = data_.words();
+  const StiTimer& sti = interp_->sti();
+  const std::int64_t count_limit = b.count_limit;
+  const bool across_events = b.across_events;
+  const std::optional<VirtualTime>& network_quiet = b.network_quiet;
+  const std::uint64_t per_scan = b.per_scan;
   // A timed PID falls due at a known time: the repeats end with the last scan that ends by it.
-  const VirtualTime pid_until = interp_->pid_same_until();
+  const VirtualTime pid_until = b.pid_until;
   const bool pid_timing = pid_until != std::numeric_limits<VirtualTime>::max();
-  const Nanoseconds scan_time = stats_.last;  // what the probe's housekeeping was given
-  const std::uint16_t s33_toggle = (data_.status(status::kCommBits) ^ s33_before) & 0x0200u;
+  const Nanoseconds scan_time = b.scan_time;
+  const std::uint16_t s33_toggle = b.s33_toggle;
   const FileLayout& rtc = L.function_file(FunctionFile::RTC);
   std::int64_t taken = 0;
   // Takes k scans from t without executing them: each would have advanced S:4 at its program scan
@@ -1598,14 +1649,14 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   VirtualTime horizon = std::numeric_limits<VirtualTime>::max();
   if (sti.file != 0) horizon = sti.due;
   if (pid_timing) horizon = std::min(horizon, pid_until + 1);
-  if (timing) horizon = std::min(horizon, (start / timer_tick_ns_ + 1) * timer_tick_ns_ + 1);
+  if (b.timing) horizon = std::min(horizon, (b.start / timer_tick_ns_ + 1) * timer_tick_ns_ + 1);
   // A carried timer reaches PRE at a known tick: the scan whose read of it falls in that tick sets DN
   // (TON, RTO) or clears it (TOF) and is executed. A repeat n scans after the probe reads at
   // read_at + n d, so it must start before the tick less the read's offset (and end d later).
   for (const AccumulatingTimer& a : accumulating_) {
     const std::int64_t pre = static_cast<std::int16_t>(w[a.word + 1]);
     const VirtualTime reach = (a.stamp0 + (pre - a.acc0) * a.units_per_acc) * a.unit;
-    horizon = std::min(horizon, reach - (a.read_at - start) + d);
+    horizon = std::min(horizon, reach - (a.read_at - b.start) + d);
   }
   const VirtualTime program_horizon = horizon;  // without the network's
   if (network_quiet) horizon = std::min(horizon, *network_quiet);
@@ -1643,9 +1694,9 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
       break;
     take(1);
     events_at_last_scan_end_ = events_.run_until(t);
-    if (mode_ != Mode::Run || fault_ || interp_->routine_runs() != probe.routine_runs ||
+    if (mode_ != Mode::Run || fault_ || interp_->routine_runs() != b.routine_runs ||
         !interp_->nothing_pending_between_scans() || !modules_passive() ||
-        process_writes_ != process_writes || interp_->between_scan_writes() != between_scan_writes ||
+        process_writes_ != b.process_writes || interp_->between_scan_writes() != b.between_scan_writes ||
         !probe_reads_the_same()) {
       changed_between = true;
       break;
@@ -1660,8 +1711,9 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // probe's scan left the network holding what it held (network_kept): a scan that restarts a message
   // its own rungs cleared (OTU of EN, then the MSG rung true) shows nothing in the table, but replaces the
   // message before the servicing, which then drops the old one's frame; taken as a repeat, it would not.
+  // A remembered scan calls nothing outside the table (repeat_remembered): it leaves the network as it is.
   if (network_quiet && !changed_between && t < end && t + d >= *network_quiet && t + d < program_horizon &&
-      taken < count_limit && network_kept()) {
+      taken < count_limit && (remembered || network_kept())) {
     const std::optional<VirtualTime> next = events_.next_time();
     const bool same_second = !rtc.present || (rtc_second_ + 1) * kNsPerS - t - input_scan_ns_ > 0;
     if ((!next || *next > t + d) && same_second && scans_before_the_clock_bits_change(t, d) >= 1) {
@@ -1677,6 +1729,7 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // most scans, probes much less often), and the next scan, the one that reaches the event, is
   // executed without a probe.
   if (taken == 0) {
+    if (remembered) return 0;  // nothing was taken or changed: the caller probes
     probe_failed();
     probe_wait_ = std::max<std::uint32_t>(probe_wait_, 1);
   } else {
@@ -1694,7 +1747,73 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
   // They are executed without a probe, and the third probes (decision: a program that does not react
   // loses at most two repeats).
   if (serviced_change) probe_wait_ = std::max<std::uint32_t>(probe_wait_, kScansAfterAServicedChange);
-  return 1 + taken;
+  return taken;
+}
+
+// Remembered steady scans (docs/semantics.md "Remembered steady scans"). A probe whose scan left the table
+// as it found it and read nothing outside it but the table's own words (no timer reading the clock, no
+// counted word, no timed PID, no STI, no module reached through M0/M1 or an instruction, no MSG started
+// or aborted, no event at its end; the program has no ASCII or Modbus channel, no data log and no read
+// of S:4: cycles_allowed_; SVC, REF, IIM and IOM rule repeats out) is remembered with what its repeats
+// went by. A scan that would start from the same table (but the runtime's own status words, which such
+// a program does not read) executes the same instructions on the same words and leaves the table as it
+// found it, as the remembered one did: it is the first of the repeats, taken without a probe, when,
+// besides, every module would give the input image the table holds (a tool may have changed a field
+// input since the last input scan), the HSC would load and count nothing at its start (the last scan
+// may have set SP), the network has nothing to send (quiet_until), the STI is off and no mode or force
+// changed since (write_mode_bits forgets the scan). A program that polls a MSG comes back to the table
+// it repeated after each reply or failure (EN cleared, the message started again): its probe, one
+// executed scan and the saving and comparing of the table in every poll, is spared. The repeats end at
+// the first event (a remembered scan does not know which module answers the probe read).
+std::int64_t Runtime::repeat_remembered(VirtualTime end) {
+  static_assert(std::tuple_size_v<decltype(SteadyScan::runtime_words)> == kRuntimeStatusWords.size());
+  if (!steady_.valid || interp_->sti().file != 0) return 0;
+  std::optional<VirtualTime> network_quiet;
+  if (network_) {
+    network_quiet = network_->quiet_until(station_, clock_.now());
+    if (!network_quiet) return 0;
+  }
+  const std::uint16_t* w = data_.words();
+  const std::uint16_t* r = steady_.table.data();
+  std::uint32_t from = 0;
+  for (const std::uint32_t skip : steady_.runtime_words) {
+    if (!std::equal(w + from, w + skip, r + from)) return 0;
+    from = skip + 1;
+  }
+  if (!std::equal(w + from, w + data_.size(), r + from) || !inputs_as_scanned() ||
+      !interp_->hsc().at_rest(data_.words()))
+    return 0;
+  RepeatBasis b = steady_.basis;
+  b.start = clock_.now();
+  b.across_events = false;
+  b.network_quiet = network_quiet;
+  b.routine_runs = interp_->routine_runs();
+  b.process_writes = process_writes_;
+  b.between_scan_writes = interp_->between_scan_writes();
+  accumulating_.clear();
+  counting_.clear();
+  input_scan_ns_ = steady_.input_scan_ns;
+  const std::size_t events_before = events_at_last_scan_end_;
+  events_at_last_scan_end_ = 0;  // a scan taken ends before the next event
+  const std::int64_t taken = repeat_scans(end, b, true);
+  if (taken == 0) events_at_last_scan_end_ = events_before;
+  return taken;
+}
+
+bool Runtime::inputs_as_scanned() {
+  const DataTableLayout& L = *program_->layout;
+  const FileLayout& in = L.files[1];
+  const std::uint16_t* w = data_.words() + in.base;
+  inputs_scratch_.assign(w, w + in.elements);
+  for (const ScannedModule& sm : scanned_) {
+    const SlotImage& si = L.input_slots[static_cast<std::size_t>(sm.module->slot())];
+    if (si.present) sm.module->input_scan(std::span<std::uint16_t>(inputs_scratch_.data() + si.first, si.words));
+  }
+  if (in_forces_live_)
+    for (std::uint32_t i = 0; i < inputs_scratch_.size() && i < in_force_mask_.size(); ++i)
+      inputs_scratch_[i] = static_cast<std::uint16_t>((inputs_scratch_[i] & ~in_force_mask_[i]) |
+                                                      (in_force_value_[i] & in_force_mask_[i]));
+  return std::equal(inputs_scratch_.begin(), inputs_scratch_.end(), w);
 }
 
 // Repeated cycles (docs/semantics.md "Repeated cycles"). A program whose MSG fails at once (D0h on Ethernet

@@ -321,6 +321,28 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // probe recorded before its scan. Returns the scans run and taken after the probe's.
   struct ProbeStart;
   std::int64_t probe_cycle(VirtualTime end, const ProbeStart& probe);
+  // What the repeats of one scan go by (repeat_scans): the probe's measures and bounds.
+  struct RepeatBasis {
+    VirtualTime start = 0;  // the probe's start: a timer that read the clock bounds the repeats to its tick
+    Nanoseconds d = 0;      // the scan's length
+    Nanoseconds scan_time = 0;  // what its housekeeping was given
+    std::uint64_t per_scan = 0;  // instructions
+    std::uint16_t s33_toggle = 0;  // S:33/9, when the scan toggled it
+    bool timing = false;
+    VirtualTime pid_until = 0;
+    std::int64_t count_limit = 0;
+    bool across_events = false;  // the repeats may go on across events that change nothing the program reads
+    std::optional<VirtualTime> network_quiet;
+    std::uint64_t routine_runs = 0, process_writes = 0, between_scan_writes = 0;
+  };
+  // The scans that repeat the one `b` describes, from the clock's time to `end`; returns how many were
+  // taken. `remembered`: no probe preceded them (repeat_remembered), and none taken is no failure.
+  std::int64_t repeat_scans(VirtualTime end, const RepeatBasis& b, bool remembered);
+  // Remembered steady scans (docs/semantics.md): the repeats of a probe remembered in steady_, taken
+  // without a probe when the table is the one it left; 0 when it does not stand for the next scan.
+  std::int64_t repeat_remembered(VirtualTime end);
+  // Every scanned module's input image, with the input forces, is the I file the table holds.
+  bool inputs_as_scanned();
   // The network holds for this station what it held before the probe (MessageNetwork::holdings).
   bool network_kept();
   void probe_failed();
@@ -478,6 +500,19 @@ class Runtime final : private ModuleHost, private ChassisAccess {
   // lies outside the table (ASCII, Modbus), no data log queue, no read of S:4 (set by create).
   std::vector<std::pair<std::uint32_t, std::uint16_t>> carried_before_;
   std::vector<std::uint64_t> net_before_probe_, net_after_cycle_;
+  // The last probe that left nothing outside the table to follow (repeat_remembered): the table it left,
+  // its repeats' basis, its input scan's time and the runtime's own status words (sorted indexes), which
+  // the comparison leaves out. The MSG starts and aborts the scans made (their effect depends on the
+  // network, not the table alone), counted so that a probe can tell it made none.
+  struct SteadyScan {
+    bool valid = false;
+    std::vector<std::uint16_t> table;
+    RepeatBasis basis;
+    Nanoseconds input_scan_ns = 0;
+    std::array<std::uint32_t, 6> runtime_words{};
+  };
+  SteadyScan steady_;
+  std::uint64_t message_calls_ = 0;
   bool cycles_allowed_ = false;
   Nanoseconds input_scan_ns_ = 0;
   std::size_t events_at_last_scan_end_ = 0;  // events the last scan cycle ran at its end

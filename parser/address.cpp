@@ -213,7 +213,7 @@ bool is_cs(int id) {
   return id >= static_cast<int>(FunctionFile::CS0) && id <= static_cast<int>(FunctionFile::CS2);
 }
 
-// The table of named sub-elements of the STI, the EII or the HSC; empty for the others.
+// The table of named sub-elements of the STI, the EII, the HSC, the DLS or a CS file; empty for the others.
 std::span<const FunctionSubElement> sub_elements(int id) {
   if (is_sti(id)) return kStiSubElements;
   if (is_eii(id)) return kEiiSubElements;

@@ -222,7 +222,7 @@ std::span<const FunctionSubElement> sub_elements(int id) {
   if (is_cs(id)) return kCsSubElements;
   return {};
 }
-bool has_sub_elements(int id) { return is_sti(id) || is_eii(id) || is_hsc(id) || is_dls(id) || is_cs(id); }
+bool has_sub_elements(int id) { return !sub_elements(id).empty(); }
 
 }  // namespace
 

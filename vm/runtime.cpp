@@ -680,6 +680,10 @@ RuntimeResult Runtime::create(const Program& program, RuntimeOptions options) {
   }
   rt.cycles_allowed_ = rt.program_repeatable_ && rt.clock_bits_read_ == 0 && !rt.ascii_channel_ && !rt.modbus_channel_ &&
                       rt.interp_->data_logs().queues().empty();
+  // The words a remembered steady scan's comparison leaves out (repeat_remembered), in table order.
+  for (std::size_t i = 0; i < kRuntimeStatusWords.size(); ++i)
+    rt.steady_.runtime_words[i] = rt.program_->layout->status_word(kRuntimeStatusWords[i]);
+  std::sort(rt.steady_.runtime_words.begin(), rt.steady_.runtime_words.end());
   if (!peers.empty() || channel1_node != 0 || channel0_df1) {
     if (std::string why = rt.join_peers(peers, channel1_node, channel1_network, channel0_df1); !why.empty()) {
       CompileError e;
@@ -1590,9 +1594,6 @@ std::int64_t Runtime::probe_and_repeat(VirtualTime end) {
     steady_.table.assign(w, w + data_.size());
     steady_.basis = basis;
     steady_.input_scan_ns = input_scan_ns_;
-    for (std::size_t i = 0; i < kRuntimeStatusWords.size(); ++i)
-      steady_.runtime_words[i] = L.status_word(kRuntimeStatusWords[i]);
-    std::sort(steady_.runtime_words.begin(), steady_.runtime_words.end());
   }
   const std::int64_t taken = repeat_scans(end, basis, false);
   return 1 + taken;
@@ -1768,11 +1769,6 @@ std::int64_t Runtime::repeat_scans(VirtualTime end, const RepeatBasis& b, bool r
 std::int64_t Runtime::repeat_remembered(VirtualTime end) {
   static_assert(std::tuple_size_v<decltype(SteadyScan::runtime_words)> == kRuntimeStatusWords.size());
   if (!steady_.valid || interp_->sti().file != 0) return 0;
-  std::optional<VirtualTime> network_quiet;
-  if (network_) {
-    network_quiet = network_->quiet_until(station_, clock_.now());
-    if (!network_quiet) return 0;
-  }
   const std::uint16_t* w = data_.words();
   const std::uint16_t* r = steady_.table.data();
   std::uint32_t from = 0;
@@ -1783,6 +1779,11 @@ std::int64_t Runtime::repeat_remembered(VirtualTime end) {
   if (!std::equal(w + from, w + data_.size(), r + from) || !inputs_as_scanned() ||
       !interp_->hsc().at_rest(data_.words()))
     return 0;
+  std::optional<VirtualTime> network_quiet;
+  if (network_) {
+    network_quiet = network_->quiet_until(station_, clock_.now());
+    if (!network_quiet) return 0;
+  }
   RepeatBasis b = steady_.basis;
   b.start = clock_.now();
   b.across_events = false;
